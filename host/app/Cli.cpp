@@ -1,0 +1,53 @@
+#include "host/app/Cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+#include "host/cl/ClRuntime.hpp"
+#include "host/util/Error.hpp"
+
+namespace ml {
+
+namespace {
+int runDevices() {
+  for (const auto& d : listDevices()) {
+    std::printf("%d: %s | %s | %s, %u compute units, %s%s\n", d.index, d.info.platform_name.c_str(),
+                d.info.name.c_str(), d.info.isGpu() ? "GPU" : d.info.isCpu() ? "CPU" : "other", d.info.compute_units,
+                d.info.c_version.c_str(), d.info.hasExtension("cl_khr_gl_sharing") ? ", cl_khr_gl_sharing" : "");
+  }
+  return 0;
+}
+}  // namespace
+
+int runCli(int argc, char** argv) {
+  CLI::App app{"manylights: light assignment for many dynamic point lights (OpenCL + OpenGL)"};
+  app.require_subcommand(1);
+  auto* devices = app.add_subcommand("devices", "List OpenCL platforms and devices with their indices");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "manylights: error: %s\n", e.what());
+    return 2;
+  }
+  try {
+    if (devices->parsed()) return runDevices();
+  } catch (const UserError& e) {
+    std::fprintf(stderr, "manylights: error: %s\n", e.what());
+    return 2;
+  } catch (const cl::Error& e) {
+    std::fprintf(stderr, "manylights: error: OpenCL: %s\n", describeClError(e).c_str());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "manylights: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace ml

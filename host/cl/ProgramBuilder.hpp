@@ -1,0 +1,66 @@
+#pragma once
+// Builds OpenCL programs from the embedded kernels/*.cl with host-chosen defines.
+//
+// `#include "x.h"` / `#include "x.cl"` lines are expanded from the embedded
+// host/shared/ headers and kernels/ before compiling, so the text that is hashed
+// is the text that is compiled. Built binaries are cached on disk under
+// $MANYLIGHTS_CACHE_DIR (default $XDG_CACHE_HOME/manylights or
+// ~/.cache/manylights), keyed by a hash of source, options, device, driver and
+// platform: the second run of anything skips the LLVM compile. Programs are also
+// memoised per process. A failed build throws UserError with the build log.
+#include <CL/opencl.hpp>
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace ml {
+
+struct DeviceInfo;
+
+// Ordered list of -D NAME=VALUE pairs (order is part of the cache key).
+using Defines = std::vector<std::pair<std::string, std::string>>;
+
+class ProgramBuilder {
+ public:
+  struct Stats {
+    int memory_hits = 0;
+    int disk_hits = 0;
+    int compiles = 0;
+  };
+
+  ProgramBuilder(cl::Context context, cl::Device device, const DeviceInfo& info);
+
+  // Builds kernels/<file> (e.g. "scan.cl").
+  cl::Program build(std::string_view file, const Defines& defines = {});
+  // Builds arbitrary source text; `name` labels errors and the cache entry.
+  cl::Program buildSource(std::string_view name, const std::string& source, const Defines& defines = {});
+
+  const Stats& stats() const { return stats_; }
+  // Where binaries go; empty when the cache is disabled (MANYLIGHTS_CACHE_DIR=off).
+  const std::string& cacheDir() const { return cache_dir_; }
+
+  // Expands #include "..." lines from embedded files (exposed for tests).
+  static std::string expandIncludes(std::string_view name, const std::string& source);
+
+ private:
+  cl::Program compile(std::string_view name, const std::string& source, const std::string& options,
+                      std::uint64_t key);
+  cl::Context context_;
+  cl::Device device_;
+  std::string device_id_;  // device + driver + platform, part of the key
+  std::string cache_dir_;
+  std::map<std::uint64_t, cl::Program> memo_;
+  std::mutex mutex_;
+  Stats stats_;
+};
+
+// 64-bit FNV-1a. Hand-written because the cache key must be stable across
+// builds and library versions, which std::hash does not promise.
+std::uint64_t fnv1a64(std::string_view data, std::uint64_t seed = 0xcbf29ce484222325ull);
+
+}  // namespace ml

@@ -1,0 +1,47 @@
+#pragma once
+// Point-light sets: seeded generation inside "light generation volumes" (boxes,
+// as in the hashed-shading thesis), and JSON load/save.
+//
+// JSON format (manylights): {"lights": [{"position": [x,y,z], "radius": r,
+// "intensity": [r,g,b]}, ...]}. The nTiled suite's light files
+// ({"lights": [{"position": {...}|[...], "intensity": ..., "radius": ...}]})
+// load through the same function.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host/shared/gpu_types.h"
+
+namespace ml {
+
+struct LightVolume {
+  glm::vec3 min{0.0f};
+  glm::vec3 max{1.0f};
+  float weight = 1.0f;  // relative share of the lights placed in this box
+};
+
+struct LightGenParams {
+  std::uint32_t count = 0;
+  float radius = 1.0f;           // every light gets this radius ...
+  float radius_jitter = 0.0f;    // ... times a uniform factor in [1 - j, 1 + j]
+  std::uint64_t seed = 1;
+  // Colours are fully saturated random hues (HSV with S = V = 1), as in the thesis.
+};
+
+std::vector<gpu::PointLight> generateLights(const std::vector<LightVolume>& volumes, const LightGenParams& params);
+
+// Throws UserError naming the file on missing file, bad JSON or bad fields
+// (non-positive radius, wrong array lengths, non-finite numbers).
+std::vector<gpu::PointLight> loadLightsJson(const std::string& path);
+void saveLightsJson(const std::string& path, const std::vector<gpu::PointLight>& lights);
+
+inline gpu::PointLight makeLight(glm::vec3 p, float radius, glm::vec3 color) {
+  gpu::PointLight l{};
+  l.position_radius = {p.x, p.y, p.z, radius};
+  l.color = {color.x, color.y, color.z, 0.0f};
+  return l;
+}
+
+}  // namespace ml

@@ -1,0 +1,64 @@
+#pragma once
+// Triangle geometry ready for upload: all meshes flattened to world space
+// (node transforms applied, normals transformed by the inverse transpose and
+// generated where missing), grouped in draw batches by material.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ml {
+
+struct Vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+};
+static_assert(sizeof(Vertex) == 32, "Vertex is uploaded as-is");
+
+struct Texture {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba8;  // width * height * 4, row 0 = top
+};
+
+struct Material {
+  glm::vec4 base_color{1.0f};      // glTF baseColorFactor (linear)
+  int base_color_texture = -1;     // index into Scene::textures or -1
+};
+
+struct DrawBatch {
+  std::uint32_t first_index = 0;  // into Scene::indices
+  std::uint32_t index_count = 0;
+  std::uint32_t material = 0;     // into Scene::materials
+};
+
+struct Aabb {
+  glm::vec3 min{1e30f};
+  glm::vec3 max{-1e30f};
+  void extend(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  bool empty() const { return min.x > max.x; }
+};
+
+struct Scene {
+  std::string source;  // path it was loaded from (for messages)
+  std::vector<Vertex> vertices;
+  std::vector<std::uint32_t> indices;  // triangles
+  std::vector<DrawBatch> batches;
+  std::vector<Material> materials;     // never empty after loading (default white)
+  std::vector<Texture> textures;
+  Aabb bounds;
+  std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+// Loads a .gltf or .glb (tinygltf): meshes (triangles), node hierarchy
+// transforms, normals (generated flat-per-face-averaged when missing), baseColor
+// factor and texture. Throws UserError naming the file for missing, unreadable
+// or malformed input, or a scene without triangles.
+Scene loadGltfScene(const std::string& path);
+
+}  // namespace ml

@@ -1,0 +1,43 @@
+#include "host/util/EmbeddedFiles.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "host/util/Error.hpp"
+
+namespace ml {
+namespace {
+
+// "kernels/x.cl" -> "<src>/kernels/x.cl", "shared/x.h" -> "<src>/host/shared/x.h",
+// "shaders/x" -> "<src>/gl/shaders/x".
+std::string diskPath(const std::string& root, std::string_view name) {
+  std::string n(name);
+  if (n.rfind("shared/", 0) == 0) return root + "/host/" + n;
+  if (n.rfind("shaders/", 0) == 0) return root + "/gl/" + n;
+  return root + "/" + n;
+}
+
+}  // namespace
+
+bool hasEmbeddedFile(std::string_view name) {
+  for (const auto& f : embeddedFiles())
+    if (name == f.name) return true;
+  return false;
+}
+
+std::string readEmbeddedFile(std::string_view name) {
+  if (const char* root = std::getenv("MANYLIGHTS_SOURCE_DIR"); root && *root) {
+    std::ifstream in(diskPath(root, name), std::ios::binary);
+    if (in) {
+      std::ostringstream ss;
+      ss << in.rdbuf();
+      return ss.str();
+    }
+  }
+  for (const auto& f : embeddedFiles())
+    if (name == f.name) return f.text;
+  throw UserError("embedded file '" + std::string(name) + "' not found (was it added to kernels/, host/shared/ or gl/shaders/?)");
+}
+
+}  // namespace ml
