@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "host/app/RenderCommand.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/util/Error.hpp"
 
@@ -25,6 +26,8 @@ int runCli(int argc, char** argv) {
   CLI::App app{"manylights: light assignment for many dynamic point lights (OpenCL + OpenGL)"};
   app.require_subcommand(1);
   auto* devices = app.add_subcommand("devices", "List OpenCL platforms and devices with their indices");
+  RenderArgs render_args;
+  auto* render = addRenderCommand(app, render_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -37,6 +40,7 @@ int runCli(int argc, char** argv) {
   }
   try {
     if (devices->parsed()) return runDevices();
+    if (render->parsed()) return runRender(render_args);
   } catch (const UserError& e) {
     std::fprintf(stderr, "manylights: error: %s\n", e.what());
     return 2;

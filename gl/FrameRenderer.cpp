@@ -1,0 +1,220 @@
+#include "gl/FrameRenderer.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <chrono>
+
+#include "gl/GlCheck.hpp"
+#include "host/cl/ClRuntime.hpp"
+
+namespace ml {
+
+FrameRenderer::FrameRenderer(ClRuntime& cl, const Scene& scene, unsigned width, unsigned height)
+    : cl_(cl), width_(width), height_(height) {
+  scene_ = std::make_unique<SceneGpu>(scene);
+  targets_ = std::make_unique<RenderTargets>(width, height);
+  lights_ = std::make_unique<SharedBuffer>(cl, 1024 * sizeof(gpu::PointLight), "lights");
+  depth_ = std::make_unique<SharedBuffer>(cl, static_cast<size_t>(width) * height * sizeof(float), "depth");
+  glCreateBuffers(1, &stats_ssbo_);
+  glNamedBufferStorage(stats_ssbo_, 16, nullptr, GL_DYNAMIC_STORAGE_BIT);
+  glCreateVertexArrays(1, &empty_vao_);
+  glCheck("creating the frame renderer");
+}
+
+FrameRenderer::~FrameRenderer() {
+  programs_.clear();
+  glDeleteBuffers(1, &stats_ssbo_);
+  glDeleteVertexArrays(1, &empty_vao_);
+}
+
+void FrameRenderer::setLights(const std::vector<gpu::PointLight>& lights) {
+  lights_->reserve(lights.size() * sizeof(gpu::PointLight));
+  lights_->upload(lights.data(), lights.size() * sizeof(gpu::PointLight));
+  light_count_ = static_cast<std::uint32_t>(lights.size());
+  lights_changed_ = true;
+}
+
+const ShaderProgram& FrameRenderer::program(const std::string& kind, const LightAssigner& a, bool count) {
+  const std::string key = kind + "|" + a.lookupShader() + "|" + (count ? "count" : "") + [&] {
+    std::string d;
+    for (const auto& [k, v] : a.shaderDefines()) d += "|" + k + "=" + v;
+    return d;
+  }();
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+  ShaderDefines defines = a.shaderDefines();
+  if (count) defines.emplace_back("COUNT_LIGHTS", "1");
+  const ShaderAliases aliases = {{"lookup.glsl", a.lookupShader()}};
+  std::vector<std::string> files;
+  if (kind == "depth") files = {"geometry.vert", "depth_only.frag"};
+  else if (kind == "forward") files = {"geometry.vert", "forward.frag"};
+  else if (kind == "gbuffer") files = {"geometry.vert", "gbuffer.frag"};
+  else files = {"fullscreen.vert", "deferred.frag"};
+  auto [it, ok] = programs_.emplace(key, ShaderProgram(files, defines, aliases));
+  (void)ok;
+  return it->second;
+}
+
+void FrameRenderer::setFrameUniforms(const ShaderProgram& p, const glm::mat4& view, const glm::mat4& proj) const {
+  const glm::mat4 inv_view = glm::inverse(view);
+  const glm::mat4 inv_proj = glm::inverse(proj);
+  p.set("u_view", glm::value_ptr(view));
+  p.set("u_proj", glm::value_ptr(proj));
+  p.set("u_inv_view", glm::value_ptr(inv_view));
+  p.set("u_inv_proj", glm::value_ptr(inv_proj));
+  p.set2("u_viewport", static_cast<float>(width_), static_cast<float>(height_));
+  p.set("u_light_count", light_count_);
+}
+
+void FrameRenderer::exportDepth(bool deferred, PassTimings& passes) {
+  // The depth image reaches the kernels as a buffer: a pack-buffer read is a
+  // GPU-side copy on real GPUs and a plain memcpy into the shared (mapped)
+  // storage on llvmpipe.
+  GlPassScope scope(&gl_timer_, "depth-export");
+  (void)passes;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, deferred ? targets_->gbufferFbo() : targets_->outputFbo());
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, depth_->gl());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_), GL_DEPTH_COMPONENT, GL_FLOAT,
+               nullptr);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glCheck("exporting depth to the shared buffer");
+}
+
+FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner, const FrameOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FrameResult result;
+  const float aspect = static_cast<float>(width_) / static_cast<float>(height_);
+  const glm::mat4 view = camera.view();
+  const glm::mat4 proj = camera.projection(aspect);
+  const bool deferred = options.pipeline == Pipeline::Deferred;
+  const bool needs_depth = assigner.needsDepth();
+  const bool count = options.count_lights;
+
+  glViewport(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_));
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);  // scenes have thin two-sided walls
+  glDisable(GL_BLEND);
+  if (count) {
+    const GLuint zero[4] = {0, 0, 0, 0};
+    glNamedBufferSubData(stats_ssbo_, 0, 16, zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, stats_ssbo_);
+  }
+  const GLfloat clear_color[4] = {0, 0, 0, 1};
+  const GLuint clear_counts[4] = {0, 0, 0, 0};
+  const GLfloat clear_depth = 1.0f;
+
+  // 1. Depth: G-buffer (deferred) or pre-pass (forward, only if the technique needs depth).
+  if (deferred) {
+    GlPassScope s(&gl_timer_, "gbuffer");
+    glBindFramebuffer(GL_FRAMEBUFFER, targets_->gbufferFbo());
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_COLOR, 0, clear_color);
+    glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_COLOR, 1, clear_color);
+    glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_DEPTH, 0, &clear_depth);
+    const ShaderProgram& p = program("gbuffer", assigner, false);
+    p.use();
+    setFrameUniforms(p, view, proj);
+    scene_->draw(p, true);
+  } else if (needs_depth) {
+    GlPassScope s(&gl_timer_, "depth-prepass");
+    glBindFramebuffer(GL_FRAMEBUFFER, targets_->outputFbo());
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glClearNamedFramebufferfv(targets_->outputFbo(), GL_DEPTH, 0, &clear_depth);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const ShaderProgram& p = program("depth", assigner, false);
+    p.use();
+    setFrameUniforms(p, view, proj);
+    scene_->draw(p, false);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  glCheck("depth pass");
+  if (needs_depth) exportDepth(deferred, result.passes);
+
+  // 2. Light assignment on the CL device.
+  FrameInputs in{cl_,
+                 camera,
+                 camera.params(width_, height_),
+                 view,
+                 proj,
+                 width_,
+                 height_,
+                 *lights_,
+                 light_count_,
+                 lights_changed_,
+                 needs_depth ? depth_.get() : nullptr,
+                 cl_timer_,
+                 result.passes};
+  assigner.assign(in);
+  lights_changed_ = false;
+
+  // 3. Shading.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_->gl());
+  glBindFramebuffer(GL_FRAMEBUFFER, targets_->outputFbo());
+  glClearNamedFramebufferfv(targets_->outputFbo(), GL_COLOR, 0, clear_color);
+  glClearNamedFramebufferuiv(targets_->outputFbo(), GL_COLOR, 1, clear_counts);
+  if (deferred) {
+    GlPassScope s(&gl_timer_, "deferred-shading");
+    glDisable(GL_DEPTH_TEST);
+    const ShaderProgram& p = program("deferred", assigner, count);
+    p.use();
+    setFrameUniforms(p, view, proj);
+    assigner.bindForShading(p);
+    glBindTextureUnit(1, targets_->albedoTexture());
+    glBindTextureUnit(2, targets_->normalTexture());
+    glBindTextureUnit(3, targets_->gbufferDepthTexture());
+    glBindVertexArray(empty_vao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glEnable(GL_DEPTH_TEST);
+  } else {
+    GlPassScope s(&gl_timer_, "forward-shading");
+    if (needs_depth) {
+      glDepthFunc(GL_EQUAL);  // shade only the visible surface laid down by the pre-pass
+      glDepthMask(GL_FALSE);
+    } else {
+      glClearNamedFramebufferfv(targets_->outputFbo(), GL_DEPTH, 0, &clear_depth);
+      glDepthFunc(GL_LESS);
+      glDepthMask(GL_TRUE);
+    }
+    const ShaderProgram& p = program("forward", assigner, count);
+    p.use();
+    setFrameUniforms(p, view, proj);
+    assigner.bindForShading(p);
+    scene_->draw(p, true);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+  }
+  glCheck("shading pass");
+  glFinish();
+  cl_.queue().finish();
+  result.host_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+  // Device-side pass times, in pipeline order.
+  PassTimings gl_cl;
+  gl_timer_.collect(gl_cl);
+  cl_timer_.collect(gl_cl);
+  gl_cl.merge(result.passes);
+  result.passes = gl_cl;
+  result.memory_bytes = assigner.memoryBytes();
+
+  if (count) {
+    const auto counts = targets_->readCounts();
+    const auto depth = targets_->readDepth(deferred);
+    for (size_t i = 0; i < depth.size(); ++i) {
+      if (depth[i] >= 1.0f) continue;
+      ++result.covered_pixels;
+      result.light_evaluations += counts[2 * i];
+      result.lower_bound += counts[2 * i + 1];
+    }
+    GLuint stats[2] = {0, 0};
+    glGetNamedBufferSubData(stats_ssbo_, 0, sizeof stats, stats);
+    result.fragment_evaluations = (static_cast<std::uint64_t>(stats[1]) << 32) | stats[0];
+    glCheck("reading light counts");
+  }
+  return result;
+}
+
+}  // namespace ml

@@ -1,0 +1,79 @@
+#pragma once
+// Renders frames of one scene at one resolution with any LightAssigner, in a
+// forward or deferred pipeline. Data flow per frame:
+//   forward : [depth pre-pass -> depth export] -> assign (CL) -> forward shading
+//   deferred: G-buffer -> [depth export] -> assign (CL) -> full-screen shading
+// The bracketed steps run only when the assigner needsDepth(). Lights live in a
+// SharedBuffer that both the kernels and the shaders read.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/GlPassTimer.hpp"
+#include "gl/RenderTargets.hpp"
+#include "gl/SceneGpu.hpp"
+#include "gl/ShaderProgram.hpp"
+#include "gl/SharedBuffer.hpp"
+#include "host/assign/LightAssigner.hpp"
+#include "host/cl/ClPassTimer.hpp"
+#include "host/scene/Camera.hpp"
+#include "host/scene/Scene.hpp"
+
+namespace ml {
+
+enum class Pipeline { Forward, Deferred };
+
+struct FrameOptions {
+  Pipeline pipeline = Pipeline::Forward;
+  // Count light evaluations per pixel (and the exact lower bound). Costs a
+  // little shading time; timings of counted frames are not comparable.
+  bool count_lights = false;
+};
+
+struct FrameResult {
+  PassTimings passes;  // GL and CL passes, ms
+  double host_ms = 0;  // wall time of the whole frame on the host (submit..finish)
+  // With count_lights:
+  std::uint64_t light_evaluations = 0;     // sum over pixels of lights evaluated for the visible surface
+  std::uint64_t lower_bound = 0;           // sum over pixels of lights whose sphere contains the surface point
+  std::uint64_t fragment_evaluations = 0;  // over every shaded fragment, overdraw included
+  std::uint64_t covered_pixels = 0;
+  std::size_t memory_bytes = 0;            // assigner structures
+};
+
+class FrameRenderer {
+ public:
+  FrameRenderer(ClRuntime& cl, const Scene& scene, unsigned width, unsigned height);
+  ~FrameRenderer();
+
+  void setLights(const std::vector<gpu::PointLight>& lights);
+  FrameResult render(const Camera& camera, LightAssigner& assigner, const FrameOptions& options);
+
+  const RenderTargets& targets() const { return *targets_; }
+  unsigned width() const { return width_; }
+  unsigned height() const { return height_; }
+  std::uint32_t lightCount() const { return light_count_; }
+
+ private:
+  const ShaderProgram& program(const std::string& kind, const LightAssigner& a, bool count);
+  void exportDepth(bool deferred, PassTimings& passes);
+  void setFrameUniforms(const ShaderProgram& p, const glm::mat4& view, const glm::mat4& proj) const;
+
+  ClRuntime& cl_;
+  unsigned width_, height_;
+  std::unique_ptr<SceneGpu> scene_;
+  std::unique_ptr<RenderTargets> targets_;
+  std::unique_ptr<SharedBuffer> lights_;
+  std::unique_ptr<SharedBuffer> depth_;
+  GLuint stats_ssbo_ = 0;
+  GLuint empty_vao_ = 0;
+  std::uint32_t light_count_ = 0;
+  bool lights_changed_ = true;
+  std::map<std::string, ShaderProgram> programs_;
+  GlPassTimer gl_timer_;
+  ClPassTimer cl_timer_;
+};
+
+}  // namespace ml

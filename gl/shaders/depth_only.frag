@@ -1,0 +1,2 @@
+// Depth pre-pass: depth is all that is written.
+void main() {}

@@ -1,0 +1,18 @@
+#include "common.glsl"
+#include "material.glsl"
+#include "lookup.glsl"
+#include "shading.glsl"
+in vec3 v_world;
+in vec3 v_normal;
+in vec2 v_uv;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out uvec2 o_counts;
+void main() {
+  vec3 N = normalize(v_normal);
+  if (!gl_FrontFacing) N = -N;  // two-sided, as thin walls are seen from both sides
+  vec3 view_pos = (u_view * vec4(v_world, 1.0)).xyz;
+  uvec2 counts;
+  vec3 c = shadePoint(v_world, N, view_pos, gl_FragCoord.xy, baseColor(v_uv).rgb, counts);
+  o_color = vec4(c, 1.0);
+  o_counts = counts;
+}

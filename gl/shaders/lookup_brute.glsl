@@ -1,0 +1,7 @@
+// Brute force: every light for every shaded point.
+struct LightList {
+  uint offset;
+  uint count;
+};
+LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) { return LightList(0u, u_light_count); }
+uint lightIndexAt(LightList list, uint i) { return i; }

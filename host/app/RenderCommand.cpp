@@ -1,0 +1,157 @@
+#include "host/app/RenderCommand.hpp"
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <fstream>
+
+#include "gl/FrameRenderer.hpp"
+#include "gl/GlContext.hpp"
+#include "host/cl/ClRuntime.hpp"
+#include "host/util/Error.hpp"
+#include "host/util/ImageIO.hpp"
+
+namespace ml {
+
+void parseSize(const std::string& text, const std::string& flag, unsigned& w, unsigned& h) {
+  const auto x = text.find('x');
+  auto num = [&](std::string_view s, unsigned& v) {
+    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    return ec == std::errc() && p == s.data() + s.size();
+  };
+  if (x == std::string::npos || !num(std::string_view(text).substr(0, x), w) ||
+      !num(std::string_view(text).substr(x + 1), h) || w == 0 || h == 0 || w > 16384 || h > 16384)
+    throw UserError(flag + ": expected WIDTHxHEIGHT with 1..16384 pixels each, got '" + text + "'");
+}
+
+void addSceneInputFlags(CLI::App& cmd, SceneInputArgs& a) {
+  cmd.add_option("--scene", a.scene, "glTF scene (.gltf/.glb); default: data/default/scene.glb");
+  cmd.add_option("--lights", a.lights,
+                 "light count to generate (in the scene's light volumes) or a light JSON file; "
+                 "default: data/default/lights.json");
+  cmd.add_option("--camera", a.camera, "camera or camera-path JSON; default: data/default/camera.json");
+  cmd.add_option("--light-volumes", a.light_volumes, "JSON boxes that generated lights are placed in");
+  cmd.add_option("--light-radius", a.light_radius, "radius of generated lights (default: from the volume file)");
+  cmd.add_option("--seed", a.seed, "seed for generated lights (default 23, the thesis's)");
+}
+
+CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
+  auto* cmd = app.add_subcommand("render", "Render one frame with one technique; print per-pass times and counts");
+  addSceneInputFlags(*cmd, a.inputs);
+  cmd->add_option("--technique", a.technique, "one of: " + techniqueNames())->capture_default_str();
+  cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--frame", a.frame, "index into the camera path")->capture_default_str();
+  cmd->add_option("--frames", a.frames, "timed frames (median reported)")->capture_default_str();
+  cmd->add_option("--warmup", a.warmup, "untimed frames first")->capture_default_str();
+  cmd->add_option("--out", a.out, "output image (.png 8-bit, .exr float)");
+  cmd->add_option("--device", a.device, "OpenCL device: gpu, cpu or an index from `manylights devices`");
+  cmd->add_flag("--counts", a.counts, "count light evaluations and the exact lower bound (extra frame)");
+  cmd->add_option("--stats-json", a.stats_json, "write times and counts as JSON (implies --counts)");
+  cmd->add_option("--tile", a.params.tile_size, "tile size in pixels (tiled techniques)")->capture_default_str();
+  return cmd;
+}
+
+int runRender(const RenderArgs& a) {
+  unsigned width = 0, height = 0;
+  parseSize(a.size, "--size", width, height);
+  const TechniqueInfo& tech = findTechnique(a.technique);
+  if (a.frames == 0) throw UserError("--frames: must be at least 1");
+  const DeviceChoice device = DeviceChoice::resolve(a.device);
+
+  SceneInputs inputs = loadSceneInputs(a.inputs);
+  if (a.frame >= inputs.cameras.frames.size())
+    throw UserError("--frame: " + std::to_string(a.frame) + " is past the camera path's " +
+                    std::to_string(inputs.cameras.frames.size()) + " frames");
+
+  auto gl = createHeadlessContext();
+  const GlShareHandles share = gl->shareHandles();
+  auto cl = ClRuntime::create(device, &share);
+  std::printf("%s\n%s\n", cl->describe().c_str(), gl->describe().c_str());
+  std::printf("scene: %s (%zu triangles) | lights: %s | %ux%u | technique: %s\n", inputs.scene.source.c_str(),
+              inputs.scene.triangleCount(), inputs.lights_label.c_str(), width, height, tech.name.c_str());
+
+  FrameRenderer renderer(*cl, inputs.scene, width, height);
+  renderer.setLights(inputs.lights);
+  auto assigner = makeAssigner(tech.name, *cl, a.params);
+  const Camera& camera = inputs.cameras.frames[a.frame];
+  FrameOptions opts;
+  opts.pipeline = tech.pipeline;
+
+  for (unsigned i = 0; i < a.warmup; ++i) renderer.render(camera, *assigner, opts);
+  std::vector<FrameResult> timed;
+  for (unsigned i = 0; i < a.frames; ++i) timed.push_back(renderer.render(camera, *assigner, opts));
+  if (!a.out.empty())
+    writeImage(a.out, width, height, 4, renderer.targets().readColor());
+
+  // Median per pass over the timed frames.
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  PassTimings med;
+  for (const auto& [name, ms] : timed.front().passes.entries()) {
+    (void)ms;
+    std::vector<double> v;
+    for (const auto& f : timed) v.push_back(f.passes.get(name));
+    med.add(name, median(v));
+  }
+  std::vector<double> host;
+  for (const auto& f : timed) host.push_back(f.host_ms);
+  const double host_ms = median(host);
+
+  std::printf("\n%-24s %10s\n", "pass", "ms (median)");
+  for (const auto& [name, ms] : med.entries()) std::printf("%-24s %10.3f\n", name.c_str(), ms);
+  std::printf("%-24s %10.3f\n", "sum of passes", med.total());
+  std::printf("%-24s %10.3f\n", "frame (host wall)", host_ms);
+
+  FrameResult counted;
+  const bool want_counts = a.counts || !a.stats_json.empty();
+  if (want_counts) {
+    FrameOptions copts = opts;
+    copts.count_lights = true;
+    counted = renderer.render(camera, *assigner, copts);
+    const double per_px = counted.covered_pixels ? double(counted.light_evaluations) / counted.covered_pixels : 0.0;
+    const double lb_px = counted.covered_pixels ? double(counted.lower_bound) / counted.covered_pixels : 0.0;
+    std::printf("\nlight evaluations   %14llu  (%.2f per covered pixel)\n",
+                static_cast<unsigned long long>(counted.light_evaluations), per_px);
+    std::printf("exact lower bound   %14llu  (%.2f per covered pixel)\n",
+                static_cast<unsigned long long>(counted.lower_bound), lb_px);
+    std::printf("ratio to bound      %14.3f\n",
+                counted.lower_bound ? double(counted.light_evaluations) / counted.lower_bound : 0.0);
+    std::printf("covered pixels      %14llu\n", static_cast<unsigned long long>(counted.covered_pixels));
+    std::printf("fragment evaluations%14llu  (all shaded fragments, overdraw included)\n",
+                static_cast<unsigned long long>(counted.fragment_evaluations));
+  }
+  if (!a.out.empty()) std::printf("\nwrote %s\n", a.out.c_str());
+
+  if (!a.stats_json.empty()) {
+    nlohmann::ordered_json j;
+    j["technique"] = tech.name;
+    j["width"] = width;
+    j["height"] = height;
+    j["lights"] = inputs.lights.size();
+    j["frame"] = a.frame;
+    j["timed_frames"] = a.frames;
+    nlohmann::ordered_json passes = nlohmann::ordered_json::object();
+    for (const auto& [name, ms] : med.entries()) passes[name] = ms;
+    j["passes"] = passes;
+    j["frame_host_ms"] = host_ms;
+    j["light_evaluations"] = counted.light_evaluations;
+    j["lower_bound"] = counted.lower_bound;
+    j["covered_pixels"] = counted.covered_pixels;
+    j["fragment_evaluations"] = counted.fragment_evaluations;
+    j["memory_bytes"] = counted.memory_bytes;
+    j["device"] = cl->info().name;
+    j["gl"] = gl->describe();
+    std::ofstream out(a.stats_json);
+    if (!out) throw UserError("--stats-json: cannot write '" + a.stats_json + "'");
+    out << j.dump(2) << "\n";
+    if (!out) throw UserError("--stats-json: writing '" + a.stats_json + "' failed");
+  }
+  return 0;
+}
+
+}  // namespace ml

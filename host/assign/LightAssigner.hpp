@@ -1,0 +1,61 @@
+#pragma once
+// The one interface every light-assignment technique implements (brute force,
+// tiled, clustered, hashed). The frame renderer calls, per frame:
+//   1. (if needsDepth()) renders depth and hands it over in FrameInputs::depth,
+//   2. assign(inputs)       -- builds/updates the structure, on the CL device,
+//   3. bindForShading(prog) -- binds the structure's buffers for GLSL,
+// and the shared forward/deferred shaders include lookupShader(), which must
+// define `struct LightList`, `LightList lightListFor(vec3 world_pos,
+// vec3 view_pos, vec2 frag_coord)` and `uint lightIndexAt(LightList, uint i)`.
+// Every technique's lists must be conservative: each light whose sphere
+// contains the shaded point is in its list (tests hold them to it), which is
+// what makes the per-frame lower bound exact.
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "gl/ShaderProgram.hpp"
+#include "host/cl/ClPassTimer.hpp"
+#include "host/shared/gpu_types.h"
+#include "host/util/PassTimings.hpp"
+
+namespace ml {
+
+class ClRuntime;
+class SharedBuffer;
+struct Camera;
+
+struct FrameInputs {
+  ClRuntime& cl;
+  const Camera& camera;
+  gpu::CameraParams camera_params;  // column-major view/proj, near/far, size
+  glm::mat4 view;
+  glm::mat4 proj;
+  unsigned width = 0;
+  unsigned height = 0;
+  SharedBuffer& lights;  // gpu::PointLight[light_count]; GL owns it on entry and exit
+  std::uint32_t light_count = 0;
+  bool lights_changed = true;  // positions/radii/count differ from the last frame
+  // Window-space depth (float, [0,1], 1 = background), width*height, row 0 at
+  // the bottom like gl_FragCoord; null unless needsDepth(). GL owns it on entry.
+  SharedBuffer* depth = nullptr;
+  ClPassTimer& cl_timer;  // name CL passes with it
+  PassTimings& host_timings;  // host-side work (e.g. CPU builds), in ms
+};
+
+class LightAssigner {
+ public:
+  virtual ~LightAssigner() = default;
+  virtual std::string name() const = 0;
+  virtual bool needsDepth() const { return false; }
+  virtual void assign(const FrameInputs& in) = 0;
+  virtual std::string lookupShader() const = 0;  // e.g. "lookup_tiled.glsl"
+  virtual ShaderDefines shaderDefines() const { return {}; }
+  virtual void bindForShading(const ShaderProgram& program) const = 0;
+  // Bytes of the light-assignment structures (not the light list itself).
+  virtual std::size_t memoryBytes() const { return 0; }
+};
+
+}  // namespace ml

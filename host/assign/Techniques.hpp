@@ -1,0 +1,31 @@
+#pragma once
+// The technique registry: `--technique NAME` maps to a pipeline (forward or
+// deferred) and a LightAssigner factory. New techniques add themselves here
+// and nowhere else; the frame loop never knows which one runs.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/FrameRenderer.hpp"
+#include "host/assign/LightAssigner.hpp"
+
+namespace ml {
+
+// Technique parameters from the command line; each technique reads what it needs.
+struct TechniqueParams {
+  unsigned tile_size = 16;
+};
+
+struct TechniqueInfo {
+  std::string name;         // "forward", "deferred", "tiled-forward", ...
+  Pipeline pipeline;
+  std::string description;  // one line for --help
+};
+
+const std::vector<TechniqueInfo>& techniques();
+// Throws UserError listing the valid names when `name` is unknown.
+const TechniqueInfo& findTechnique(const std::string& name);
+std::unique_ptr<LightAssigner> makeAssigner(const std::string& technique, ClRuntime& cl, const TechniqueParams& params);
+std::string techniqueNames();  // "forward|deferred|..."
+
+}  // namespace ml

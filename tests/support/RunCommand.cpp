@@ -1,0 +1,42 @@
+#include "support/RunCommand.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace ml::test {
+
+std::string tempDir() {
+  static const std::string dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("manylights-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d.string();
+  }();
+  return dir;
+}
+
+CommandResult runManylights(const std::string& args, const std::string& env) {
+  static int counter = 0;
+  const std::string base = tempDir() + "/cmd" + std::to_string(counter++);
+  const std::string cmd = (env.empty() ? "" : "env " + env + " ") + std::string(MANYLIGHTS_BINARY) + " " + args +
+                          " >" + base + ".out 2>" + base + ".err </dev/null";
+  const int status = std::system(cmd.c_str());
+  CommandResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  auto slurp = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  r.out = slurp(base + ".out");
+  r.err = slurp(base + ".err");
+  return r;
+}
+
+}  // namespace ml::test
