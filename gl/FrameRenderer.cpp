@@ -31,6 +31,7 @@ void FrameRenderer::setLights(const std::vector<gpu::PointLight>& lights) {
   lights_->reserve(lights.size() * sizeof(gpu::PointLight));
   lights_->upload(lights.data(), lights.size() * sizeof(gpu::PointLight));
   light_count_ = static_cast<std::uint32_t>(lights.size());
+  host_lights_ = lights;
   lights_changed_ = true;
 }
 
@@ -142,6 +143,7 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
                  width_,
                  height_,
                  *lights_,
+                 host_lights_,
                  light_count_,
                  lights_changed_,
                  needs_depth ? depth_.get() : nullptr,

@@ -70,6 +70,7 @@ class FrameRenderer {
   GLuint stats_ssbo_ = 0;
   GLuint empty_vao_ = 0;
   std::uint32_t light_count_ = 0;
+  std::vector<gpu::PointLight> host_lights_;
   bool lights_changed_ = true;
   std::map<std::string, ShaderProgram> programs_;
   GlPassTimer gl_timer_;

@@ -51,6 +51,16 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_flag("--counts", a.counts, "count light evaluations and the exact lower bound (extra frame)");
   cmd->add_option("--stats-json", a.stats_json, "write times and counts as JSON (implies --counts)");
   cmd->add_option("--tile", a.params.tile_size, "tile size in pixels (tiled techniques)")->capture_default_str();
+  cmd->add_option("--tile-depth", a.params.tile_depth, "tiled depth culling: none|minmax|mask")->capture_default_str();
+  cmd->add_option("--cluster-tile", a.params.cluster_tile, "cluster tile size in pixels")->capture_default_str();
+  cmd->add_option("--unique", a.params.unique_method, "unique clusters: pagetable|sort|tile-sort")
+      ->capture_default_str();
+  cmd->add_option("--cluster-assign", a.params.cluster_assign, "cluster light assignment: bvh|brute")
+      ->capture_default_str();
+  cmd->add_option("--node-size", a.params.node_size, "hashed: minimal node size, absolute or relative (0.5r)")
+      ->capture_default_str();
+  cmd->add_option("--start-depth", a.params.start_depth, "hashed: octree start depth")->capture_default_str();
+  cmd->add_flag("--geometry-mask", a.params.geometry_mask, "hashed: keep only nodes that contain geometry");
   return cmd;
 }
 
@@ -125,6 +135,12 @@ int runRender(const RenderArgs& a) {
     std::printf("fragment evaluations%14llu  (all shaded fragments, overdraw included)\n",
                 static_cast<unsigned long long>(counted.fragment_evaluations));
   }
+  const auto extra = assigner->stats();
+  if (!extra.empty()) {
+    std::printf("\n");
+    for (const auto& [k, v] : extra) std::printf("%-20s%14.6g\n", k.c_str(), v);
+  }
+  if (want_counts) std::printf("%-20s%14zu\n", "memory bytes", counted.memory_bytes);
   if (!a.out.empty()) std::printf("\nwrote %s\n", a.out.c_str());
 
   if (!a.stats_json.empty()) {
@@ -144,6 +160,9 @@ int runRender(const RenderArgs& a) {
     j["covered_pixels"] = counted.covered_pixels;
     j["fragment_evaluations"] = counted.fragment_evaluations;
     j["memory_bytes"] = counted.memory_bytes;
+    nlohmann::ordered_json st = nlohmann::ordered_json::object();
+    for (const auto& [k, v] : extra) st[k] = v;
+    j["technique_stats"] = st;
     j["device"] = cl->info().name;
     j["gl"] = gl->describe();
     std::ofstream out(a.stats_json);

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "gl/ShaderProgram.hpp"
 #include "host/cl/ClPassTimer.hpp"
@@ -36,6 +37,7 @@ struct FrameInputs {
   unsigned width = 0;
   unsigned height = 0;
   SharedBuffer& lights;  // gpu::PointLight[light_count]; GL owns it on entry and exit
+  const std::vector<gpu::PointLight>& host_lights;  // the same lights, host copy (for host-side builds)
   std::uint32_t light_count = 0;
   bool lights_changed = true;  // positions/radii/count differ from the last frame
   // Window-space depth (float, [0,1], 1 = background), width*height, row 0 at
@@ -56,6 +58,9 @@ class LightAssigner {
   virtual void bindForShading(const ShaderProgram& program) const = 0;
   // Bytes of the light-assignment structures (not the light list itself).
   virtual std::size_t memoryBytes() const { return 0; }
+  // Technique-specific figures for reports (e.g. octree layers, unique
+  // clusters), as name -> value; printed by `render` and written to JSON.
+  virtual std::vector<std::pair<std::string, double>> stats() const { return {}; }
 };
 
 }  // namespace ml

@@ -13,7 +13,17 @@ namespace ml {
 
 // Technique parameters from the command line; each technique reads what it needs.
 struct TechniqueParams {
+  // Tiled shading (--tile, --tile-depth-bounds)
   unsigned tile_size = 16;
+  std::string tile_depth = "minmax";  // none | minmax | mask (2.5D)
+  // Clustered shading (--cluster-tile, --unique, --cluster-assign)
+  unsigned cluster_tile = 32;
+  std::string unique_method = "pagetable";  // pagetable | sort | tile-sort
+  std::string cluster_assign = "bvh";       // bvh | brute
+  // Hashed shading (--node-size, --start-depth, --geometry-mask)
+  std::string node_size = "0.5r";  // absolute world units ("2.0") or relative to the largest light radius ("0.5r")
+  unsigned start_depth = 3;
+  bool geometry_mask = false;
 };
 
 struct TechniqueInfo {

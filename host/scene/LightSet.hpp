@@ -30,7 +30,24 @@ struct LightGenParams {
   // Colours are fully saturated random hues (HSV with S = V = 1), as in the thesis.
 };
 
+// Same seed and volumes give the same lights on every platform: the generator
+// draws from std::mt19937_64 through its own (specified) uniform mapping, not
+// the implementation-defined std:: distributions. Per light, in order: box
+// (by weight), x, y, z, hue, radius jitter. Throws UserError for unusable input
+// (no volumes or no positive weight while count > 0, inverted boxes, radius <= 0,
+// jitter outside [0, 1)).
 std::vector<gpu::PointLight> generateLights(const std::vector<LightVolume>& volumes, const LightGenParams& params);
+
+// A scene's light-generation volumes plus the generation parameters suggested
+// for it. JSON: {"volumes": [{"min": [x,y,z], "max": [x,y,z], "weight": w}, ...],
+// "radius": r, "radius_jitter": j, "seed": s, "count": n}; everything but
+// "volumes" is optional and fills `defaults` (count/seed are those the scene's
+// shipped light file was generated with).
+struct LightVolumeSet {
+  std::vector<LightVolume> volumes;  // never empty after loading
+  LightGenParams defaults;
+};
+LightVolumeSet loadLightVolumesJson(const std::string& path);
 
 // Throws UserError naming the file on missing file, bad JSON or bad fields
 // (non-positive radius, wrong array lengths, non-finite numbers).

@@ -1,0 +1,189 @@
+#include "host/compute/ComputeEnv.hpp"
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <utility>
+
+#include "host/compute/Detail.hpp"
+#include "host/util/Error.hpp"
+
+namespace ml::compute {
+
+namespace {
+
+std::string trimmed(std::string s) {
+  while (!s.empty() && (s.back() == '\0' || s.back() == ' ' || s.back() == '\n')) s.pop_back();
+  return s;
+}
+
+DeviceInfo queryInfo(const cl::Device& d) {
+  DeviceInfo i;
+  cl::Platform p(d.getInfo<CL_DEVICE_PLATFORM>());
+  i.platform_name = trimmed(p.getInfo<CL_PLATFORM_NAME>());
+  i.platform_version = trimmed(p.getInfo<CL_PLATFORM_VERSION>());
+  i.name = trimmed(d.getInfo<CL_DEVICE_NAME>());
+  i.vendor = trimmed(d.getInfo<CL_DEVICE_VENDOR>());
+  i.version = trimmed(d.getInfo<CL_DEVICE_VERSION>());
+  i.driver_version = trimmed(d.getInfo<CL_DRIVER_VERSION>());
+  i.c_version = trimmed(d.getInfo<CL_DEVICE_OPENCL_C_VERSION>());
+  i.extensions = d.getInfo<CL_DEVICE_EXTENSIONS>();
+  i.type = d.getInfo<CL_DEVICE_TYPE>();
+  i.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+  i.max_work_group_size = d.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+  i.local_mem_size = d.getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
+  i.global_mem_size = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+  i.max_alloc_size = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+  return i;
+}
+
+bool isPow2(std::size_t v) { return v && !(v & (v - 1)); }
+
+}  // namespace
+
+const char* shapeName(Shape s) {
+  switch (s) {
+    case Shape::Auto:
+      return "auto";
+    case Shape::CpuChunked:
+      return "cpu-chunked";
+    case Shape::GpuWorkGroup:
+      return "gpu-workgroup";
+  }
+  return "?";
+}
+
+std::size_t Tuning::cpuGroups(std::size_t n, std::size_t min_chunk_override) const {
+  return detail::ceilDiv(std::max<std::size_t>(n, 1), cpuChunk(n, min_chunk_override));
+}
+
+std::size_t Tuning::cpuChunk(std::size_t n, std::size_t min_chunk_override) const {
+  const std::size_t minc = min_chunk_override ? min_chunk_override : min_chunk;
+  const std::size_t groups = std::clamp<std::size_t>(detail::ceilDiv(n, minc), 1, chunks);
+  // Multiples of 16 elements keep every chunk start 64-byte aligned, so two
+  // work-items never write the same cache line of a contiguous output.
+  return detail::roundUp(detail::ceilDiv(std::max<std::size_t>(n, 1), groups), 16);
+}
+
+Tuning resolveTuning(const ComputeEnv& env, const Options& o) {
+  const DeviceInfo& info = env.info();
+  Tuning t;
+  t.shape = o.shape != Shape::Auto ? o.shape : (info.isCpu() ? Shape::CpuChunked : Shape::GpuWorkGroup);
+
+  if (o.work_group_size) {
+    if (!isPow2(o.work_group_size) || o.work_group_size > info.max_work_group_size)
+      throw std::invalid_argument("compute::Options::work_group_size must be a power of two <= the device maximum (" +
+                                  std::to_string(info.max_work_group_size) + ")");
+    t.wg = o.work_group_size;
+  } else {
+    // 256 fills a GPU compute unit without starving the local memory the
+    // radix and bitonic tiles need; smaller devices get their maximum.
+    t.wg = std::min<std::size_t>(256, detail::prevPow2(std::max<std::size_t>(info.max_work_group_size, 1)));
+  }
+  t.items = 4;
+  const std::size_t cus = std::max<cl_uint>(info.compute_units, 1);
+  // Eight work-items per compute unit: enough for dynamic balancing across
+  // PoCL's worker threads, few enough that per-chunk bookkeeping (radix
+  // histograms: 2^bits counters each) stays negligible.
+  t.chunks = o.chunks ? o.chunks : cus * 8;
+  t.min_chunk = 4096;
+
+  if (o.radix_bits > 8) throw std::invalid_argument("compute::Options::radix_bits must be 1..8");
+  // CPU: 8-bit digits (4 passes for uint32) with private 256-entry histograms
+  // that live in L1. GPU: 4-bit digits keep the per-work-item digit counters of
+  // the local ranking (2^bits * work-group size words) inside local memory.
+  t.radix_bits = o.radix_bits ? o.radix_bits : (t.gpu() ? 4u : 8u);
+
+  if (o.sort_chunk) {
+    if (!isPow2(o.sort_chunk) || o.sort_chunk < 16)
+      throw std::invalid_argument("compute::Options::sort_chunk must be a power of two >= 16");
+    t.cpu_sort_chunk = o.sort_chunk;
+  } else {
+    // The chunk a work-item sorts runs ~log2(C)^2/2 passes over itself, so it
+    // must stay in that core's private cache. OpenCL only reports the (shared,
+    // last-level) global-memory cache; a 1/64 share of it per compute unit,
+    // clamped to 16..128 KiB of keys+values, lands in a typical L2.
+    const cl_ulong cache = env.device().getInfo<CL_DEVICE_GLOBAL_MEM_CACHE_SIZE>();
+    const std::size_t bytes = std::clamp<std::size_t>(static_cast<std::size_t>(cache) / (cus * 64), 16 << 10, 128 << 10);
+    t.cpu_sort_chunk = detail::prevPow2(bytes / 8);
+  }
+  return t;
+}
+
+ComputeEnv::ComputeEnv(ClRuntime& rt)
+    : context_(rt.context()),
+      device_(rt.device()),
+      info_(std::make_shared<DeviceInfo>(rt.info())),
+      programs_(&rt.programs(), [](ProgramBuilder*) {}) {}
+
+ComputeEnv::ComputeEnv(const cl::Context& context, const cl::Device& device)
+    : context_(context), device_(device), info_(std::make_shared<DeviceInfo>(queryInfo(device))) {
+  programs_ = std::make_shared<ProgramBuilder>(context_, device_, *info_);
+}
+
+ComputeEnv ComputeEnv::forQueue(const cl::CommandQueue& queue) {
+  static std::mutex mutex;
+  // Never destroyed: releasing CL objects from static destructors can run after
+  // the driver's own exit handlers.
+  static auto* envs = new std::map<std::pair<cl_context, cl_device_id>, ComputeEnv>();
+  cl::Context ctx = queue.getInfo<CL_QUEUE_CONTEXT>();
+  cl::Device dev = queue.getInfo<CL_QUEUE_DEVICE>();
+  std::lock_guard lock(mutex);
+  auto key = std::make_pair(ctx(), dev());
+  auto it = envs->find(key);
+  if (it == envs->end()) it = envs->emplace(key, ComputeEnv(ctx, dev)).first;
+  return it->second;
+}
+
+namespace detail {
+
+void checkCount(std::size_t n, const char* what) {
+  if (n > 0xFFFFFFFFull) throw std::invalid_argument(std::string(what) + ": n must fit in 32 bits");
+}
+
+void checkBuffer(const cl::Buffer& buf, std::size_t bytes, const char* what) {
+  if (bytes == 0) return;
+  if (!buf()) throw std::invalid_argument(std::string(what) + ": null buffer");
+  const std::size_t size = buf.getInfo<CL_MEM_SIZE>();
+  if (size < bytes)
+    throw std::invalid_argument(std::string(what) + ": buffer holds " + std::to_string(size) + " bytes, " +
+                                std::to_string(bytes) + " needed");
+}
+
+bool sameBuffer(const cl::Buffer& a, const cl::Buffer& b) { return a() == b(); }
+
+cl::Buffer& Scratch::ensure(const ComputeEnv& env, std::size_t bytes) {
+  bytes = std::max<std::size_t>(bytes, 4);
+  if (bytes <= capacity_) return buf_;
+  if (bytes > env.info().max_alloc_size)
+    throw UserError("compute primitive needs a " + std::to_string(bytes) + "-byte scratch buffer; the device '" +
+                    env.info().name + "' allocates at most " + std::to_string(env.info().max_alloc_size));
+  // A quarter of headroom so slowly growing inputs do not reallocate each call.
+  std::size_t grown = std::min<std::size_t>(bytes + bytes / 4, env.info().max_alloc_size);
+  buf_ = cl::Buffer();  // release first: the old and new buffer need not coexist
+  buf_ = cl::Buffer(env.context(), CL_MEM_READ_WRITE, grown);
+  capacity_ = grown;
+  return buf_;
+}
+
+void launch(cl::CommandQueue& q, const cl::Kernel& k, std::size_t global, std::size_t local, ClPassTimer* timer,
+            const char* name) {
+  if (global == 0) return;
+  q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(roundUp(global, local)), cl::NDRange(local), nullptr,
+                         timer ? timer->next(name) : nullptr);
+}
+
+cl::Program buildShaped(const ComputeEnv& env, const Tuning& t, const char* file, Defines extra) {
+  Defines d;
+  d.emplace_back("ML_GPU", t.gpu() ? "1" : "0");
+  if (t.gpu()) {
+    d.emplace_back("WG", std::to_string(t.wg));
+    d.emplace_back("ITEMS", std::to_string(t.items));
+  }
+  for (auto& e : extra) d.push_back(std::move(e));
+  return env.programs().build(file, d);
+}
+
+}  // namespace detail
+}  // namespace ml::compute

@@ -1,0 +1,65 @@
+#pragma once
+// Internal helpers of the compute primitives: argument checks, grown scratch
+// buffers, kernel launches with optional pass timing. Not part of the API.
+#include <CL/opencl.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "host/cl/ClPassTimer.hpp"
+#include "host/compute/ComputeEnv.hpp"
+
+namespace ml::compute::detail {
+
+inline std::size_t ceilDiv(std::size_t a, std::size_t b) { return (a + b - 1) / b; }
+inline std::size_t roundUp(std::size_t a, std::size_t b) { return ceilDiv(a, b) * b; }
+inline std::size_t nextPow2(std::size_t v) {
+  std::size_t p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+inline std::size_t prevPow2(std::size_t v) {
+  std::size_t p = 1;
+  while (p * 2 <= v) p <<= 1;
+  return p;
+}
+
+// Throws std::invalid_argument when `buf` is smaller than `bytes` or n does not
+// fit the 32-bit indices the kernels use.
+void checkBuffer(const cl::Buffer& buf, std::size_t bytes, const char* what);
+void checkCount(std::size_t n, const char* what);
+bool sameBuffer(const cl::Buffer& a, const cl::Buffer& b);
+
+// A device buffer that only grows. ensure() reallocates (dropping contents)
+// when too small and throws UserError when the device cannot allocate that
+// much, so a caller never works on a truncated buffer.
+class Scratch {
+ public:
+  cl::Buffer& ensure(const ComputeEnv& env, std::size_t bytes);
+  cl::Buffer& get() { return buf_; }
+  std::size_t capacity() const { return capacity_; }
+
+ private:
+  cl::Buffer buf_;
+  std::size_t capacity_ = 0;
+};
+
+// Enqueues a 1D range (global rounded up to local), timed under `name` when a
+// timer is given.
+void launch(cl::CommandQueue& q, const cl::Kernel& k, std::size_t global, std::size_t local, ClPassTimer* timer,
+            const char* name);
+
+template <typename... Args>
+void setArgs(cl::Kernel& k, const Args&... args) {
+  cl_uint i = 0;
+  (k.setArg(i++, args), ...);
+}
+
+// Builds kernels/<file> with the shape defines; returns the program.
+cl::Program buildShaped(const ComputeEnv& env, const Tuning& t, const char* file, Defines extra = {});
+
+// u32 helper: kernels index with uint.
+inline cl_uint u32(std::size_t v) { return static_cast<cl_uint>(v); }
+
+}  // namespace ml::compute::detail
