@@ -1,8 +1,29 @@
 #include "gl/GlPassTimer.hpp"
 
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+
 #include "gl/GlCheck.hpp"
 
 namespace ml {
+namespace {
+double nowMs() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+GlPassTimer::GlPassTimer() {
+  const char* force = std::getenv("MANYLIGHTS_GL_TIMING");
+  if (force && std::strcmp(force, "host") == 0) {
+    host_clock_ = true;
+  } else if (force && std::strcmp(force, "query") == 0) {
+    host_clock_ = false;
+  } else {
+    const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    host_clock_ = r && (std::strstr(r, "llvmpipe") || std::strstr(r, "softpipe") || std::strstr(r, "SWR"));
+  }
+}
 
 GlPassTimer::~GlPassTimer() {
   for (auto& [n, q] : active_) pool_.push_back(q);
@@ -10,6 +31,12 @@ GlPassTimer::~GlPassTimer() {
 }
 
 void GlPassTimer::begin(const std::string& name) {
+  if (host_clock_) {
+    glFinish();
+    host_name_ = name;
+    host_start_ms_ = nowMs();
+    return;
+  }
   GLuint q = 0;
   if (pool_.empty()) {
     glCreateQueries(GL_TIME_ELAPSED, 1, &q);
@@ -21,9 +48,18 @@ void GlPassTimer::begin(const std::string& name) {
   active_.emplace_back(name, q);
 }
 
-void GlPassTimer::end() { glEndQuery(GL_TIME_ELAPSED); }
+void GlPassTimer::end() {
+  if (host_clock_) {
+    glFinish();
+    host_done_.add(host_name_, nowMs() - host_start_ms_);
+    return;
+  }
+  glEndQuery(GL_TIME_ELAPSED);
+}
 
 void GlPassTimer::collect(PassTimings& out) {
+  out.merge(host_done_);
+  host_done_.clear();
   for (auto& [name, q] : active_) {
     GLuint64 ns = 0;
     glGetQueryObjectui64v(q, GL_QUERY_RESULT, &ns);

@@ -1,6 +1,9 @@
 #pragma once
-// GL_TIME_ELAPSED queries per named pass. begin()/end() must not nest (GL
-// allows one active elapsed-time query). collect() waits for the results.
+// Per-pass GL times. On hardware GPUs: GL_TIME_ELAPSED queries (begin()/end()
+// must not nest). On software rasterisers (llvmpipe, softpipe) those queries
+// do not cover the deferred rasterisation work, so there each pass is
+// bracketed by glFinish() and timed on the host clock instead.
+// $MANYLIGHTS_GL_TIMING=query|host forces one method.
 #include <epoxy/gl.h>
 
 #include <string>
@@ -13,12 +16,18 @@ namespace ml {
 
 class GlPassTimer {
  public:
+  GlPassTimer();
   ~GlPassTimer();
+  bool usesHostClock() const { return host_clock_; }
   void begin(const std::string& name);
   void end();
   void collect(PassTimings& out);
 
  private:
+  bool host_clock_ = false;
+  double host_start_ms_ = 0;
+  std::string host_name_;
+  PassTimings host_done_;
   std::vector<GLuint> pool_;
   std::vector<std::pair<std::string, GLuint>> active_;
 };

@@ -1,3 +1,6 @@
+// Depth test before shading, also when the counting atomics (side effects)
+// would otherwise make the driver shade hidden fragments of a pre-pass frame.
+layout(early_fragment_tests) in;
 #include "common.glsl"
 #include "material.glsl"
 #include "lookup.glsl"

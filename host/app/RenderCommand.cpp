@@ -12,6 +12,7 @@
 #include "gl/GlContext.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/util/Error.hpp"
+#include "host/util/Heatmap.hpp"
 #include "host/util/ImageIO.hpp"
 
 namespace ml {
@@ -48,6 +49,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--warmup", a.warmup, "untimed frames first")->capture_default_str();
   cmd->add_option("--out", a.out, "output image (.png 8-bit, .exr float)");
   cmd->add_option("--device", a.device, "OpenCL device: gpu, cpu or an index from `manylights devices`");
+  cmd->add_option("--heatmap", a.heatmap, "write a heat map of lights evaluated per pixel (cubehelix) to this PNG");
+  cmd->add_option("--heatmap-max", a.heatmap_max, "count mapped to the top of the palette (default: frame max)");
   cmd->add_flag("--counts", a.counts, "count light evaluations and the exact lower bound (extra frame)");
   cmd->add_option("--stats-json", a.stats_json, "write times and counts as JSON (implies --counts)");
   cmd->add_option("--tile", a.params.tile_size, "tile size in pixels (tiled techniques)")->capture_default_str();
@@ -118,11 +121,17 @@ int runRender(const RenderArgs& a) {
   std::printf("%-24s %10.3f\n", "frame (host wall)", host_ms);
 
   FrameResult counted;
-  const bool want_counts = a.counts || !a.stats_json.empty();
+  const bool want_counts = a.counts || !a.stats_json.empty() || !a.heatmap.empty();
   if (want_counts) {
     FrameOptions copts = opts;
     copts.count_lights = true;
     counted = renderer.render(camera, *assigner, copts);
+    if (!a.heatmap.empty()) {
+      const auto depth = renderer.targets().readDepth(tech.pipeline == Pipeline::Deferred);
+      std::vector<bool> covered(depth.size());
+      for (size_t i = 0; i < depth.size(); ++i) covered[i] = depth[i] < 1.0f;
+      writeImage(a.heatmap, width, height, 4, heatmapRgba(renderer.targets().readCounts(), 2, 0, covered, a.heatmap_max));
+    }
     const double per_px = counted.covered_pixels ? double(counted.light_evaluations) / counted.covered_pixels : 0.0;
     const double lb_px = counted.covered_pixels ? double(counted.lower_bound) / counted.covered_pixels : 0.0;
     std::printf("\nlight evaluations   %14llu  (%.2f per covered pixel)\n",
@@ -142,6 +151,7 @@ int runRender(const RenderArgs& a) {
   }
   if (want_counts) std::printf("%-20s%14zu\n", "memory bytes", counted.memory_bytes);
   if (!a.out.empty()) std::printf("\nwrote %s\n", a.out.c_str());
+  if (!a.heatmap.empty()) std::printf("wrote %s\n", a.heatmap.c_str());
 
   if (!a.stats_json.empty()) {
     nlohmann::ordered_json j;

@@ -14,14 +14,15 @@ namespace ml {
 struct RenderArgs {
   SceneInputArgs inputs;
   std::string technique = "deferred";
-  std::string size = "960x540";
+  std::string size = "640x360";
   std::string device;
   std::string out;
   std::string stats_json;
-  std::string exr_counts;  // optional: per-pixel counts image
+  std::string heatmap;     // lights evaluated per pixel, cubehelix
+  unsigned heatmap_max = 0;
   bool counts = false;
   unsigned frame = 0;     // index into the camera path
-  unsigned frames = 5;    // timed frames
+  unsigned frames = 3;    // timed frames
   unsigned warmup = 1;
   TechniqueParams params;
 };

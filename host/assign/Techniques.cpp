@@ -1,6 +1,7 @@
 #include "host/assign/Techniques.hpp"
 
 #include "host/assign/BruteForceAssigner.hpp"
+#include "host/tiled/TiledAssigner.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml {
@@ -9,6 +10,8 @@ const std::vector<TechniqueInfo>& techniques() {
   static const std::vector<TechniqueInfo> list = {
       {"forward", Pipeline::Forward, "brute-force forward shading: every light for every fragment"},
       {"deferred", Pipeline::Deferred, "brute-force deferred shading: G-buffer, then every light per pixel"},
+      {"tiled-forward", Pipeline::Forward, "forward+: depth pre-pass, per-tile light culling (OpenCL), forward shading"},
+      {"tiled-deferred", Pipeline::Deferred, "tiled deferred: per-tile light culling (OpenCL) over the G-buffer depth"},
   };
   return list;
 }
@@ -27,10 +30,10 @@ const TechniqueInfo& findTechnique(const std::string& name) {
 
 std::unique_ptr<LightAssigner> makeAssigner(const std::string& technique, ClRuntime& cl,
                                             const TechniqueParams& params) {
-  (void)cl;
-  (void)params;
   const TechniqueInfo& t = findTechnique(technique);
   if (t.name == "forward" || t.name == "deferred") return std::make_unique<BruteForceAssigner>();
+  if (t.name == "tiled-forward" || t.name == "tiled-deferred")
+    return std::make_unique<TiledAssigner>(cl, params.tile_size, parseTileDepthMode(params.tile_depth));
   throw UserError("--technique: '" + technique + "' is registered but has no assigner");
 }
 

@@ -1,0 +1,15 @@
+// Tiled shading: the fragment's screen tile holds (offset, count) into the
+// light index list (built by kernels/tiled_light_culling.cl).
+struct LightList {
+  uint offset;
+  uint count;
+};
+layout(std430, binding = 1) readonly buffer LightIndexBuffer { uint light_indices[]; };
+layout(std430, binding = 2) readonly buffer TileGridBuffer { uvec2 tile_grid[]; };
+uniform uint u_tiles_x;
+LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {
+  uvec2 tile = uvec2(frag_coord) / TILE_SIZE;
+  uvec2 r = tile_grid[tile.y * u_tiles_x + tile.x];
+  return LightList(r.x, r.y);
+}
+uint lightIndexAt(LightList list, uint i) { return light_indices[list.offset + i]; }

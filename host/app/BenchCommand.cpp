@@ -1,0 +1,324 @@
+#include "host/app/BenchCommand.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "gl/GlContext.hpp"
+#include "host/app/RenderCommand.hpp"
+#include "host/bench/BenchRunner.hpp"
+#include "host/cl/ClRuntime.hpp"
+#include "host/util/Error.hpp"
+
+namespace ml {
+namespace fs = std::filesystem;
+namespace {
+
+std::string shellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+void writeText(const std::string& path, const std::string& text, const std::string& flag) {
+  const fs::path parent = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw UserError(flag + ": cannot write '" + path + "'");
+  out << text;
+  out.close();
+  if (!out) throw UserError(flag + ": writing '" + path + "' failed");
+}
+
+std::string utcNow() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string exeDir() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : p.parent_path().string();
+}
+
+// "key=v1,v2" -> (key, {v1, v2}); later mentions of a key replace earlier ones.
+void addSweep(std::vector<std::pair<std::string, std::vector<std::string>>>& sweep, const std::string& key,
+              const std::vector<std::string>& values) {
+  for (auto& s : sweep)
+    if (s.first == key) {
+      s.second = values;
+      return;
+    }
+  sweep.emplace_back(key, values);
+}
+
+void printSummaries(const std::vector<RunSummary>& sums) {
+  std::size_t w = 24;
+  for (const auto& s : sums) w = std::max(w, s.run.size());
+  const int W = static_cast<int>(w);
+  bool any_counts = false, any_times = false;
+  for (const auto& s : sums) {
+    any_counts |= s.counted;
+    any_times |= s.timed;
+  }
+  if (any_counts) {
+    std::printf("\nlight evaluations per frame (exact lower bound: lights whose sphere contains the pixel's surface)\n");
+    std::printf("%-*s %6s %14s %14s %14s %14s %14s %8s\n", W, "run", "frames", "mean", "median", "p95", "max",
+                "bound mean", "/bound");
+    for (const auto& s : sums) {
+      if (!s.counted) continue;
+      std::printf("%-*s %6zu %14.0f %14.0f %14.0f %14.0f %14.0f %8.2f\n", W, s.run.c_str(), s.frames,
+                  s.light_evaluations.mean, s.light_evaluations.median, s.light_evaluations.p95,
+                  s.light_evaluations.max, s.lower_bound.mean,
+                  s.lower_bound.mean > 0 ? s.light_evaluations.mean / s.lower_bound.mean : 0.0);
+    }
+  }
+  if (any_times) {
+    std::printf("\nframe time, sum of device passes, ms (host wall in the last column)\n");
+    std::printf("%-*s %6s %10s %10s %10s %10s %10s %12s\n", W, "run", "frames", "mean", "median", "p95", "max",
+                "host mean", "memory max");
+    for (const auto& s : sums) {
+      if (!s.timed) continue;
+      std::printf("%-*s %6zu %10.3f %10.3f %10.3f %10.3f %10.3f %12.0f\n", W, s.run.c_str(), s.frames,
+                  s.passes_total_ms.mean, s.passes_total_ms.median, s.passes_total_ms.p95, s.passes_total_ms.max,
+                  s.host_ms.mean, s.memory_bytes.max);
+    }
+  }
+}
+
+}  // namespace
+
+std::string findPlotPython() {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("MANYLIGHTS_PYTHON"); env && *env) candidates.push_back(env);
+  candidates.push_back("python3");
+  candidates.push_back("/usr/bin/python3");
+  for (const auto& c : candidates) {
+    const std::string probe = shellQuote(c) + " -c 'import matplotlib' >/dev/null 2>&1";
+    if (std::system(probe.c_str()) == 0) return c;
+  }
+  return {};
+}
+
+std::string plotScriptPath() {
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("MANYLIGHTS_PLOT_SCRIPT"); env && *env) candidates.emplace_back(env);
+  candidates.emplace_back(fs::path(MANYLIGHTS_SOURCE_DIR) / "scripts" / "plot_bench.py");
+  if (const std::string d = exeDir(); !d.empty()) candidates.emplace_back(fs::path(d) / ".." / "scripts" / "plot_bench.py");
+  for (const auto& c : candidates)
+    if (fs::is_regular_file(c)) return c.string();
+  throw UserError("--plot: scripts/plot_bench.py not found (set MANYLIGHTS_PLOT_SCRIPT)");
+}
+
+void runPlotScript(const std::string& json_path, const std::string& out_dir) {
+  const std::string script = plotScriptPath();
+  const std::string python = findPlotPython();
+  if (python.empty())
+    throw UserError("--plot: no python3 with matplotlib found; install python3-matplotlib (or set MANYLIGHTS_PYTHON); "
+                    "the results are in " + json_path);
+  const std::string cmd =
+      shellQuote(python) + " " + shellQuote(script) + " " + shellQuote(json_path) + " --out " + shellQuote(out_dir);
+  std::fflush(stdout);
+  const int status = std::system(cmd.c_str());
+  if (status != 0)
+    throw UserError("--plot: " + script + " failed (status " + std::to_string(status) + ") on " + json_path);
+}
+
+CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
+  auto* cmd = app.add_subcommand(
+      "bench",
+      "Benchmark techniques over a scene's camera path: per-frame light evaluations, exact lower bound, pass times, "
+      "memory; sweeps over techniques x light sets x resolutions x technique parameters; JSON/CSV/plots");
+  cmd->footer(
+      "Examples:\n"
+      "  manylights bench --suite ../shared/data/thesis-suite/scenes/spaceship-indoor --allow-missing-meshes \\\n"
+      "      --lights 70 --techniques deferred,tiled-deferred --param tile=8,16,32 --param tile_depth=none \\\n"
+      "      --size 320x320 --frames 3:518:8 --json out/b.json --csv out/b.csv --plot out/plots\n"
+      "  manylights bench --techniques forward,deferred --lights 256,1024 --sizes 320x180,640x360 --frames ::4\n"
+      "Parameter keys (--param KEY=V1,V2,..., repeatable; each technique sweeps only the keys it reads):\n"
+      "  tile, tile_depth (none|minmax|mask)              tiled techniques\n"
+      "  cluster_tile, unique (pagetable|sort|tile-sort), cluster_assign (bvh|brute)   clustered\n"
+      "  node_size (2.0 | 0.5r), start_depth, geometry_mask (on|off)                  hashed\n"
+      "Light sets (--lights, comma list): JSON files; names under the suite's lights/; 'thesis' (the thesis's set\n"
+      "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).");
+  cmd->add_option("--suite,--scene", a.scene.suite,
+                  "scene: a thesis scene-suite folder (geometry/ obj/ lights/ camera/), a folder with scene.glb + "
+                  "camera.json + lights.json, or a .gltf/.glb file (default: data/default)");
+  cmd->add_option("--camera", a.scene.camera, "camera path JSON (default: the folder's camera.json / camera/camera.json)");
+  cmd->add_option("--lights,--light-sets", a.lights, "light sets, comma-separated (see below; default: the scene's)");
+  cmd->add_option("--light-volumes", a.scene.light_volumes, "boxes for generated lights (glTF scenes)");
+  cmd->add_option("--light-radius", a.scene.light_radius, "radius of generated lights");
+  cmd->add_option("--seed", a.scene.seed, "seed of generated lights")->capture_default_str();
+  cmd->add_option("--techniques", a.techniques, "comma list of: " + techniqueNames() + " (default: all)");
+  cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--sizes", a.sizes, "comma list of WIDTHxHEIGHT (resolution sweep; overrides --size)");
+  cmd->add_option("--frames", a.frames, "FIRST:LAST:STEP along the camera path, LAST inclusive (default: all)");
+  cmd->add_option("--resample", a.scene.resample, "resample the camera path to N frames first (linear in eye/center/up)");
+  cmd->add_option("--param,--params", a.params, "sweep KEY=V1,V2,... (repeatable; keys below)")->expected(1, -1);
+  cmd->add_option("--tile", a.tile, "shorthand for --param tile=LIST");
+  cmd->add_option("--tile-depth", a.tile_depth, "shorthand for --param tile_depth=LIST");
+  cmd->add_option("--cluster-tile", a.cluster_tile, "shorthand for --param cluster_tile=LIST");
+  cmd->add_option("--node-size", a.node_size, "shorthand for --param node_size=LIST");
+  cmd->add_option("--repeat", a.repeat, "timed renders per frame (per-pass median)")->capture_default_str();
+  cmd->add_option("--warmup", a.warmup, "untimed renders before each run")->capture_default_str();
+  cmd->add_flag("--no-counts", a.no_counts, "skip the counting render (times only)");
+  cmd->add_flag("--no-timing", a.no_timing, "skip the timed renders (counts only)");
+  cmd->add_option("--json", a.json, "write per-frame records and per-run summaries as JSON");
+  cmd->add_option("--csv", a.csv, "write per-frame records as CSV");
+  cmd->add_option("--plot", a.plot, "render thesis-style figures (PNG) into this folder (python3-matplotlib)");
+  cmd->add_option("--geometry", a.scene.geometry, "suite: geometry file under geometry/ (default deferred_attenuated.json)");
+  cmd->add_flag("--allow-missing-meshes", a.scene.allow_missing_meshes,
+                "suite: skip objects whose OBJ mesh is missing (warns) instead of failing");
+  cmd->add_option("--fovy", a.fovy, "override the camera's vertical field of view, degrees (suite: 45)");
+  cmd->add_option("--near", a.near_plane, "override the near plane (suite: 0.01)");
+  cmd->add_option("--far", a.far_plane, "override the far plane (suite: 4000)");
+  cmd->add_option("--device", a.device, "OpenCL device: gpu, cpu or an index from `manylights devices`");
+  cmd->add_option("--progress", a.progress, "progress on stderr: auto|bar|lines|none")->capture_default_str();
+  return cmd;
+}
+
+int runBench(const BenchArgs& a) {
+  const std::string where = "--lights";
+  // Everything that can be checked without rendering is checked first.
+  std::vector<std::pair<unsigned, unsigned>> sizes;
+  for (const auto& s : a.sizes.empty() ? std::vector<std::string>{a.size} : splitList(a.sizes)) {
+    unsigned w = 0, h = 0;
+    parseSize(s, a.sizes.empty() ? "--size" : "--sizes", w, h);
+    sizes.emplace_back(w, h);
+  }
+  if (sizes.empty()) throw UserError("--sizes: no sizes given");
+  std::vector<std::string> tech_names = splitList(a.techniques);
+  if (tech_names.empty())
+    for (const auto& t : techniques()) tech_names.push_back(t.name);
+  std::vector<std::pair<std::string, std::vector<std::string>>> sweep;
+  for (const auto& p : a.params) {
+    const auto eq = p.find('=');
+    if (eq == std::string::npos || eq == 0 || splitList(p.substr(eq + 1)).empty())
+      throw UserError("--param: expected KEY=V1,V2,..., got '" + p + "'");
+    addSweep(sweep, p.substr(0, eq), splitList(p.substr(eq + 1)));
+  }
+  if (!a.tile.empty()) addSweep(sweep, "tile", splitList(a.tile));
+  if (!a.tile_depth.empty()) addSweep(sweep, "tile_depth", splitList(a.tile_depth));
+  if (!a.cluster_tile.empty()) addSweep(sweep, "cluster_tile", splitList(a.cluster_tile));
+  if (!a.node_size.empty()) addSweep(sweep, "node_size", splitList(a.node_size));
+  const auto variants = expandVariants(tech_names, sweep, TechniqueParams{}, "--param");
+  const FrameRange range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
+  const Progress::Mode progress_mode = Progress::parseMode(a.progress, "--progress");
+  if (a.no_counts && a.no_timing) throw UserError("--no-counts and --no-timing together leave nothing to measure");
+  if (!a.plot.empty() && findPlotPython().empty())
+    throw UserError("--plot: no python3 with matplotlib found; install python3-matplotlib (or set MANYLIGHTS_PYTHON)");
+  if (a.fovy != 0 && !(a.fovy > 0 && a.fovy < 180)) throw UserError("--fovy: must be in (0, 180) degrees");
+  if (a.near_plane < 0 || a.far_plane < 0) throw UserError("--near/--far: must be positive");
+  const DeviceChoice device = DeviceChoice::resolve(a.device);
+
+  BenchSceneArgs sa = a.scene;
+  if (a.fovy > 0) sa.fovy = a.fovy;
+  if (a.near_plane > 0) sa.near_plane = a.near_plane;
+  if (a.far_plane > 0) sa.far_plane = a.far_plane;
+  const BenchScene scene = loadBenchScene(sa);
+  const Camera& c0 = scene.cameras.frames.front();
+  if (!(c0.far_plane > c0.near_plane)) throw UserError("--near/--far: far must exceed near");
+  BenchPlan plan;
+  plan.variants = variants;
+  plan.light_sets = resolveLightSets(scene, a.lights, sa, where);
+  plan.sizes = sizes;
+  plan.frames = selectFrames(range, scene.cameras.frames.size(), "--frames");
+  plan.counts = !a.no_counts;
+  plan.timing = !a.no_timing;
+  plan.repeat = std::max(a.repeat, 1u);
+  plan.warmup = a.warmup;
+
+  auto gl = createHeadlessContext();
+  const GlShareHandles share = gl->shareHandles();
+  auto cl = ClRuntime::create(device, &share);
+  std::printf("%s\n%s\n", cl->describe().c_str(), gl->describe().c_str());
+  std::printf("scene: %s [%s] (%zu triangles, %zu camera frames; fovy %g, near %g, far %g)\n", scene.source.c_str(),
+              scene.format.c_str(), scene.scene.triangleCount(), scene.cameras.frames.size(), c0.fovy_degrees,
+              c0.near_plane, c0.far_plane);
+  if (!scene.missing_meshes.empty()) {
+    std::string m;
+    for (const auto& id : scene.missing_meshes) m += (m.empty() ? "" : ", ") + id;
+    std::printf("missing meshes (skipped): %s\n", m.c_str());
+  }
+  std::printf("%zu technique variant(s) x %zu light set(s) x %zu size(s) x %zu frame(s) = %zu records\n",
+              plan.variants.size(), plan.light_sets.size(), plan.sizes.size(), plan.frames.size(), planSteps(plan));
+  std::fflush(stdout);
+
+  nlohmann::ordered_json meta;
+  meta["command"] = a.command_line;
+  meta["date"] = utcNow();
+  meta["device"] = cl->info().name;
+  meta["gl"] = gl->describe();
+  nlohmann::ordered_json sj;
+  sj["source"] = scene.source;
+  sj["format"] = scene.format;
+  sj["name"] = scene.name;
+  sj["triangles"] = scene.scene.triangleCount();
+  sj["missing_meshes"] = scene.missing_meshes;
+  meta["scene"] = sj;
+  nlohmann::ordered_json cj;
+  cj["fovy"] = c0.fovy_degrees;
+  cj["near"] = c0.near_plane;
+  cj["far"] = c0.far_plane;
+  cj["path_frames"] = scene.cameras.frames.size();
+  meta["camera"] = cj;
+  meta["frames"] = plan.frames;
+  nlohmann::ordered_json sz = nlohmann::ordered_json::array();
+  for (const auto& [w, h] : plan.sizes) sz.push_back(std::to_string(w) + "x" + std::to_string(h));
+  meta["sizes"] = sz;
+  nlohmann::ordered_json lj = nlohmann::ordered_json::array();
+  for (const auto& ls : plan.light_sets)
+    lj.push_back({{"label", ls.label}, {"file", ls.file}, {"count", ls.lights.size()}});
+  meta["light_sets"] = lj;
+  nlohmann::ordered_json vj = nlohmann::ordered_json::array();
+  for (const auto& v : plan.variants) {
+    nlohmann::ordered_json p = nlohmann::ordered_json::object();
+    for (const auto& [k, val] : v.labels) p[k] = val;
+    vj.push_back({{"label", v.label}, {"technique", v.technique}, {"params", p}});
+  }
+  meta["variants"] = vj;
+  meta["counts"] = plan.counts;
+  meta["timing"] = plan.timing;
+  meta["repeat"] = plan.repeat;
+  meta["warmup"] = plan.warmup;
+
+  std::string json_path = a.json;
+  if (json_path.empty() && !a.plot.empty()) json_path = (fs::path(a.plot) / "bench.json").string();
+  std::vector<FrameRecord> so_far;
+  auto save = [&](const std::vector<FrameRecord>& recs) {
+    const auto sums = summarizeRuns(recs);
+    if (!json_path.empty()) writeText(json_path, benchJson(meta, recs, sums).dump(1) + "\n", a.json.empty() ? "--plot" : "--json");
+    if (!a.csv.empty()) writeText(a.csv, benchCsv(recs), "--csv");
+  };
+  // Results so far are rewritten after every finished run, so an interrupted
+  // sweep still leaves usable files.
+  Progress progress(planSteps(plan), progress_mode);
+  const std::size_t frames_per_run = plan.frames.size();
+  const auto records = runBench(*cl, scene, plan, &progress, [&](const FrameRecord& r) {
+    so_far.push_back(r);
+    if (so_far.size() % frames_per_run == 0) save(so_far);
+  });
+  progress.finish();
+  save(records);
+  printSummaries(summarizeRuns(records));
+  if (!json_path.empty()) std::printf("\nwrote %s\n", json_path.c_str());
+  if (!a.csv.empty()) std::printf("wrote %s\n", a.csv.c_str());
+  if (!a.plot.empty()) {
+    runPlotScript(json_path, a.plot);
+    std::printf("wrote plots to %s\n", a.plot.c_str());
+  }
+  return 0;
+}
+
+}  // namespace ml

@@ -1,0 +1,49 @@
+#pragma once
+// `manylights bench`: every chosen technique over the same scene, camera path
+// and light sets, swept over resolutions and technique parameters; per-frame
+// light evaluations, exact lower bound, pass times and structure memory, with
+// per-run summaries (mean, median, p95, max), written as JSON/CSV and plotted
+// by scripts/plot_bench.py. See docs/testbed.md.
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "host/bench/BenchInputs.hpp"
+
+namespace ml {
+
+struct BenchArgs {
+  BenchSceneArgs scene;
+  std::string lights;      // comma list (see BenchInputs.hpp)
+  std::string techniques;  // comma list; empty: every registered technique
+  std::string size = "320x320";
+  std::string sizes;       // comma list; overrides size
+  std::string frames;      // FIRST:LAST:STEP; empty: the whole path
+  std::vector<std::string> params;  // "key=v1,v2"
+  std::string tile, tile_depth, cluster_tile, node_size;  // shorthands for params
+  std::string json, csv, plot;
+  std::string device;
+  std::string progress = "auto";
+  unsigned repeat = 1;
+  unsigned warmup = 1;
+  bool no_counts = false;
+  bool no_timing = false;
+  float fovy = 0, near_plane = 0, far_plane = 0;  // 0: keep the path's
+  std::string command_line;  // for the JSON's meta
+};
+
+CLI::App* addBenchCommand(CLI::App& app, BenchArgs& args);
+int runBench(const BenchArgs& args);
+
+// Finds a Python 3 that imports matplotlib ($MANYLIGHTS_PYTHON, python3,
+// /usr/bin/python3); empty when there is none.
+std::string findPlotPython();
+// scripts/plot_bench.py of the source tree (or next to the binary); UserError if absent.
+std::string plotScriptPath();
+// Runs plot_bench.py on a bench JSON into `out_dir`; UserError naming
+// python3-matplotlib when it cannot run.
+void runPlotScript(const std::string& json_path, const std::string& out_dir);
+
+}  // namespace ml

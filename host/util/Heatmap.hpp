@@ -1,0 +1,21 @@
+#pragma once
+// Heat maps of per-pixel light counts in the cubehelix palette (Green 2011)
+// with the main thesis's parameters: start 0.5, rotations -1.5, hue 1.0,
+// gamma 1.0. Background pixels (no geometry) stay black.
+#include <cstdint>
+#include <vector>
+
+namespace ml {
+
+struct Rgb {
+  float r, g, b;
+};
+// t in [0, 1] -> colour.
+Rgb cubehelix(float t, float start = 0.5f, float rotations = -1.5f, float hue = 1.0f, float gamma = 1.0f);
+
+// counts: `stride` uints per pixel, the value at `channel` is mapped; `covered`
+// marks pixels with geometry. max_value 0: the image's maximum. Returns RGBA.
+std::vector<float> heatmapRgba(const std::vector<std::uint32_t>& counts, unsigned stride, unsigned channel,
+                               const std::vector<bool>& covered, std::uint32_t max_value = 0);
+
+}  // namespace ml

@@ -1,0 +1,281 @@
+/* Tiled shading (forward+ / tiled deferred) light culling.
+ *
+ *   tile_depth_bounds*   depth buffer -> per-tile [min, max] linear view depth
+ *                        and a 32-bin 2.5D depth mask (Harada's)
+ *   cull_count           per light: tiles its sphere may reach -> counts[tile]++
+ *   (exclusive scan of counts on the host side -> offsets, total)
+ *   cull_fill            per light: same tiles -> indices[offsets[t] + slot]
+ *
+ * Light-centric: each work-item walks one light's screen rectangle, so the
+ * cost is the lights' covered tiles, not lights x tiles. Lists are built by
+ * count -> scan -> fill and cannot overflow: the host sizes the index list
+ * from the scan total. Order within a tile list follows atomics; the host can
+ * sort it (segmented sort) when deterministic order is wanted.
+ *
+ * Defines: TILE_SIZE (pixels), DEPTH_MODE (0 none, 1 min/max, 2 2.5D mask).
+ */
+#include "gpu_types.h"
+
+/* The C++ reference (host/tiled/TileGeometry.cpp) must reach bit-identical
+ * decisions, so no fused multiply-adds that the host code would not make. */
+#pragma OPENCL FP_CONTRACT OFF
+
+#define DEPTH_NONE 0
+#define DEPTH_MINMAX 1
+#define DEPTH_MASK 2
+
+/* Column-major 4x4 (glm): element (row r, col c) is m[c * 4 + r]. */
+inline float4 mat_mul(const float* m, float4 v) {
+  return (float4)(m[0] * v.x + m[4] * v.y + m[8] * v.z + m[12] * v.w,
+                  m[1] * v.x + m[5] * v.y + m[9] * v.z + m[13] * v.w,
+                  m[2] * v.x + m[6] * v.y + m[10] * v.z + m[14] * v.w,
+                  m[3] * v.x + m[7] * v.y + m[11] * v.z + m[15] * v.w);
+}
+inline float4 mat_row(const float* m, int r) { return (float4)(m[r], m[4 + r], m[8 + r], m[12 + r]); }
+
+/* Window depth [0,1] -> positive linear view distance (-z_view). */
+inline float linear_depth(float d, const CameraParams* cam) {
+  const float ndc = 2.0f * d - 1.0f;
+  return cam->proj[14] / (ndc + cam->proj[10]);
+}
+
+/* ---------------------------------------------------------------- bounds */
+
+/* Widening of the tile depth range (relative): the kernel and the shader
+ * reconstruct depth along different float paths. */
+#define DEPTH_EPS 1e-4f
+
+inline uint bin_of(float z, float zmin, float inv_range) {
+  int b = (int)((z - zmin) * inv_range * 32.0f);
+  return (uint)clamp(b, 0, 31);
+}
+
+/* Tile record: (zmin, zmax) widened for the range test, then the exact zmin
+ * and 1/(zmax - zmin) that the mask bins were computed with. Empty tile:
+ * zmin > zmax. */
+inline float4 widen(float zmin, float zmax) {
+  if (zmin > zmax) return (float4)(INFINITY, -INFINITY, 0.0f, 0.0f);
+  return (float4)(zmin - zmin * DEPTH_EPS, zmax + zmax * DEPTH_EPS, zmin, 1.0f / fmax(zmax - zmin, 1e-20f));
+}
+
+/* CPU shape: one work-item per tile walks its pixels. */
+__kernel void tile_depth_bounds(__global const float* depth, CameraParams cam, uint tiles_x, uint tiles_y,
+                                __global float4* bounds, __global uint* masks) {
+  const uint t = get_global_id(0);
+  if (t >= tiles_x * tiles_y) return;
+  const uint tx = t % tiles_x, ty = t / tiles_x;
+  const uint x0 = tx * TILE_SIZE, y0 = ty * TILE_SIZE;
+  const uint x1 = min(x0 + TILE_SIZE, cam.width), y1 = min(y0 + TILE_SIZE, cam.height);
+  float zmin = INFINITY, zmax = -INFINITY;
+  for (uint y = y0; y < y1; ++y)
+    for (uint x = x0; x < x1; ++x) {
+      const float d = depth[y * cam.width + x];
+      if (d >= 1.0f) continue;
+      const float z = linear_depth(d, &cam);
+      zmin = fmin(zmin, z);
+      zmax = fmax(zmax, z);
+    }
+  uint mask = 0;
+#if DEPTH_MODE == DEPTH_MASK
+  if (zmin <= zmax) {
+    const float inv = 1.0f / fmax(zmax - zmin, 1e-20f);
+    for (uint y = y0; y < y1; ++y)
+      for (uint x = x0; x < x1; ++x) {
+        const float d = depth[y * cam.width + x];
+        if (d < 1.0f) mask |= 1u << bin_of(linear_depth(d, &cam), zmin, inv);
+      }
+  }
+#endif
+  bounds[t] = widen(zmin, zmax);
+  masks[t] = mask;
+}
+
+/* GPU shape: one work-group (TILE_SIZE x TILE_SIZE work-items, or fewer
+ * that stride) per tile, local atomics on the float bits (positive floats
+ * order like their uint bits). */
+__kernel void tile_depth_bounds_wg(__global const float* depth, CameraParams cam, uint tiles_x, uint tiles_y,
+                                   __global float4* bounds, __global uint* masks) {
+  __local uint lmin, lmax, lmask;
+  const uint t = get_group_id(0);
+  const uint lid = get_local_id(0), lsize = get_local_size(0);
+  if (lid == 0) {
+    lmin = as_uint(INFINITY);
+    lmax = 0u;
+    lmask = 0u;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const uint tx = t % tiles_x, ty = t / tiles_x;
+  const uint x0 = tx * TILE_SIZE, y0 = ty * TILE_SIZE;
+  const uint w = min((uint)TILE_SIZE, cam.width - x0), h = min((uint)TILE_SIZE, cam.height - y0);
+  for (uint i = lid; i < w * h; i += lsize) {
+    const float d = depth[(y0 + i / w) * cam.width + x0 + i % w];
+    if (d < 1.0f) {
+      const uint z = as_uint(linear_depth(d, &cam));
+      atomic_min(&lmin, z);
+      atomic_max(&lmax, z);
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  float zmin = as_float(lmin), zmax = lmax ? as_float(lmax) : -INFINITY;
+#if DEPTH_MODE == DEPTH_MASK
+  if (zmin <= zmax) {
+    const float inv = 1.0f / fmax(zmax - zmin, 1e-20f);
+    uint mask = 0;
+    for (uint i = lid; i < w * h; i += lsize) {
+      const float d = depth[(y0 + i / w) * cam.width + x0 + i % w];
+      if (d < 1.0f) mask |= 1u << bin_of(linear_depth(d, &cam), zmin, inv);
+    }
+    atomic_or(&lmask, mask);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+#endif
+  if (lid == 0) {
+    bounds[t] = widen(zmin, zmax);
+    masks[t] = lmask;
+  }
+}
+
+/* ---------------------------------------------------------------- culling */
+
+typedef struct {
+  float4 center;  /* view space, w = radius */
+  int tx0, ty0, tx1, ty1;
+} LightRect;
+
+/* Screen rectangle of tiles the sphere may touch; empty (tx0 > tx1) if none. */
+inline LightRect light_rect(PointLight l, const CameraParams* cam, uint tiles_x, uint tiles_y) {
+  LightRect lr;
+  const float r = l.position_radius.w;
+  float4 c = mat_mul(cam->view, (float4)(l.position_radius.xyz, 1.0f));
+  c.w = r;
+  lr.center = c;
+  lr.tx0 = 0;
+  lr.ty0 = 0;
+  lr.tx1 = (int)tiles_x - 1;
+  lr.ty1 = (int)tiles_y - 1;
+  if (c.z - r > -cam->near_plane || -c.z - r > cam->far_plane) { /* wholly in front of near or beyond far */
+    lr.tx0 = 1;
+    lr.tx1 = 0;
+    return lr;
+  }
+  if (c.z + r > -cam->near_plane) return lr; /* straddles the near plane: whole screen, planes decide */
+  float2 lo = (float2)(INFINITY), hi = (float2)(-INFINITY);
+  for (int i = 0; i < 8; ++i) {
+    const float4 corner = (float4)(c.x + ((i & 1) ? r : -r), c.y + ((i & 2) ? r : -r), c.z + ((i & 4) ? r : -r), 1.0f);
+    const float4 clip = mat_mul(cam->proj, corner);
+    const float2 ndc = clip.xy / clip.w;
+    lo = fmin(lo, ndc);
+    hi = fmax(hi, ndc);
+  }
+  if (hi.x < -1.0f || hi.y < -1.0f || lo.x > 1.0f || lo.y > 1.0f) {
+    lr.tx0 = 1;
+    lr.tx1 = 0;
+    return lr;
+  }
+  const float2 size = (float2)((float)cam->width, (float)cam->height);
+  const float2 p0 = (clamp(lo, -1.0f, 1.0f) * 0.5f + 0.5f) * size;
+  const float2 p1 = (clamp(hi, -1.0f, 1.0f) * 0.5f + 0.5f) * size;
+  lr.tx0 = clamp((int)floor(p0.x / TILE_SIZE), 0, (int)tiles_x - 1);
+  lr.ty0 = clamp((int)floor(p0.y / TILE_SIZE), 0, (int)tiles_y - 1);
+  lr.tx1 = clamp((int)floor(p1.x / TILE_SIZE), 0, (int)tiles_x - 1);
+  lr.ty1 = clamp((int)floor(p1.y / TILE_SIZE), 0, (int)tiles_y - 1);
+  return lr;
+}
+
+/* Signed distance test of the sphere against the plane `p` (inside: >= 0). */
+inline bool sphere_inside_plane(float4 p, float4 c) {
+  return p.x * c.x + p.y * c.y + p.z * c.z + p.w > -c.w * sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+}
+
+/* View-space x (or y) of the ray through ndc `n` at distance d: the inverse of
+ * ndc = (P00 x + P20 z) / -z for a perspective projection. */
+inline float view_coord(float n, float d, float p_diag, float p_off) { return d * (n + p_off) / p_diag; }
+
+/* Sphere against the view-space AABB of the tile's frustum between its
+ * depth bounds: removes the false positives of plane tests near corners. */
+inline bool sphere_hits_tile_box(float4 c, float xl, float xr, float yb, float yt, float zmin, float zmax,
+                                 const CameraParams* cam) {
+  const float p00 = cam->proj[0], p20 = cam->proj[8], p11 = cam->proj[5], p21 = cam->proj[9];
+  const float x0 = fmin(fmin(view_coord(xl, zmin, p00, p20), view_coord(xl, zmax, p00, p20)),
+                        fmin(view_coord(xr, zmin, p00, p20), view_coord(xr, zmax, p00, p20)));
+  const float x1 = fmax(fmax(view_coord(xl, zmin, p00, p20), view_coord(xl, zmax, p00, p20)),
+                        fmax(view_coord(xr, zmin, p00, p20), view_coord(xr, zmax, p00, p20)));
+  const float y0 = fmin(fmin(view_coord(yb, zmin, p11, p21), view_coord(yb, zmax, p11, p21)),
+                        fmin(view_coord(yt, zmin, p11, p21), view_coord(yt, zmax, p11, p21)));
+  const float y1 = fmax(fmax(view_coord(yb, zmin, p11, p21), view_coord(yb, zmax, p11, p21)),
+                        fmax(view_coord(yt, zmin, p11, p21), view_coord(yt, zmax, p11, p21)));
+  const float dx = c.x - clamp(c.x, x0, x1), dy = c.y - clamp(c.y, y0, y1), dz = -c.z - clamp(-c.z, zmin, zmax);
+  return dx * dx + dy * dy + dz * dz <= c.w * c.w * (1.0f + 4.0f * DEPTH_EPS);
+}
+
+/* Does the sphere reach any shaded point of tile (tx, ty)? Conservative. */
+inline bool light_hits_tile(const LightRect* lr, int tx, int ty, const CameraParams* cam,
+                            __global const float4* bounds, __global const uint* masks, uint tiles_x) {
+  const uint t = (uint)ty * tiles_x + (uint)tx;
+#if DEPTH_MODE != DEPTH_NONE
+  const float4 zb = bounds[t];
+  if (zb.x > zb.y) return false; /* no geometry in the tile */
+  const float lz = -lr->center.z, r = lr->center.w;
+  if (lz + r < zb.x || lz - r > zb.y) return false;
+#if DEPTH_MODE == DEPTH_MASK
+  {
+    /* The light's depth range is widened like the tile's, so a point on a bin
+     * edge cannot fall between the two roundings. */
+    const uint b0 = bin_of((lz - r) * (1.0f - DEPTH_EPS), zb.z, zb.w);
+    const uint b1 = bin_of((lz + r) * (1.0f + DEPTH_EPS), zb.z, zb.w);
+    const uint lmask = (b1 >= 31u ? 0xffffffffu : ((2u << b1) - 1u)) & ~((1u << b0) - 1u);
+    if ((lmask & masks[t]) == 0u) return false;
+  }
+#endif
+#endif
+  /* Side planes of the tile's frustum from the projection's rows:
+   * x_ndc >= xl  <=>  dot(row0 - xl * row3, v) >= 0  (w > 0). */
+  const float4 row0 = mat_row(cam->proj, 0), row1 = mat_row(cam->proj, 1), row3 = mat_row(cam->proj, 3);
+  const float xl = 2.0f * (float)(tx * TILE_SIZE) / (float)cam->width - 1.0f;
+  const float xr = 2.0f * (float)min((uint)(tx + 1) * TILE_SIZE, cam->width) / (float)cam->width - 1.0f;
+  const float yb = 2.0f * (float)(ty * TILE_SIZE) / (float)cam->height - 1.0f;
+  const float yt = 2.0f * (float)min((uint)(ty + 1) * TILE_SIZE, cam->height) / (float)cam->height - 1.0f;
+  if (!(sphere_inside_plane(row0 - xl * row3, lr->center) && sphere_inside_plane(xr * row3 - row0, lr->center) &&
+        sphere_inside_plane(row1 - yb * row3, lr->center) && sphere_inside_plane(yt * row3 - row1, lr->center)))
+    return false;
+#if DEPTH_MODE != DEPTH_NONE
+  return sphere_hits_tile_box(lr->center, xl, xr, yb, yt, bounds[t].x, bounds[t].y, cam);
+#else
+  return true;
+#endif
+}
+
+__kernel void cull_count(__global const PointLight* lights, uint n, CameraParams cam, uint tiles_x, uint tiles_y,
+                         __global const float4* bounds, __global const uint* masks, __global uint* counts) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const LightRect lr = light_rect(lights[i], &cam, tiles_x, tiles_y);
+  for (int ty = lr.ty0; ty <= lr.ty1; ++ty)
+    for (int tx = lr.tx0; tx <= lr.tx1; ++tx)
+      if (light_hits_tile(&lr, tx, ty, &cam, bounds, masks, tiles_x)) atomic_inc(&counts[ty * tiles_x + tx]);
+}
+
+__kernel void cull_fill(__global const PointLight* lights, uint n, CameraParams cam, uint tiles_x, uint tiles_y,
+                        __global const float4* bounds, __global const uint* masks, __global const uint* offsets,
+                        __global uint* cursor, __global uint* indices) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const LightRect lr = light_rect(lights[i], &cam, tiles_x, tiles_y);
+  for (int ty = lr.ty0; ty <= lr.ty1; ++ty)
+    for (int tx = lr.tx0; tx <= lr.tx1; ++tx)
+      if (light_hits_tile(&lr, tx, ty, &cam, bounds, masks, tiles_x)) {
+        const uint t = ty * tiles_x + tx;
+        indices[offsets[t] + atomic_inc(&cursor[t])] = i;
+      }
+}
+
+/* Light grid for GLSL: (offset, count) per tile. */
+__kernel void write_grid(__global const uint* offsets, __global const uint* counts, uint n_tiles,
+                         __global LightRange* grid) {
+  const uint t = get_global_id(0);
+  if (t >= n_tiles) return;
+  LightRange r;
+  r.offset = offsets[t];
+  r.count = counts[t];
+  grid[t] = r;
+}

@@ -1,0 +1,101 @@
+// Tiled forward (forward+) and tiled deferred render the brute-force image,
+// for every tile size, and their light lists lose no light that matters.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "gl/FrameRenderer.hpp"
+#include "host/app/SceneInputs.hpp"
+#include "host/assign/BruteForceAssigner.hpp"
+#include "host/tiled/TiledAssigner.hpp"
+#include "support/ImageCompare.hpp"
+#include "support/TestDevice.hpp"
+#include "support/TestGl.hpp"
+
+namespace ml {
+namespace {
+
+constexpr unsigned kW = 320, kH = 180;
+
+const SceneInputs& scene() {
+  static SceneInputs s = [] {
+    SceneInputArgs a;
+    a.lights = "1024";
+    return loadSceneInputs(a);
+  }();
+  return s;
+}
+
+struct Reference {
+  std::vector<float> image;
+  FrameResult result;
+};
+
+const Reference& bruteReference(Pipeline p) {
+  static std::map<Pipeline, Reference> cache;
+  if (auto it = cache.find(p); it != cache.end()) return it->second;
+  FrameRenderer r(test::runtime(), scene().scene, kW, kH);
+  r.setLights(scene().lights);
+  BruteForceAssigner brute;
+  Reference ref;
+  ref.result = r.render(scene().cameras.frames.front(), brute, {p, true});
+  ref.image = r.targets().readColor();
+  return cache.emplace(p, std::move(ref)).first->second;
+}
+
+struct Param {
+  Pipeline pipeline;
+  unsigned tile;
+  TileDepthMode mode;
+};
+class RenderTiled : public ::testing::TestWithParam<Param> {};
+
+TEST_P(RenderTiled, MatchesBruteForce) {
+  test::glContext();
+  const auto [pipeline, tile, mode] = GetParam();
+  const Reference& ref = bruteReference(pipeline);
+  FrameRenderer r(test::runtime(), scene().scene, kW, kH);
+  r.setLights(scene().lights);
+  TiledAssigner tiled(test::runtime(), tile, mode);
+  FrameResult res = r.render(scene().cameras.frames.front(), tiled, {pipeline, true});
+  const auto img = r.targets().readColor();
+  // Lights left out contribute exactly zero (attenuation clamps to 0 at d >= r),
+  // so only the summation order differs: tolerance mean < 1e-4, max 1/255.
+  const auto diff = test::compareImages(img, ref.image, 1.0 / 255.0);
+  EXPECT_LT(diff.mean_abs, 1e-4);
+  EXPECT_EQ(diff.frac_over_tol, 0.0) << "max diff " << diff.max_abs;
+  // Conservative lists: the shader finds every light in range that brute force finds.
+  EXPECT_EQ(res.lower_bound, ref.result.lower_bound);
+  EXPECT_EQ(res.covered_pixels, ref.result.covered_pixels);
+  EXPECT_LT(res.light_evaluations, ref.result.light_evaluations / 4);
+  EXPECT_GE(res.light_evaluations, res.lower_bound);
+  if (mode != TileDepthMode::None && tile <= 16) {
+    EXPECT_LE(double(res.light_evaluations), 3.0 * double(res.lower_bound));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Tiles, RenderTiled,
+    ::testing::Values(Param{Pipeline::Deferred, 8, TileDepthMode::MinMax}, Param{Pipeline::Deferred, 16, TileDepthMode::MinMax},
+                      Param{Pipeline::Deferred, 32, TileDepthMode::MinMax}, Param{Pipeline::Deferred, 64, TileDepthMode::MinMax},
+                      Param{Pipeline::Deferred, 16, TileDepthMode::None}, Param{Pipeline::Deferred, 16, TileDepthMode::Mask},
+                      Param{Pipeline::Forward, 8, TileDepthMode::MinMax}, Param{Pipeline::Forward, 16, TileDepthMode::MinMax},
+                      Param{Pipeline::Forward, 32, TileDepthMode::MinMax}, Param{Pipeline::Forward, 64, TileDepthMode::MinMax},
+                      Param{Pipeline::Forward, 16, TileDepthMode::None}),
+    [](const auto& info) {
+      return std::string(info.param.pipeline == Pipeline::Forward ? "forward" : "deferred") + "_" +
+             tileDepthModeName(info.param.mode) + "_" + std::to_string(info.param.tile);
+    });
+
+TEST(RenderTiledEdges, OddScreenSizeAndNoLights) {
+  test::glContext();
+  FrameRenderer r(test::runtime(), scene().scene, 101, 37);  // not a multiple of any tile size
+  r.setLights({});
+  TiledAssigner tiled(test::runtime(), 16, TileDepthMode::MinMax);
+  FrameResult res = r.render(scene().cameras.frames.front(), tiled, {Pipeline::Forward, true});
+  EXPECT_EQ(res.light_evaluations, 0u);
+  EXPECT_GT(res.covered_pixels, 0u);
+}
+
+}  // namespace
+}  // namespace ml

@@ -1,0 +1,209 @@
+// TileLightCuller (OpenCL) against the C++ reference with the same tests, and
+// against the definition: every light whose sphere contains a pixel's surface
+// point is in that pixel's tile list.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <random>
+
+#include "host/scene/Camera.hpp"
+#include "host/scene/LightSet.hpp"
+#include "host/tiled/TileCullerReference.hpp"
+#include "host/tiled/TileLightCuller.hpp"
+#include "support/TestDevice.hpp"
+
+namespace ml {
+namespace {
+
+struct CullCase {
+  Camera camera;
+  unsigned width, height;
+  std::vector<float> depth;  // window depth, row 0 bottom
+  std::vector<gpu::PointLight> lights;
+};
+
+// A random view of a random "scene" depth: the buffer is made of rectangles at
+// random distances over a background, so tiles see empty space, single
+// surfaces and depth discontinuities.
+CullCase randomCase(std::mt19937_64& rng, unsigned w, unsigned h, std::size_t n_lights) {
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  CullCase c;
+  c.width = w;
+  c.height = h;
+  c.camera.eye = {u(rng) * 4 - 2, u(rng) * 2, u(rng) * 4 - 2};
+  c.camera.center = c.camera.eye + glm::vec3(u(rng) - 0.5f, u(rng) * 0.4f - 0.2f, -1.0f);
+  c.camera.fovy_degrees = 30 + u(rng) * 60;
+  c.camera.near_plane = 0.1f;
+  c.camera.far_plane = 100.0f;
+  const glm::mat4 proj = c.camera.projection(float(w) / float(h));
+  auto window_depth = [&](float dist) {
+    const glm::vec4 clip = proj * glm::vec4(0, 0, -dist, 1);
+    return clip.z / clip.w * 0.5f + 0.5f;
+  };
+  c.depth.assign(std::size_t(w) * h, 1.0f);
+  for (int r = 0; r < 12; ++r) {
+    const unsigned x0 = unsigned(u(rng) * w), y0 = unsigned(u(rng) * h);
+    const unsigned x1 = std::min(w, x0 + 1 + unsigned(u(rng) * w / 2)), y1 = std::min(h, y0 + 1 + unsigned(u(rng) * h / 2));
+    const float d0 = 0.5f + u(rng) * 30, slope = (u(rng) - 0.5f) * 0.2f;
+    for (unsigned y = y0; y < y1; ++y)
+      for (unsigned x = x0; x < x1; ++x) c.depth[y * w + x] = window_depth(std::max(0.2f, d0 + slope * float(x - x0)));
+  }
+  // Lights around the view: in front, behind, containing the camera, straddling the near plane, huge.
+  const glm::mat4 inv_view = glm::inverse(c.camera.view());
+  for (std::size_t i = 0; i < n_lights; ++i) {
+    glm::vec3 v{u(rng) * 40 - 20, u(rng) * 30 - 15, -u(rng) * 40 + 5};
+    float r = 0.2f + u(rng) * 4;
+    if (i % 17 == 0) r = 20 + u(rng) * 30;              // huge
+    if (i % 23 == 0) v = {u(rng) - 0.5f, u(rng) - 0.5f, -0.1f};  // at the near plane / around the eye
+    const glm::vec3 world = glm::vec3(inv_view * glm::vec4(v, 1));
+    c.lights.push_back(makeLight(world, r, {u(rng), u(rng), u(rng)}));
+  }
+  return c;
+}
+
+std::vector<std::vector<std::uint32_t>> runKernel(const CullCase& c, unsigned tile, TileDepthMode mode) {
+  ClRuntime& rt = test::runtime();
+  auto& q = rt.queue();
+  TileLightCuller culler(rt, tile, mode);
+  const auto cam = c.camera.params(c.width, c.height);
+  cl::Buffer lights(rt.context(), CL_MEM_READ_ONLY, std::max<std::size_t>(16, c.lights.size() * 32));
+  if (!c.lights.empty()) q.enqueueWriteBuffer(lights, CL_TRUE, 0, c.lights.size() * 32, c.lights.data());
+  cl::Buffer depth(rt.context(), CL_MEM_READ_ONLY, c.depth.size() * 4);
+  q.enqueueWriteBuffer(depth, CL_TRUE, 0, c.depth.size() * 4, c.depth.data());
+  const auto n = std::uint32_t(c.lights.size());
+  const std::uint32_t total = culler.count(q, lights, n, cam, &depth);
+  const unsigned tiles = culler.tileGrid().count();
+  cl::Buffer grid(rt.context(), CL_MEM_READ_WRITE, tiles * 8);
+  cl::Buffer indices(rt.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, total * 4 + 64));
+  q.enqueueFillBuffer(grid, 0xDEADBEEFu, 0, tiles * 8);  // poison
+  q.enqueueFillBuffer(indices, 0xDEADBEEFu, 0, std::max<std::size_t>(16, total * 4 + 64));
+  culler.fill(q, lights, n, cam, grid, indices);
+  std::vector<gpu::LightRange> g(tiles);
+  std::vector<std::uint32_t> idx(total + 16);
+  q.enqueueReadBuffer(grid, CL_TRUE, 0, tiles * 8, g.data());
+  q.enqueueReadBuffer(indices, CL_TRUE, 0, idx.size() * 4, idx.data());
+  // Nothing written past the total.
+  for (std::size_t i = total; i < idx.size(); ++i) EXPECT_EQ(idx[i], 0xDEADBEEFu) << "write past the list end";
+  std::vector<std::vector<std::uint32_t>> lists(tiles);
+  std::uint32_t expected_offset = 0;
+  for (unsigned t = 0; t < tiles; ++t) {
+    EXPECT_EQ(g[t].offset, expected_offset) << "tile " << t;
+    expected_offset += g[t].count;
+    if (g[t].offset + g[t].count > total) {
+      ADD_FAILURE() << "tile " << t << " out of range";
+      continue;
+    }
+    lists[t].assign(idx.begin() + g[t].offset, idx.begin() + g[t].offset + g[t].count);
+    std::sort(lists[t].begin(), lists[t].end());
+  }
+  EXPECT_EQ(expected_offset, total);
+  return lists;
+}
+
+std::vector<std::vector<std::uint32_t>> runReference(const CullCase& c, unsigned tile, TileDepthMode mode) {
+  TileGrid g{tile, c.width, c.height};
+  const auto ref = cullTilesReference(c.lights, c.depth.data(), c.camera.params(c.width, c.height), g, mode);
+  std::vector<std::vector<std::uint32_t>> lists(g.count());
+  for (unsigned t = 0; t < g.count(); ++t)
+    lists[t].assign(ref.indices.begin() + ref.grid[t].offset, ref.indices.begin() + ref.grid[t].offset + ref.grid[t].count);
+  return lists;
+}
+
+struct Param {
+  unsigned tile;
+  TileDepthMode mode;
+};
+class TiledCulling : public ::testing::TestWithParam<Param> {};
+
+TEST_P(TiledCulling, KernelMatchesReferenceAndIsConservative) {
+  const auto [tile, mode] = GetParam();
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  // Sizes that are and are not multiples of the tile size.
+  for (auto [w, h, n] : {std::tuple{160u, 96u, 300u}, std::tuple{203u, 117u, 1000u}, std::tuple{7u, 5u, 50u}}) {
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " lights " + std::to_string(n));
+    const CullCase c = randomCase(rng, w, h, n);
+    const auto gpu = runKernel(c, tile, mode);
+    const auto ref = runReference(c, tile, mode);
+    ASSERT_EQ(gpu.size(), ref.size());
+    std::size_t total = 0;
+    for (std::size_t t = 0; t < gpu.size(); ++t) {
+      ASSERT_EQ(gpu[t], ref[t]) << "tile " << t;
+      total += gpu[t].size();
+    }
+    EXPECT_GT(total, 0u);
+    // Conservative: every light containing a pixel's point is in its tile's list.
+    const glm::mat4 inv = glm::inverse(c.camera.projection(float(w) / float(h)) * c.camera.view());
+    TileGrid g{tile, w, h};
+    std::size_t checked = 0;
+    for (unsigned y = 0; y < h; ++y)
+      for (unsigned x = 0; x < w; ++x) {
+        const float d = c.depth[y * w + x];
+        if (d >= 1.0f) continue;
+        glm::vec4 p = inv * glm::vec4((x + 0.5f) / w * 2 - 1, (y + 0.5f) / h * 2 - 1, d * 2 - 1, 1);
+        const glm::vec3 P = glm::vec3(p) / p.w;
+        const auto& list = gpu[(y / tile) * g.tilesX() + x / tile];
+        for (std::uint32_t i = 0; i < c.lights.size(); ++i) {
+          const auto& l = c.lights[i].position_radius;
+          const glm::vec3 dv = glm::vec3(l.x, l.y, l.z) - P;
+          if (glm::dot(dv, dv) < l.w * l.w * 0.9999f) {
+            ++checked;
+            ASSERT_TRUE(std::binary_search(list.begin(), list.end(), i))
+                << "light " << i << " reaches pixel (" << x << "," << y << ") but is not in its tile list";
+          }
+        }
+      }
+    EXPECT_GT(checked, 0u);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(TileSizesAndModes, TiledCulling,
+                         ::testing::Values(Param{8, TileDepthMode::MinMax}, Param{16, TileDepthMode::MinMax},
+                                           Param{32, TileDepthMode::MinMax}, Param{64, TileDepthMode::MinMax},
+                                           Param{16, TileDepthMode::None}, Param{16, TileDepthMode::Mask},
+                                           Param{8, TileDepthMode::Mask}),
+                         [](const auto& info) {
+                           return std::string(tileDepthModeName(info.param.mode)) + "_" + std::to_string(info.param.tile);
+                         });
+
+TEST(TiledCullingEdges, ZeroLights) {
+  std::mt19937_64 rng(test::freshSeed());
+  const CullCase c = randomCase(rng, 100, 60, 0);
+  for (const auto& l : runKernel(c, 16, TileDepthMode::MinMax)) EXPECT_TRUE(l.empty());
+}
+
+TEST(TiledCullingEdges, LightsBehindTheCameraReachNoTile) {
+  std::mt19937_64 rng(test::freshSeed());
+  CullCase c = randomCase(rng, 100, 60, 0);
+  const glm::mat4 inv_view = glm::inverse(c.camera.view());
+  for (int i = 0; i < 50; ++i)
+    c.lights.push_back(makeLight(glm::vec3(inv_view * glm::vec4(float(i % 7) - 3, float(i % 5) - 2, 3.0f + i, 1)), 1.0f,
+                                 {1, 1, 1}));
+  for (auto mode : {TileDepthMode::None, TileDepthMode::MinMax})
+    for (const auto& l : runKernel(c, 16, mode)) EXPECT_TRUE(l.empty());
+}
+
+TEST(TiledCullingEdges, LightContainingTheCameraReachesEveryTileWithGeometryInRange) {
+  std::mt19937_64 rng(test::freshSeed());
+  CullCase c = randomCase(rng, 64, 64, 0);
+  std::fill(c.depth.begin(), c.depth.end(), 0.9f);  // geometry everywhere, close
+  c.lights.push_back(makeLight(c.camera.eye, 1000.0f, {1, 1, 1}));
+  for (auto mode : {TileDepthMode::None, TileDepthMode::MinMax, TileDepthMode::Mask})
+    for (const auto& l : runKernel(c, 16, mode)) EXPECT_EQ(l, std::vector<std::uint32_t>{0});
+}
+
+TEST(TiledCullingEdges, ATileHoldingEveryLight) {
+  std::mt19937_64 rng(test::freshSeed());
+  CullCase c = randomCase(rng, 48, 48, 0);
+  std::fill(c.depth.begin(), c.depth.end(), 0.95f);
+  for (int i = 0; i < 3000; ++i) c.lights.push_back(makeLight(c.camera.center, 500.0f + float(i), {1, 0, 0}));
+  const auto lists = runKernel(c, 64, TileDepthMode::MinMax);  // one tile covers the 48x48 screen
+  ASSERT_EQ(lists.size(), 1u);
+  EXPECT_EQ(lists[0].size(), 3000u);
+}
+
+}  // namespace
+}  // namespace ml
