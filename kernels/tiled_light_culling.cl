@@ -2,15 +2,18 @@
  *
  *   tile_depth_bounds*   depth buffer -> per-tile [min, max] linear view depth
  *                        and a 32-bin 2.5D depth mask (Harada's)
- *   cull_count           per light: tiles its sphere may reach -> counts[tile]++
- *   (exclusive scan of counts on the host side -> offsets, total)
- *   cull_fill            per light: same tiles -> indices[offsets[t] + slot]
+ *   light_rects          per light: screen tile rectangle, hit-mask size
+ *   (scan of mask sizes -> per-light mask offsets)
+ *   cull_mark            per light: test each tile of its rectangle once;
+ *                        set the tile's bit in the light's mask, counts[t]++
+ *   (scan of counts -> tile offsets and the list total)
+ *   cull_scatter         per light: indices[offsets[t] + slot] for its set bits
  *
  * Light-centric: each work-item walks one light's screen rectangle, so the
- * cost is the lights' covered tiles, not lights x tiles. Lists are built by
- * count -> scan -> fill and cannot overflow: the host sizes the index list
- * from the scan total. Order within a tile list follows atomics; the host can
- * sort it (segmented sort) when deterministic order is wanted.
+ * cost is the lights' covered tiles, not lights x tiles, and the culling math
+ * runs once per (light, tile). Lists are built by count -> scan -> fill and
+ * cannot overflow: the host sizes the index list from the scan total. Order
+ * within a tile list follows atomics.
  *
  * Defines: TILE_SIZE (pixels), DEPTH_MODE (0 none, 1 min/max, 2 2.5D mask).
  */
@@ -245,28 +248,63 @@ inline bool light_hits_tile(const LightRect* lr, int tx, int ty, const CameraPar
 #endif
 }
 
-__kernel void cull_count(__global const PointLight* lights, uint n, CameraParams cam, uint tiles_x, uint tiles_y,
-                         __global const float4* bounds, __global const uint* masks, __global uint* counts) {
+/* Pass 1: each light's tile rectangle and the number of 32-bit words its
+ * hit mask needs (one bit per tile of the rectangle). */
+__kernel void light_rects(__global const PointLight* lights, uint n, CameraParams cam, uint tiles_x, uint tiles_y,
+                          __global LightRect* rects, __global uint* mask_words) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const LightRect lr = light_rect(lights[i], &cam, tiles_x, tiles_y);
-  for (int ty = lr.ty0; ty <= lr.ty1; ++ty)
-    for (int tx = lr.tx0; tx <= lr.tx1; ++tx)
-      if (light_hits_tile(&lr, tx, ty, &cam, bounds, masks, tiles_x)) atomic_inc(&counts[ty * tiles_x + tx]);
+  rects[i] = lr;
+  const int area = (lr.tx0 > lr.tx1 || lr.ty0 > lr.ty1) ? 0 : (lr.tx1 - lr.tx0 + 1) * (lr.ty1 - lr.ty0 + 1);
+  mask_words[i] = (uint)(area + 31) / 32u;
 }
 
-__kernel void cull_fill(__global const PointLight* lights, uint n, CameraParams cam, uint tiles_x, uint tiles_y,
-                        __global const float4* bounds, __global const uint* masks, __global const uint* offsets,
-                        __global uint* cursor, __global uint* indices) {
+/* Pass 2: the culling math, once per (light, tile of its rectangle): set the
+ * tile's bit in the light's mask and count the light into the tile. */
+__kernel void cull_mark(__global const LightRect* rects, uint n, CameraParams cam, uint tiles_x,
+                        __global const float4* bounds, __global const uint* masks, __global const uint* mask_offsets,
+                        __global uint* hit_masks, __global uint* counts) {
   const uint i = get_global_id(0);
   if (i >= n) return;
-  const LightRect lr = light_rect(lights[i], &cam, tiles_x, tiles_y);
+  const LightRect lr = rects[i];
+  if (lr.tx0 > lr.tx1 || lr.ty0 > lr.ty1) return;
+  __global uint* out = hit_masks + mask_offsets[i];
+  uint word = 0, k = 0;
   for (int ty = lr.ty0; ty <= lr.ty1; ++ty)
-    for (int tx = lr.tx0; tx <= lr.tx1; ++tx)
+    for (int tx = lr.tx0; tx <= lr.tx1; ++tx) {
       if (light_hits_tile(&lr, tx, ty, &cam, bounds, masks, tiles_x)) {
-        const uint t = ty * tiles_x + tx;
-        indices[offsets[t] + atomic_inc(&cursor[t])] = i;
+        word |= 1u << (k & 31u);
+        atomic_inc(&counts[ty * tiles_x + tx]);
       }
+      if ((++k & 31u) == 0u) {
+        out[k / 32u - 1u] = word;
+        word = 0;
+      }
+    }
+  if (k & 31u) out[k / 32u] = word;
+}
+
+/* Pass 3: no math, each light scatters its index into the tiles of its mask. */
+__kernel void cull_scatter(__global const LightRect* rects, uint n, uint tiles_x, __global const uint* mask_offsets,
+                           __global const uint* hit_masks, __global const uint* offsets, __global uint* cursor,
+                           __global uint* indices) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const LightRect lr = rects[i];
+  if (lr.tx0 > lr.tx1 || lr.ty0 > lr.ty1) return;
+  __global const uint* in = hit_masks + mask_offsets[i];
+  const int w = lr.tx1 - lr.tx0 + 1;
+  const uint area = (uint)(w * (lr.ty1 - lr.ty0 + 1));
+  for (uint base = 0; base < area; base += 32u) {
+    uint word = in[base / 32u];
+    while (word) {
+      const uint k = base + (31u - clz(word & (~word + 1u)));
+      word &= word - 1u;
+      const uint t = (uint)(lr.ty0 + (int)k / w) * tiles_x + (uint)(lr.tx0 + (int)k % w);
+      indices[offsets[t] + atomic_inc(&cursor[t])] = i;
+    }
+  }
 }
 
 /* Light grid for GLSL: (offset, count) per tile. */

@@ -19,10 +19,16 @@ TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMod
   program_ = rt.programs().build("tiled_light_culling.cl", {{"TILE_SIZE", std::to_string(tile_size)},
                                                             {"DEPTH_MODE", std::to_string(static_cast<int>(mode))}});
   bounds_ = cl::Kernel(program_, gpu_shape_ ? "tile_depth_bounds_wg" : "tile_depth_bounds");
-  count_ = cl::Kernel(program_, "cull_count");
-  fill_ = cl::Kernel(program_, "cull_fill");
+  rects_k_ = cl::Kernel(program_, "light_rects");
+  mark_ = cl::Kernel(program_, "cull_mark");
+  scatter_ = cl::Kernel(program_, "cull_scatter");
   write_grid_ = cl::Kernel(program_, "write_grid");
-  dummy_depth_ = cl::Buffer(rt.context(), CL_MEM_READ_ONLY, 16);
+  // Buffers are never zero-sized: "no lights" is a normal frame.
+  const auto& ctx = rt.context();
+  rects_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 32);
+  mask_words_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
+  mask_offsets_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
+  hit_masks_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
 }
 
 void TileLightCuller::ensureTiles(const gpu::CameraParams& cam) {
@@ -39,7 +45,9 @@ void TileLightCuller::ensureTiles(const gpu::CameraParams& cam) {
   cursor_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n * sizeof(cl_uint));
 }
 
-std::size_t TileLightCuller::scratchBytes() const { return tile_capacity_ * (16 + 4 * 4); }
+std::size_t TileLightCuller::scratchBytes() const {
+  return tile_capacity_ * (16 + 4 * 4) + light_capacity_ * (32 + 8) + mask_capacity_ * 4;
+}
 
 std::uint32_t TileLightCuller::count(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n,
                                      const gpu::CameraParams& cam, const cl::Buffer* depth, ClPassTimer* timer) {
@@ -68,36 +76,56 @@ std::uint32_t TileLightCuller::count(cl::CommandQueue& q, const cl::Buffer& ligh
   }
   q.enqueueFillBuffer(counts_, cl_uint(0), 0, std::size_t(n_tiles) * sizeof(cl_uint));
   if (n > 0) {
-    count_.setArg(0, lights);
-    count_.setArg(1, n);
-    count_.setArg(2, cam);
-    count_.setArg(3, tiles_x);
-    count_.setArg(4, tiles_y);
-    count_.setArg(5, tile_bounds_);
-    count_.setArg(6, tile_masks_);
-    count_.setArg(7, counts_);
-    q.enqueueNDRangeKernel(count_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("tile-cull-count"));
+    if (n > light_capacity_) {
+      light_capacity_ = std::size_t(n) + n / 2;
+      rects_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, light_capacity_ * 32);
+      mask_words_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, light_capacity_ * 4);
+      mask_offsets_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, light_capacity_ * 4);
+    }
+    rects_k_.setArg(0, lights);
+    rects_k_.setArg(1, n);
+    rects_k_.setArg(2, cam);
+    rects_k_.setArg(3, tiles_x);
+    rects_k_.setArg(4, tiles_y);
+    rects_k_.setArg(5, rects_);
+    rects_k_.setArg(6, mask_words_);
+    q.enqueueNDRangeKernel(rects_k_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("tile-light-rects"));
+    const std::uint32_t words = scan_.exclusiveTotal(q, mask_words_, mask_offsets_, n, timer);
+    if (words > mask_capacity_) {
+      mask_capacity_ = std::size_t(words) + words / 2;
+      hit_masks_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, mask_capacity_ * 4));
+    }
+    mark_.setArg(0, rects_);
+    mark_.setArg(1, n);
+    mark_.setArg(2, cam);
+    mark_.setArg(3, tiles_x);
+    mark_.setArg(4, tile_bounds_);
+    mark_.setArg(5, tile_masks_);
+    mark_.setArg(6, mask_offsets_);
+    mark_.setArg(7, hit_masks_);
+    mark_.setArg(8, counts_);
+    q.enqueueNDRangeKernel(mark_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("tile-cull"));
   }
   return scan_.exclusiveTotal(q, counts_, offsets_, n_tiles, timer);
 }
 
 void TileLightCuller::fill(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n,
                            const gpu::CameraParams& cam, cl::Buffer& grid, cl::Buffer& indices, ClPassTimer* timer) {
-  const cl_uint tiles_x = grid_.tilesX(), tiles_y = grid_.tilesY(), n_tiles = grid_.count();
+  (void)lights;  // count() kept everything fill needs (the rectangles and hit masks)
+  (void)cam;
+  const cl_uint tiles_x = grid_.tilesX(), n_tiles = grid_.count();
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
   if (n > 0) {
     q.enqueueFillBuffer(cursor_, cl_uint(0), 0, std::size_t(n_tiles) * sizeof(cl_uint));
-    fill_.setArg(0, lights);
-    fill_.setArg(1, n);
-    fill_.setArg(2, cam);
-    fill_.setArg(3, tiles_x);
-    fill_.setArg(4, tiles_y);
-    fill_.setArg(5, tile_bounds_);
-    fill_.setArg(6, tile_masks_);
-    fill_.setArg(7, offsets_);
-    fill_.setArg(8, cursor_);
-    fill_.setArg(9, indices);
-    q.enqueueNDRangeKernel(fill_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("tile-cull-fill"));
+    scatter_.setArg(0, rects_);
+    scatter_.setArg(1, n);
+    scatter_.setArg(2, tiles_x);
+    scatter_.setArg(3, mask_offsets_);
+    scatter_.setArg(4, hit_masks_);
+    scatter_.setArg(5, offsets_);
+    scatter_.setArg(6, cursor_);
+    scatter_.setArg(7, indices);
+    q.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("tile-scatter"));
   }
   write_grid_.setArg(0, offsets_);
   write_grid_.setArg(1, counts_);

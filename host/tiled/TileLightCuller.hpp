@@ -7,8 +7,9 @@
 //   ... make `indices` hold >= total uints ...
 //   culler.fill(q, lights, n, cam, grid, indices);              // grid: LightRange per tile
 //
-// count() blocks for the total (the only host sync): the index list is sized
-// from it, so lists never overflow or get truncated. The order inside a tile's
+// count() blocks twice (for the size of the per-light hit masks and for the
+// list total): everything is sized from those, so nothing can overflow or be
+// truncated. The order inside a tile's
 // list is unspecified (atomics).
 #include <CL/opencl.hpp>
 
@@ -44,9 +45,10 @@ class TileLightCuller {
   TileGrid grid_;
   bool gpu_shape_;
   cl::Program program_;
-  cl::Kernel bounds_, count_, fill_, write_grid_;
-  cl::Buffer tile_bounds_, tile_masks_, counts_, offsets_, cursor_, dummy_depth_;
-  std::size_t tile_capacity_ = 0;
+  cl::Kernel bounds_, rects_k_, mark_, scatter_, write_grid_;
+  cl::Buffer tile_bounds_, tile_masks_, counts_, offsets_, cursor_;
+  cl::Buffer rects_, mask_words_, mask_offsets_, hit_masks_;
+  std::size_t tile_capacity_ = 0, light_capacity_ = 0, mask_capacity_ = 0;
   compute::Scanner scan_;
 };
 

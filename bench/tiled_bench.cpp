@@ -1,0 +1,194 @@
+// manylights-tiled-bench: the OpenCL tile light culler against the plain C++
+// culler (same algorithm and tests, multi-threaded with TBB) on the same
+// device, depth buffer and lights, in one run; plus per-pass frame breakdowns
+// of tiled forward/deferred. Prints a table and, with --json, writes one record
+// per case: name, resolution, lights, seconds (median), items_per_second.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "gl/FrameRenderer.hpp"
+#include "gl/GlContext.hpp"
+#include "host/app/RenderCommand.hpp"
+#include "host/app/SceneInputs.hpp"
+#include "host/cl/ClRuntime.hpp"
+#include "host/tiled/TileCullerReference.hpp"
+#include "host/tiled/TiledAssigner.hpp"
+#include "host/util/Error.hpp"
+
+namespace {
+using namespace ml;
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+template <class F>
+double timeMedian(int reps, F&& f) {
+  f();  // warm-up (kernel compile, caches)
+  std::vector<double> t;
+  for (int i = 0; i < reps; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return median(t);
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t p = 0;
+  while (p <= s.size()) {
+    auto q = s.find(',', p);
+    if (q == std::string::npos) q = s.size();
+    if (q > p) out.push_back(s.substr(p, q - p));
+    p = q + 1;
+  }
+  return out;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"Tile light culling: OpenCL kernel vs multi-threaded C++, and tiled frame breakdowns"};
+  std::string json_path, sizes = "320x320,1280x720,1920x1080", light_counts = "1000,10000,100000";
+  std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000", depth_mode = "minmax";
+  unsigned tile = 16;
+  int reps = 5;
+  std::string device;
+  app.add_option("--json", json_path, "write records as JSON");
+  app.add_option("--sizes", sizes, "culling resolutions")->capture_default_str();
+  app.add_option("--lights", light_counts, "culling light counts")->capture_default_str();
+  app.add_option("--frame-sizes", frame_sizes, "resolutions of the frame breakdowns ('' for none)")->capture_default_str();
+  app.add_option("--frame-lights", frame_lights, "light counts of the frame breakdowns")->capture_default_str();
+  app.add_option("--tile", tile, "tile size")->capture_default_str();
+  app.add_option("--tile-depth", depth_mode, "none|minmax|mask")->capture_default_str();
+  app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
+  app.add_option("--device", device, "OpenCL device");
+  CLI11_PARSE(app, argc, argv);
+  const TileDepthMode mode = parseTileDepthMode(depth_mode);
+
+  auto gl = createHeadlessContext();
+  const auto share = gl->shareHandles();
+  auto rt = ClRuntime::create(DeviceChoice::resolve(device), &share);
+  std::printf("%s\n%s\n", rt->describe().c_str(), gl->describe().c_str());
+  SceneInputArgs base;
+  base.lights = "1";
+  SceneInputs scene = loadSceneInputs(base);
+  const Camera& camera = scene.cameras.frames.front();
+  nlohmann::ordered_json records = nlohmann::ordered_json::array();
+
+  std::printf("\nTile light culling, tile %u, depth %s (median of %d)\n", tile, depth_mode.c_str(), reps);
+  std::printf("%-11s %8s %12s %12s %10s %12s\n", "resolution", "lights", "kernel ms", "C++ (TBB) ms", "speed-up",
+              "list entries");
+  for (const auto& size : splitList(sizes)) {
+    unsigned w = 0, h = 0;
+    parseSize(size, "--sizes", w, h);
+    // The depth buffer of the default view at this resolution.
+    std::vector<float> depth;
+    {
+      FrameRenderer r(*rt, scene.scene, w, h);
+      r.setLights({});
+      TiledAssigner a(*rt, tile, mode);
+      r.render(camera, a, {Pipeline::Deferred, false});
+      depth = r.targets().readDepth(true);
+    }
+    const auto cam = camera.params(w, h);
+    for (const auto& ls : splitList(light_counts)) {
+      SceneInputArgs args;
+      args.lights = ls;
+      const auto lights = loadSceneInputs(args).lights;
+      const auto n = std::uint32_t(lights.size());
+      auto& q = rt->queue();
+      cl::Buffer lbuf(rt->context(), CL_MEM_READ_ONLY, std::max<std::size_t>(16, n * sizeof(gpu::PointLight)));
+      if (n) q.enqueueWriteBuffer(lbuf, CL_TRUE, 0, n * sizeof(gpu::PointLight), lights.data());
+      cl::Buffer dbuf(rt->context(), CL_MEM_READ_ONLY, depth.size() * 4);
+      q.enqueueWriteBuffer(dbuf, CL_TRUE, 0, depth.size() * 4, depth.data());
+      TileLightCuller culler(*rt, tile, mode);
+      cl::Buffer grid(rt->context(), CL_MEM_READ_WRITE, std::size_t(TileGrid{tile, w, h}.count()) * 8);
+      cl::Buffer indices;
+      std::size_t cap = 0;
+      std::uint32_t total = 0;
+      const double t_kernel = timeMedian(reps, [&] {
+        total = culler.count(q, lbuf, n, cam, &dbuf);
+        if (total * 4u > cap) {
+          cap = std::max<std::size_t>(16, total * 4u * 3 / 2);
+          indices = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
+        }
+        culler.fill(q, lbuf, n, cam, grid, indices);
+        q.finish();
+      });
+      const TileGrid g{tile, w, h};
+      std::size_t ref_total = 0;
+      const double t_ref = timeMedian(reps, [&] {
+        ref_total = cullTilesReference(lights, depth.data(), cam, g, mode, true).indices.size();
+      });
+      if (ref_total != total) throw std::runtime_error("kernel and C++ culler disagree on the list size");
+      std::printf("%-11s %8u %12.3f %12.3f %9.2fx %12u\n", size.c_str(), n, t_kernel * 1e3, t_ref * 1e3,
+                  t_ref / t_kernel, total);
+      for (auto [name, t] : {std::pair{"tile_cull_opencl", t_kernel}, std::pair{"tile_cull_cpp_tbb", t_ref}})
+        records.push_back({{"name", name}, {"resolution", size}, {"n", n}, {"lights", n}, {"tile", tile},
+                           {"depth_mode", depth_mode}, {"seconds", t}, {"items_per_second", n / t},
+                           {"bytes_per_second", (depth.size() * 4.0 + n * 32.0) / t}, {"list_entries", total},
+                           {"speedup_vs_cpp", t_ref / t_kernel}});
+    }
+  }
+
+  if (!frame_sizes.empty()) {
+    std::printf("\nFrame breakdown (ms, median of %d; GL passes host-timed on software GL)\n", reps);
+    for (const auto& size : splitList(frame_sizes)) {
+      unsigned w = 0, h = 0;
+      parseSize(size, "--frame-sizes", w, h);
+      FrameRenderer r(*rt, scene.scene, w, h);
+      for (const auto& ls : splitList(frame_lights)) {
+        SceneInputArgs args;
+        args.lights = ls;
+        r.setLights(loadSceneInputs(args).lights);
+        for (auto [tech, pipe] : {std::pair{"tiled-forward", Pipeline::Forward}, std::pair{"tiled-deferred", Pipeline::Deferred}}) {
+          TiledAssigner a(*rt, tile, mode);
+          r.render(camera, a, {pipe, false});
+          std::vector<FrameResult> frames;
+          for (int i = 0; i < reps; ++i) frames.push_back(r.render(camera, a, {pipe, false}));
+          std::printf("%-11s %7s %-15s", size.c_str(), ls.c_str(), tech);
+          nlohmann::ordered_json passes;
+          for (const auto& [name, ms] : frames.front().passes.entries()) {
+            (void)ms;
+            std::vector<double> v;
+            for (const auto& f : frames) v.push_back(f.passes.get(name));
+            const double m = median(v);
+            passes[name] = m;
+            std::printf(" %s=%.2f", name.c_str(), m);
+          }
+          std::vector<double> host;
+          for (const auto& f : frames) host.push_back(f.host_ms);
+          std::printf(" | frame=%.2f\n", median(host));
+          records.push_back({{"name", std::string("frame_") + tech}, {"resolution", size}, {"lights", std::stoul(ls)},
+                             {"n", std::stoul(ls)}, {"seconds", median(host) * 1e-3},
+                             {"items_per_second", double(w) * h / (median(host) * 1e-3)}, {"passes", passes}});
+        }
+      }
+    }
+  }
+  if (!json_path.empty()) {
+    std::ofstream out(json_path);
+    if (!out) throw UserError("--json: cannot write '" + json_path + "'");
+    out << records.dump(2) << "\n";
+    std::printf("\nwrote %s\n", json_path.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const ml::UserError& e) {
+    std::fprintf(stderr, "manylights-tiled-bench: error: %s\n", e.what());
+    return 2;
+  }
+}
