@@ -38,12 +38,51 @@ std::string oneLine(const std::string& text) {
   return out;
 }
 
-// Without this a texture stb_image cannot decode fails the whole load inside
-// tinygltf; a scene is still useful with that material's base colour factor.
-bool tolerantImageLoader(tinygltf::Image* image, const int image_idx, std::string* /*err*/, std::string* warn,
+// tinygltf messages can quote whole data URIs (megabytes of base64); keep the
+// one-line error readable.
+std::string summarize(const std::string& text) {
+  std::string out = oneLine(text);
+  for (std::size_t at = out.find("data:"); at != std::string::npos; at = out.find("data:", at + 5)) {
+    std::size_t end = at;
+    while (end < out.size() && out[end] != ' ' && out[end] != '"' && out[end] != '\'' && out[end] != ';') ++end;
+    if (end < out.size() && out[end] == ';') {  // skip ";base64,...." too
+      while (end < out.size() && out[end] != ' ' && out[end] != '"' && out[end] != '\'') ++end;
+    }
+    if (end - at > 40) out.replace(at, end - at, "data:...");
+  }
+  constexpr std::size_t kMax = 400;
+  if (out.size() > kMax) out = out.substr(0, kMax) + "...";
+  return out;
+}
+
+// Wraps tinygltf's stb_image decoder. user_data is the Model being filled, whose
+// buffers and bufferViews are already parsed when images are.
+bool tolerantImageLoader(tinygltf::Image* image, const int image_idx, std::string* err, std::string* warn,
                          int req_width, int req_height, const unsigned char* bytes, int size, void* user) {
+  // tinygltf 2.7 passes a bufferView's bytes without checking them against its
+  // buffer; refuse rather than let the decoder read past the allocation.
+  if (const auto* model = static_cast<const tinygltf::Model*>(user); model && image->bufferView >= 0) {
+    const auto view = static_cast<std::size_t>(image->bufferView);
+    bool ok = view < model->bufferViews.size();
+    if (ok) {
+      const tinygltf::BufferView& bv = model->bufferViews[view];
+      ok = bv.buffer >= 0 && static_cast<std::size_t>(bv.buffer) < model->buffers.size();
+      if (ok) {
+        const std::size_t available = model->buffers[static_cast<std::size_t>(bv.buffer)].data.size();
+        ok = bv.byteOffset <= available && bv.byteLength <= available - bv.byteOffset;
+      }
+    }
+    if (!ok) {
+      if (err)
+        *err += "image " + std::to_string(image_idx) + ": bufferView " + std::to_string(image->bufferView) +
+                " lies outside its buffer\n";
+      return false;
+    }
+  }
+  // Without this a texture stb_image cannot decode fails the whole load inside
+  // tinygltf; a scene is still useful with that material's base colour factor.
   std::string decode_err;
-  if (tinygltf::LoadImageData(image, image_idx, &decode_err, warn, req_width, req_height, bytes, size, user))
+  if (tinygltf::LoadImageData(image, image_idx, &decode_err, warn, req_width, req_height, bytes, size, nullptr))
     return true;
   if (warn)
     *warn += "image " + std::to_string(image_idx) + " could not be decoded (" + oneLine(decode_err) +
@@ -456,20 +495,20 @@ Scene loadGltfScene(const std::string& path) {
   const bool binary = std::memcmp(magic, "glTF", 4) == 0;
 
   tinygltf::TinyGLTF gltf;
-  gltf.SetImageLoader(&tolerantImageLoader, nullptr);
   tinygltf::Model model;
+  gltf.SetImageLoader(&tolerantImageLoader, &model);
   std::string err, warn;
   bool ok = false;
   try {
     ok = binary ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
                 : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
   } catch (const std::exception& e) {  // tinygltf lets some JSON type errors escape
-    throw UserError(path + ": malformed glTF: " + oneLine(e.what()));
+    throw UserError(path + ": malformed glTF: " + summarize(e.what()));
   }
-  if (!warn.empty()) spdlog::warn("{}: {}", path, oneLine(warn));
+  if (!warn.empty()) spdlog::warn("{}: {}", path, summarize(warn));
   if (!ok) {
     const std::string kind = binary ? "malformed .glb" : "malformed glTF";
-    throw UserError(path + ": " + kind + (err.empty() ? std::string() : ": " + oneLine(err)));
+    throw UserError(path + ": " + kind + (err.empty() ? std::string() : ": " + summarize(err)));
   }
 
   Scene scene;

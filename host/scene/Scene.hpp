@@ -20,7 +20,7 @@ static_assert(sizeof(Vertex) == 32, "Vertex is uploaded as-is");
 struct Texture {
   int width = 0;
   int height = 0;
-  std::vector<std::uint8_t> rgba8;  // width * height * 4, row 0 = top
+  std::vector<std::uint8_t> rgba8;  // width * height * 4, row 0 = top; sRGB-encoded as in the file
 };
 
 struct Material {
@@ -55,10 +55,14 @@ struct Scene {
   std::size_t triangleCount() const { return indices.size() / 3; }
 };
 
-// Loads a .gltf or .glb (tinygltf): meshes (triangles), node hierarchy
-// transforms, normals (generated flat-per-face-averaged when missing), baseColor
-// factor and texture. Throws UserError naming the file for missing, unreadable
-// or malformed input, or a scene without triangles.
+// Loads a .gltf or .glb (tinygltf): meshes (triangles; strips and fans are
+// converted, points and lines skipped with a warning), the default scene's node
+// hierarchy transforms (mirroring transforms get their winding flipped back),
+// normals (generated when missing: per primitive, area-weighted average of the
+// adjacent face normals), TEXCOORD_0, baseColor factor and texture (a texture
+// that cannot be decoded is dropped with a warning). Throws UserError naming
+// the file for missing, unreadable or malformed input, or a scene without
+// triangles.
 Scene loadGltfScene(const std::string& path);
 
 }  // namespace ml

@@ -32,7 +32,7 @@ inline json readFile(const std::string& path, const char* what) {
   if (in.bad()) throw UserError(path + ": cannot read " + what + " file");
   try {
     return json::parse(buffer.str());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers like 1e999
     throw UserError(path + ": invalid JSON in " + what + " file: " + oneLine(e.what()));
   }
 }
