@@ -100,10 +100,12 @@ void printSummaries(const std::vector<RunSummary>& sums) {
 }  // namespace
 
 std::string findPlotPython() {
+  // An explicit choice is the only candidate; otherwise the PATH's python3
+  // (which may be a virtualenv or pyenv shim without matplotlib) and then the
+  // system one that the python3-matplotlib package installs into.
   std::vector<std::string> candidates;
   if (const char* env = std::getenv("MANYLIGHTS_PYTHON"); env && *env) candidates.push_back(env);
-  candidates.push_back("python3");
-  candidates.push_back("/usr/bin/python3");
+  else candidates = {"python3", "/usr/bin/python3"};
   for (const auto& c : candidates) {
     const std::string probe = shellQuote(c) + " -c 'import matplotlib' >/dev/null 2>&1";
     if (std::system(probe.c_str()) == 0) return c;
@@ -177,6 +179,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   cmd->add_option("--json", a.json, "write per-frame records and per-run summaries as JSON");
   cmd->add_option("--csv", a.csv, "write per-frame records as CSV");
   cmd->add_option("--plot", a.plot, "render thesis-style figures (PNG) into this folder (python3-matplotlib)");
+  cmd->add_option("--images", a.images, "write every record's shaded image (PNG) into this folder");
   cmd->add_option("--geometry", a.scene.geometry, "suite: geometry file under geometry/ (default deferred_attenuated.json)");
   cmd->add_flag("--allow-missing-meshes", a.scene.allow_missing_meshes,
                 "suite: skip objects whose OBJ mesh is missing (warns) instead of failing");
@@ -238,6 +241,7 @@ int runBench(const BenchArgs& a) {
   plan.timing = !a.no_timing;
   plan.repeat = std::max(a.repeat, 1u);
   plan.warmup = a.warmup;
+  plan.image_dir = a.images;
 
   auto gl = createHeadlessContext();
   const GlShareHandles share = gl->shareHandles();

@@ -23,7 +23,7 @@ struct BenchArgs {
   std::string frames;      // FIRST:LAST:STEP; empty: the whole path
   std::vector<std::string> params;  // "key=v1,v2"
   std::string tile, tile_depth, cluster_tile, node_size;  // shorthands for params
-  std::string json, csv, plot;
+  std::string json, csv, plot, images;
   std::string device;
   std::string progress = "auto";
   unsigned repeat = 1;
@@ -37,8 +37,8 @@ struct BenchArgs {
 CLI::App* addBenchCommand(CLI::App& app, BenchArgs& args);
 int runBench(const BenchArgs& args);
 
-// Finds a Python 3 that imports matplotlib ($MANYLIGHTS_PYTHON, python3,
-// /usr/bin/python3); empty when there is none.
+// Finds a Python 3 that imports matplotlib: $MANYLIGHTS_PYTHON if set (and
+// only it), else python3 on the PATH, else /usr/bin/python3; empty if none.
 std::string findPlotPython();
 // scripts/plot_bench.py of the source tree (or next to the binary); UserError if absent.
 std::string plotScriptPath();

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <iostream>
 
+#include "host/app/BenchCommand.hpp"
+#include "host/app/CompareReferenceCommand.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/util/Error.hpp"
@@ -26,8 +28,13 @@ int runCli(int argc, char** argv) {
   CLI::App app{"manylights: light assignment for many dynamic point lights (OpenCL + OpenGL)"};
   app.require_subcommand(1);
   auto* devices = app.add_subcommand("devices", "List OpenCL platforms and devices with their indices");
+  auto* techniques_cmd = app.add_subcommand("techniques", "List the registered light-assignment techniques");
   RenderArgs render_args;
   auto* render = addRenderCommand(app, render_args);
+  BenchArgs bench_args;
+  auto* bench = addBenchCommand(app, bench_args);
+  CompareReferenceArgs compare_args;
+  auto* compare = addCompareReferenceCommand(app, compare_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -40,7 +47,16 @@ int runCli(int argc, char** argv) {
   }
   try {
     if (devices->parsed()) return runDevices();
+    if (techniques_cmd->parsed()) {
+      for (const auto& t : techniques()) std::printf("%-20s %s\n", t.name.c_str(), t.description.c_str());
+      return 0;
+    }
     if (render->parsed()) return runRender(render_args);
+    if (bench->parsed()) {
+      for (int i = 0; i < argc; ++i) bench_args.command_line += (i ? " " : "") + std::string(argv[i]);
+      return runBench(bench_args);
+    }
+    if (compare->parsed()) return runCompareReference(compare_args);
   } catch (const UserError& e) {
     std::fprintf(stderr, "manylights: error: %s\n", e.what());
     return 2;

@@ -7,10 +7,13 @@
 #include <charconv>
 #include <cstdio>
 #include <fstream>
+#include <random>
 
 #include "gl/FrameRenderer.hpp"
 #include "gl/GlContext.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/hashed/HashedAssigner.hpp"
+#include "host/clustered/ClusteredAssigner.hpp"
 #include "host/util/Error.hpp"
 #include "host/util/Heatmap.hpp"
 #include "host/util/ImageIO.hpp"
@@ -39,6 +42,41 @@ void addSceneInputFlags(CLI::App& cmd, SceneInputArgs& a) {
   cmd.add_option("--seed", a.seed, "seed for generated lights (default 23, the thesis's)");
 }
 
+namespace {
+// --cluster-view target; kept here rather than in RenderArgs so the clustered
+// technique touches only this file of the render command.
+std::string g_cluster_view;
+}  // namespace
+
+namespace {
+// --animate F: before every timed frame a fraction F of the lights (chosen at
+// random, seed 23) takes a random step of a quarter of its radius, staying
+// within half a radius of where it started, so the scene's light bounds
+// barely change. Kept here so the option touches only this file.
+double g_animate = 0.0;
+
+struct LightAnimator {
+  std::vector<gpu::PointLight> start, now;
+  std::mt19937_64 rng{23};
+  double uni(double a, double b) { return a + (b - a) * double(rng() >> 11) * 0x1.0p-53; }
+  const std::vector<gpu::PointLight>& step(double fraction) {
+    const std::size_t moves = std::size_t(std::llround(fraction * double(now.size())));
+    for (std::size_t k = 0; k < moves; ++k) {
+      const std::size_t i = rng() % now.size();
+      auto& p = now[i].position_radius;
+      const auto& s = start[i].position_radius;
+      auto move = [&](float& v, float origin) {
+        v = std::clamp(v + float(uni(-0.25, 0.25)) * p.w, origin - 0.5f * p.w, origin + 0.5f * p.w);
+      };
+      move(p.x, s.x);
+      move(p.y, s.y);
+      move(p.z, s.z);
+    }
+    return now;
+  }
+};
+}  // namespace
+
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   auto* cmd = app.add_subcommand("render", "Render one frame with one technique; print per-pass times and counts");
   addSceneInputFlags(*cmd, a.inputs);
@@ -60,10 +98,12 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
       ->capture_default_str();
   cmd->add_option("--cluster-assign", a.params.cluster_assign, "cluster light assignment: bvh|brute")
       ->capture_default_str();
+  cmd->add_option("--cluster-view", g_cluster_view, "clustered: write each unique cluster as a colour to this PNG");
   cmd->add_option("--node-size", a.params.node_size, "hashed: minimal node size, absolute or relative (0.5r)")
       ->capture_default_str();
   cmd->add_option("--start-depth", a.params.start_depth, "hashed: octree start depth")->capture_default_str();
   cmd->add_flag("--geometry-mask", a.params.geometry_mask, "hashed: keep only nodes that contain geometry");
+  cmd->add_option("--animate", g_animate, "move this fraction of the lights (0..1) before every timed frame");
   return cmd;
 }
 
@@ -72,6 +112,7 @@ int runRender(const RenderArgs& a) {
   parseSize(a.size, "--size", width, height);
   const TechniqueInfo& tech = findTechnique(a.technique);
   if (a.frames == 0) throw UserError("--frames: must be at least 1");
+  if (!(g_animate >= 0.0 && g_animate <= 1.0)) throw UserError("--animate: expected a fraction in [0, 1]");
   const DeviceChoice device = DeviceChoice::resolve(a.device);
 
   SceneInputs inputs = loadSceneInputs(a.inputs);
@@ -89,13 +130,21 @@ int runRender(const RenderArgs& a) {
   FrameRenderer renderer(*cl, inputs.scene, width, height);
   renderer.setLights(inputs.lights);
   auto assigner = makeAssigner(tech.name, *cl, a.params);
+  attachSceneGeometry(*assigner, inputs.scene);
   const Camera& camera = inputs.cameras.frames[a.frame];
   FrameOptions opts;
   opts.pipeline = tech.pipeline;
 
   for (unsigned i = 0; i < a.warmup; ++i) renderer.render(camera, *assigner, opts);
   std::vector<FrameResult> timed;
-  for (unsigned i = 0; i < a.frames; ++i) timed.push_back(renderer.render(camera, *assigner, opts));
+  LightAnimator animator{inputs.lights, inputs.lights};
+  if (g_animate > 0.0)
+    std::printf("animate: %zu lights move before each timed frame\n",
+                std::size_t(std::llround(g_animate * double(inputs.lights.size()))));
+  for (unsigned i = 0; i < a.frames; ++i) {
+    if (g_animate > 0.0 && !inputs.lights.empty()) renderer.setLights(animator.step(g_animate));
+    timed.push_back(renderer.render(camera, *assigner, opts));
+  }
   if (!a.out.empty())
     writeImage(a.out, width, height, 4, renderer.targets().readColor());
 
@@ -143,6 +192,12 @@ int runRender(const RenderArgs& a) {
     std::printf("covered pixels      %14llu\n", static_cast<unsigned long long>(counted.covered_pixels));
     std::printf("fragment evaluations%14llu  (all shaded fragments, overdraw included)\n",
                 static_cast<unsigned long long>(counted.fragment_evaluations));
+  }
+  if (!g_cluster_view.empty()) {
+    auto* clustered = dynamic_cast<ClusteredAssigner*>(assigner.get());
+    if (!clustered) throw UserError("--cluster-view needs a clustered technique");
+    writeImage(g_cluster_view, width, height, 4, ClusteredAssigner::clusterViewRgba(clustered->readClusterMap()));
+    std::printf("wrote %s\n", g_cluster_view.c_str());
   }
   const auto extra = assigner->stats();
   if (!extra.empty()) {

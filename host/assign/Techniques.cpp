@@ -1,6 +1,8 @@
 #include "host/assign/Techniques.hpp"
 
 #include "host/assign/BruteForceAssigner.hpp"
+#include "host/clustered/ClusteredAssigner.hpp"
+#include "host/hashed/HashedAssigner.hpp"
 #include "host/tiled/TiledAssigner.hpp"
 #include "host/util/Error.hpp"
 
@@ -10,8 +12,12 @@ const std::vector<TechniqueInfo>& techniques() {
   static const std::vector<TechniqueInfo> list = {
       {"forward", Pipeline::Forward, "brute-force forward shading: every light for every fragment"},
       {"deferred", Pipeline::Deferred, "brute-force deferred shading: G-buffer, then every light per pixel"},
+      {"hashed-forward", Pipeline::Forward, "hashed shading, forward: camera-independent linkless octree of perfect spatial hashes"},
+      {"hashed-deferred", Pipeline::Deferred, "hashed shading, deferred: camera-independent linkless octree of perfect spatial hashes"},
       {"tiled-forward", Pipeline::Forward, "forward+: depth pre-pass, per-tile light culling (OpenCL), forward shading"},
       {"tiled-deferred", Pipeline::Deferred, "tiled deferred: per-tile light culling (OpenCL) over the G-buffer depth"},
+      {"clustered-forward", Pipeline::Forward, "clustered forward: depth pre-pass, cluster keys, unique clusters and light BVH (OpenCL)"},
+      {"clustered-deferred", Pipeline::Deferred, "clustered deferred: cluster keys, unique clusters and light BVH (OpenCL) over the G-buffer depth"},
   };
   return list;
 }
@@ -32,8 +38,12 @@ std::unique_ptr<LightAssigner> makeAssigner(const std::string& technique, ClRunt
                                             const TechniqueParams& params) {
   const TechniqueInfo& t = findTechnique(technique);
   if (t.name == "forward" || t.name == "deferred") return std::make_unique<BruteForceAssigner>();
+  if (t.name == "hashed-forward" || t.name == "hashed-deferred") return std::make_unique<HashedAssigner>(t.name, params);
   if (t.name == "tiled-forward" || t.name == "tiled-deferred")
     return std::make_unique<TiledAssigner>(cl, params.tile_size, parseTileDepthMode(params.tile_depth));
+  if (t.name == "clustered-forward" || t.name == "clustered-deferred")
+    return std::make_unique<ClusteredAssigner>(cl, params.cluster_tile, parseUniqueMethod(params.unique_method),
+                                               parseClusterAssign(params.cluster_assign));
   throw UserError("--technique: '" + technique + "' is registered but has no assigner");
 }
 

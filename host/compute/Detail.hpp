@@ -5,7 +5,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <utility>
 
 #include "host/cl/ClPassTimer.hpp"
 #include "host/compute/ComputeEnv.hpp"
@@ -61,5 +65,25 @@ cl::Program buildShaped(const ComputeEnv& env, const Tuning& t, const char* file
 
 // u32 helper: kernels index with uint.
 inline cl_uint u32(std::size_t v) { return static_cast<cl_uint>(v); }
+
+// The process-wide object behind a free-function wrapper: one T per (context,
+// device) of `q`, built on first use and never destroyed (CL objects must not
+// be released from static destructors). The returned lock serialises use.
+template <class T>
+struct Shared {
+  std::unique_lock<std::mutex> lock;
+  T& obj;
+};
+
+template <class T>
+Shared<T> sharedFor(const cl::CommandQueue& q) {
+  static std::mutex mutex;
+  static auto* objects = new std::map<std::pair<cl_context, cl_device_id>, std::unique_ptr<T>>();
+  ComputeEnv env = ComputeEnv::forQueue(q);
+  std::unique_lock lock(mutex);
+  auto& slot = (*objects)[{env.context()(), env.device()()}];
+  if (!slot) slot = std::make_unique<T>(env);
+  return {std::move(lock), *slot};
+}
 
 }  // namespace ml::compute::detail

@@ -6,10 +6,14 @@
 //   scan.inclusive(q, in, out, n, &total_buf);       // out[i] = in[0] + ... + in[i]; total -> total_buf[0]
 //   uint32_t t = scan.exclusiveTotal(q, in, out, n); // blocks for the total
 //
-// Reduce-then-scan with one level per 2^11 (GPU) or per-chunk (CPU) factor,
-// recursing on the partial sums for large n. Calls are enqueued on `q` and do
-// not block unless they return a value. Not thread-safe: one object per thread.
-// Temporary buffers are owned and grown by the object.
+// Reduce-then-scan: per-chunk sums, a scan of those sums, then each chunk
+// scanned from its offset. CPU shape: one work-item per contiguous chunk
+// (compute units x 8 chunks), the sums scanned by one work-item. GPU shape: one
+// work-group per tile of work-group-size x 4 elements, the tile sums scanned
+// recursively by the same kernels (multi-level for large n). No work-group
+// waits on another. Calls are enqueued on `q` and do not block unless they
+// return a value. Temporary buffers are owned and grown by the object. Not
+// thread-safe: one object per thread.
 #include <CL/opencl.hpp>
 
 #include <cstddef>

@@ -1,0 +1,242 @@
+// manylights-clustered-bench: clustered shading on the CL device, per pass.
+//   1. cluster keys + unique clusters, the three methods side by side
+//      (page table, radix sort + unique, per-tile bitonic sort), per resolution;
+//   2. light assignment to the unique clusters, BVH vs brute force, per
+//      resolution and light count;
+//   3. whole frames, clustered vs tiled (forward and deferred): per-pass times,
+//      light evaluations per shaded pixel against the exact lower bound.
+// Depth buffers are the default scene's view at each resolution. Prints tables
+// and, with --json, writes one record per case.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "gl/FrameRenderer.hpp"
+#include "gl/GlContext.hpp"
+#include "host/app/RenderCommand.hpp"
+#include "host/app/SceneInputs.hpp"
+#include "host/cl/ClRuntime.hpp"
+#include "host/clustered/ClusteredAssigner.hpp"
+#include "host/tiled/TiledAssigner.hpp"
+#include "host/util/Error.hpp"
+
+namespace {
+using namespace ml;
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+template <class F>
+double timeMedian(int reps, F&& f) {
+  f();  // warm-up (kernel compile, buffer growth)
+  std::vector<double> t;
+  for (int i = 0; i < reps; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return median(t);
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t p = 0;
+  while (p <= s.size()) {
+    auto q = s.find(',', p);
+    if (q == std::string::npos) q = s.size();
+    if (q > p) out.push_back(s.substr(p, q - p));
+    p = q + 1;
+  }
+  return out;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"Clustered shading: unique-cluster methods, BVH vs brute-force assignment, frames vs tiled"};
+  std::string json_path, sizes = "320x320,1280x720,1920x1080", light_counts = "1000,10000,100000";
+  std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000";
+  unsigned tile = 32, tiled_tile = 16;
+  unsigned brute_max = 100000;
+  int reps = 5;
+  std::string device;
+  app.add_option("--json", json_path, "write records as JSON");
+  app.add_option("--sizes", sizes, "resolutions of the per-pass cases")->capture_default_str();
+  app.add_option("--lights", light_counts, "light counts of the assignment cases")->capture_default_str();
+  app.add_option("--frame-sizes", frame_sizes, "resolutions of the frame comparisons ('' for none)")->capture_default_str();
+  app.add_option("--frame-lights", frame_lights, "light counts of the frame comparisons")->capture_default_str();
+  app.add_option("--cluster-tile", tile, "cluster tile size")->capture_default_str();
+  app.add_option("--tile", tiled_tile, "tile size of the tiled peer in frames")->capture_default_str();
+  app.add_option("--brute-max-lights", brute_max, "skip brute-force assignment above this many lights")->capture_default_str();
+  app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
+  app.add_option("--device", device, "OpenCL device");
+  CLI11_PARSE(app, argc, argv);
+
+  auto gl = createHeadlessContext();
+  const auto share = gl->shareHandles();
+  auto rt = ClRuntime::create(DeviceChoice::resolve(device), &share);
+  std::printf("%s\n%s\n", rt->describe().c_str(), gl->describe().c_str());
+  SceneInputArgs base;
+  base.lights = "1";
+  SceneInputs scene = loadSceneInputs(base);
+  const Camera& camera = scene.cameras.frames.front();
+  nlohmann::ordered_json records = nlohmann::ordered_json::array();
+  auto& q = rt->queue();
+
+  std::printf("\nKeys + unique clusters, cluster tile %u (ms, median of %d)\n", tile, reps);
+  std::printf("%-11s %9s %10s %10s %10s %10s\n", "resolution", "clusters", "keys", "pagetable", "sort", "tile-sort");
+  for (const auto& size : splitList(sizes)) {
+    unsigned w = 0, h = 0;
+    parseSize(size, "--sizes", w, h);
+    std::vector<float> depth;
+    {
+      FrameRenderer r(*rt, scene.scene, w, h);
+      r.setLights({});
+      TiledAssigner a(*rt, 16, TileDepthMode::MinMax);
+      r.render(camera, a, {Pipeline::Deferred, false});
+      depth = r.targets().readDepth(true);
+    }
+    const auto cam = camera.params(w, h);
+    const ClusterGrid g = ClusterGrid::make(cam, tile);
+    cl::Buffer dbuf(rt->context(), CL_MEM_READ_ONLY, depth.size() * 4);
+    q.enqueueWriteBuffer(dbuf, CL_TRUE, 0, depth.size() * 4, depth.data());
+    ClusterUniquer u(*rt, UniqueMethod::PageTable);
+    const double t_keys = timeMedian(reps, [&] {
+      u.keys(q, dbuf, cam, g);
+      q.finish();
+    });
+    std::uint32_t counts[3] = {0, 0, 0};
+    double t_unique[3] = {0, 0, 0};
+    int mi = 0;
+    for (UniqueMethod m : {UniqueMethod::PageTable, UniqueMethod::Sort, UniqueMethod::TileSort}) {
+      u.setMethod(m);
+      t_unique[mi] = timeMedian(reps, [&] {
+        counts[mi] = u.unique(q, g);
+        q.finish();
+      });
+      records.push_back({{"name", std::string("cluster_unique_") + uniqueMethodName(m)}, {"resolution", size},
+                         {"n", w * h}, {"tile", tile}, {"seconds", t_unique[mi]},
+                         {"items_per_second", w * h / t_unique[mi]}, {"clusters", counts[mi]}});
+      ++mi;
+    }
+    if (counts[0] != counts[1] || counts[1] != counts[2]) throw std::runtime_error("unique methods disagree");
+    records.push_back({{"name", "cluster_keys"}, {"resolution", size}, {"n", w * h}, {"tile", tile},
+                       {"seconds", t_keys}, {"items_per_second", w * h / t_keys}, {"slices", g.slices}});
+    std::printf("%-11s %9u %10.3f %10.3f %10.3f %10.3f\n", size.c_str(), counts[0], t_keys * 1e3, t_unique[0] * 1e3,
+                t_unique[1] * 1e3, t_unique[2] * 1e3);
+
+    u.setMethod(UniqueMethod::PageTable);
+    const std::uint32_t clusters = u.unique(q, g);
+    std::printf("  assignment %-8s %12s %12s %10s %12s %7s\n", "lights", "bvh ms", "brute ms", "speed-up", "entries",
+                "levels");
+    for (const auto& ls : splitList(light_counts)) {
+      SceneInputArgs args;
+      args.lights = ls;
+      const auto lights = loadSceneInputs(args).lights;
+      const auto n = std::uint32_t(lights.size());
+      cl::Buffer lbuf(rt->context(), CL_MEM_READ_ONLY, std::max<std::size_t>(32, n * sizeof(gpu::PointLight)));
+      if (n) q.enqueueWriteBuffer(lbuf, CL_TRUE, 0, n * sizeof(gpu::PointLight), lights.data());
+      cl::Buffer ranges(rt->context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, clusters * 8));
+      cl::Buffer indices;
+      std::size_t cap = 0;
+      auto time_assign = [&](ClusterLightAssigner& a, std::uint32_t& total) {
+        return timeMedian(reps, [&] {
+          total = a.count(q, lbuf, n, cam, g, u.uniqueKeys(), clusters);
+          if (std::size_t(total) * 4 + 16 > cap) {
+            cap = std::size_t(total) * 6 + 16;
+            indices = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
+          }
+          a.fill(q, ranges, indices);
+          q.finish();
+        });
+      };
+      ClusterLightAssigner bvh(*rt, ClusterAssignMethod::Bvh), brute(*rt, ClusterAssignMethod::Brute);
+      std::uint32_t total_bvh = 0, total_brute = 0;
+      const double t_bvh = time_assign(bvh, total_bvh);
+      double t_brute = 0;
+      if (n <= brute_max) {
+        t_brute = time_assign(brute, total_brute);
+        if (total_brute != total_bvh) throw std::runtime_error("BVH and brute force disagree on the list size");
+      }
+      std::printf("  %-11s %8u %12.3f %12s %10s %12u %7u\n", size.c_str(), n, t_bvh * 1e3,
+                  t_brute > 0 ? std::to_string(t_brute * 1e3).c_str() : "-",
+                  t_brute > 0 ? (std::to_string(t_brute / t_bvh) + "x").c_str() : "-", total_bvh, bvh.bvhLevels());
+      records.push_back({{"name", "cluster_assign_bvh"}, {"resolution", size}, {"n", n}, {"lights", n},
+                         {"clusters", clusters}, {"seconds", t_bvh}, {"items_per_second", n / t_bvh},
+                         {"list_entries", total_bvh}, {"bvh_levels", bvh.bvhLevels()}});
+      if (t_brute > 0)
+        records.push_back({{"name", "cluster_assign_brute"}, {"resolution", size}, {"n", n}, {"lights", n},
+                           {"clusters", clusters}, {"seconds", t_brute}, {"items_per_second", n / t_brute},
+                           {"list_entries", total_brute}, {"speedup_bvh_vs_brute", t_brute / t_bvh}});
+    }
+  }
+
+  if (!frame_sizes.empty()) {
+    std::printf("\nFrames (ms, median of %d; GL passes host-timed on software GL); evals/px and ratio to the exact lower bound\n",
+                reps);
+    for (const auto& size : splitList(frame_sizes)) {
+      unsigned w = 0, h = 0;
+      parseSize(size, "--frame-sizes", w, h);
+      FrameRenderer r(*rt, scene.scene, w, h);
+      for (const auto& ls : splitList(frame_lights)) {
+        SceneInputArgs args;
+        args.lights = ls;
+        r.setLights(loadSceneInputs(args).lights);
+        for (auto [tech, pipe] : {std::pair{"clustered-forward", Pipeline::Forward}, std::pair{"clustered-deferred", Pipeline::Deferred},
+                                  std::pair{"tiled-forward", Pipeline::Forward}, std::pair{"tiled-deferred", Pipeline::Deferred}}) {
+          std::unique_ptr<LightAssigner> a;
+          if (std::string(tech).rfind("clustered", 0) == 0)
+            a = std::make_unique<ClusteredAssigner>(*rt, tile, UniqueMethod::PageTable, ClusterAssignMethod::Bvh);
+          else
+            a = std::make_unique<TiledAssigner>(*rt, tiled_tile, TileDepthMode::MinMax);
+          const FrameResult counted = r.render(camera, *a, {pipe, true});
+          std::vector<FrameResult> frames;
+          for (int i = 0; i < reps; ++i) frames.push_back(r.render(camera, *a, {pipe, false}));
+          const double px = double(std::max<std::uint64_t>(1, counted.covered_pixels));
+          const double ratio = double(counted.light_evaluations) / double(std::max<std::uint64_t>(1, counted.lower_bound));
+          std::printf("%-11s %7s %-19s", size.c_str(), ls.c_str(), tech);
+          nlohmann::ordered_json passes;
+          for (const auto& [name, ms] : frames.front().passes.entries()) {
+            (void)ms;
+            std::vector<double> v;
+            for (const auto& f : frames) v.push_back(f.passes.get(name));
+            passes[name] = median(v);
+            std::printf(" %s=%.2f", name.c_str(), median(v));
+          }
+          std::vector<double> host;
+          for (const auto& f : frames) host.push_back(f.host_ms);
+          std::printf(" | frame=%.2f evals/px=%.2f lb/px=%.2f ratio=%.3f\n", median(host),
+                      counted.light_evaluations / px, counted.lower_bound / px, ratio);
+          records.push_back({{"name", std::string("frame_") + tech}, {"resolution", size}, {"lights", std::stoul(ls)},
+                             {"n", std::stoul(ls)}, {"seconds", median(host) * 1e-3},
+                             {"items_per_second", double(w) * h / (median(host) * 1e-3)}, {"passes", passes},
+                             {"evals_per_pixel", counted.light_evaluations / px},
+                             {"lower_bound_per_pixel", counted.lower_bound / px}, {"evals_over_lower_bound", ratio}});
+        }
+      }
+    }
+  }
+  if (!json_path.empty()) {
+    std::ofstream out(json_path);
+    if (!out) throw UserError("--json: cannot write '" + json_path + "'");
+    out << records.dump(2) << "\n";
+    std::printf("\nwrote %s\n", json_path.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const ml::UserError& e) {
+    std::fprintf(stderr, "manylights-clustered-bench: error: %s\n", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,339 @@
+// manylights-hashed-bench: hashed shading's build (time per stage, memory,
+// table sizes) against node size and light count, light evaluations per
+// shaded pixel against tiled and clustered shading and the exact lower bound
+// in the same run, incremental updates (1%, 10%, 100% of the lights moving)
+// against full rebuilds, and the thesis suite's 1890-light Spaceship set
+// when /work/shared/data/thesis-suite is present (skipped, visibly, when not).
+// Prints tables; --json writes every record.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <thread>
+
+#include "gl/FrameRenderer.hpp"
+#include "gl/GlContext.hpp"
+#include "host/app/RenderCommand.hpp"
+#include "host/app/SceneInputs.hpp"
+#include "host/assign/Techniques.hpp"
+#include "host/cl/ClRuntime.hpp"
+#include "host/hashed/HashedAssigner.hpp"
+#include "host/hashed/HashedStructure.hpp"
+#include "host/util/Error.hpp"
+
+namespace {
+using namespace ml;
+using Clock = std::chrono::steady_clock;
+using json = nlohmann::ordered_json;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t p = 0;
+  while (p <= s.size()) {
+    auto q = s.find(',', p);
+    if (q == std::string::npos) q = s.size();
+    if (q > p) out.push_back(s.substr(p, q - p));
+    p = q + 1;
+  }
+  return out;
+}
+
+double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
+
+struct BuildRecord {
+  hashed::BuildStats stats;  // the median-total run
+  std::vector<hashed::LayerStats> layers;
+  std::size_t table_bytes = 0, list_entries = 0, gpu_bytes = 0;
+  unsigned depth = 0, layer_count = 0;
+  double cell = 0;
+  std::uint64_t failed_attempts = 0, rejected = 0;
+};
+
+BuildRecord timedBuild(const std::vector<gpu::PointLight>& lights, const hashed::HashedConfig& cfg, const Scene* scene,
+                       int reps) {
+  std::vector<std::pair<double, BuildRecord>> runs;
+  for (int i = 0; i < reps; ++i) {
+    hashed::HashedStructure hs(cfg, scene);
+    hs.build(lights);
+    BuildRecord r;
+    r.stats = hs.lastBuild();
+    r.layers = hs.linkless().layerStats();
+    r.table_bytes = hs.linkless().tableBytes();
+    r.list_entries = hs.linkless().pool().list().size();
+    r.gpu_bytes = hs.linkless().gpuBytes();
+    r.depth = hs.bounds().depth;
+    r.layer_count = hs.linkless().layerCount();
+    r.cell = hs.bounds().cell_size;
+    for (const auto& l : r.layers) {
+      r.failed_attempts += (l.desc_attempts - 1) + (l.data_attempts - 1);
+      r.rejected += l.rejected_candidates;
+    }
+    runs.emplace_back(r.stats.total_ms, r);
+  }
+  std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return runs[runs.size() / 2].second;
+}
+
+json buildJson(const BuildRecord& r) {
+  json layers = json::array();
+  for (const auto& l : r.layers)
+    layers.push_back({{"depth", l.depth}, {"branches", l.desc_keys}, {"filled_leaves", l.data_keys},
+                      {"desc_slots", l.desc_slots}, {"data_slots", l.data_slots}, {"desc_offsets", l.desc_offsets},
+                      {"data_offsets", l.data_offsets}, {"bytes", l.bytes}, {"desc_attempts", l.desc_attempts},
+                      {"data_attempts", l.data_attempts}, {"rejected_candidates", l.rejected_candidates},
+                      {"hash_ms", l.hash_ms}});
+  const auto& s = r.stats;
+  return {{"cell_size", r.cell},
+          {"depth", r.depth},
+          {"layers", r.layer_count},
+          {"ms", {{"total", s.total_ms}, {"bounds", s.bounds_ms}, {"geometry_mask", s.mask_ms},
+                  {"light_octrees", s.light_octrees_ms}, {"merge", s.merge_ms}, {"normalize", s.normalize_ms},
+                  {"hashes", s.hash_ms}}},
+          {"filled_cells", s.filled_cells},
+          {"scene_nodes", s.scene_nodes},
+          {"table_bytes", r.table_bytes},
+          {"index_list_entries", r.list_entries},
+          {"unshared_index_entries", s.leaf_index_entries},
+          {"gpu_bytes", r.gpu_bytes},
+          {"failed_attempts", r.failed_attempts},
+          {"rejected_candidates", r.rejected},
+          {"per_layer", layers}};
+}
+
+void printBuildHeader() {
+  std::printf("%-8s %-6s %6s %3s %8s %8s %8s %8s %8s %8s %9s %9s %9s %6s\n", "lights", "node", "cell", "L",
+              "total ms", "octrees", "merge", "normal.", "hashes", "nodes", "tables MiB", "list MiB", "GPU MiB",
+              "fails");
+}
+void printBuild(const std::string& lights, const std::string& node, const BuildRecord& r) {
+  const auto& s = r.stats;
+  std::printf("%-8s %-6s %6.3f %3u %8.2f %8.2f %8.2f %8.2f %8.2f %8zu %9.3f %9.3f %9.3f %6llu\n", lights.c_str(),
+              node.c_str(), r.cell, r.depth, s.total_ms, s.light_octrees_ms, s.merge_ms, s.normalize_ms, s.hash_ms,
+              s.scene_nodes, mib(double(r.table_bytes)), mib(double(r.list_entries) * 4), mib(double(r.gpu_bytes)),
+              static_cast<unsigned long long>(r.failed_attempts));
+}
+
+// Moves `count` random lights by up to a quarter radius (as --animate does).
+void moveLights(std::vector<gpu::PointLight>& lights, std::size_t count, std::mt19937_64& rng) {
+  std::vector<std::size_t> idx(lights.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  std::shuffle(idx.begin(), idx.end(), rng);
+  std::uniform_real_distribution<float> u(-0.25f, 0.25f);
+  for (std::size_t k = 0; k < count && k < idx.size(); ++k) {
+    auto& p = lights[idx[k]].position_radius;
+    p.x += u(rng) * p.w;
+    p.y += u(rng) * p.w;
+    p.z += u(rng) * p.w;
+  }
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"Hashed shading: build, memory, light evaluations and dynamic updates"};
+  std::string json_path, light_counts = "1024,4096", node_sizes = "0.25r,0.5r,1r,2r", size = "640x360";
+  std::string suite_dir = "/work/shared/data/thesis-suite/scenes/spaceship-indoor";
+  std::string compare = "tiled-deferred,clustered-deferred", device;
+  int reps = 3, update_reps = 5;
+  unsigned camera_frames = 4;
+  bool no_render = false;
+  app.add_option("--json", json_path, "write records as JSON");
+  app.add_option("--lights", light_counts, "generated light counts in the default scene")->capture_default_str();
+  app.add_option("--node-sizes", node_sizes, "node sizes to sweep")->capture_default_str();
+  app.add_option("--size", size, "render resolution for light evaluations")->capture_default_str();
+  app.add_option("--camera-frames", camera_frames, "camera path frames averaged")->capture_default_str();
+  app.add_option("--compare", compare, "techniques counted in the same run ('' for none)")->capture_default_str();
+  app.add_option("--reps", reps, "builds per case (median reported)")->capture_default_str();
+  app.add_option("--update-reps", update_reps, "updates per case (median reported)")->capture_default_str();
+  app.add_option("--suite", suite_dir, "thesis suite scene folder (its lights/ holds the 1890-light set)")
+      ->capture_default_str();
+  app.add_option("--device", device, "OpenCL device");
+  app.add_flag("--no-render", no_render, "host-side sections only");
+  CLI11_PARSE(app, argc, argv);
+  unsigned width = 0, height = 0;
+  parseSize(size, "--size", width, height);
+
+  json out;
+  out["tool"] = "manylights-hashed-bench";
+  out["cpu_threads"] = std::thread::hardware_concurrency();
+
+  SceneInputArgs scene_args;
+  scene_args.lights = "1";
+  const SceneInputs base = loadSceneInputs(scene_args);
+  std::vector<std::pair<std::string, std::vector<gpu::PointLight>>> light_sets;
+  for (const auto& c : splitList(light_counts)) {
+    SceneInputArgs a;
+    a.lights = c;
+    light_sets.emplace_back(c, loadSceneInputs(a).lights);
+  }
+
+  // --- 1. Build time, memory, table sizes vs node size and light count ---
+  std::printf("\n1. Build (default scene, generated lights; median of %d; times in ms)\n", reps);
+  printBuildHeader();
+  json builds = json::array();
+  for (const auto& [label, lights] : light_sets)
+    for (const auto& node : splitList(node_sizes)) {
+      hashed::HashedConfig cfg;
+      cfg.node_size = node;
+      const BuildRecord r = timedBuild(lights, cfg, nullptr, reps);
+      printBuild(label, node, r);
+      cfg.geometry_mask = true;
+      const BuildRecord m = timedBuild(lights, cfg, &base.scene, reps);
+      printBuild(label, node + "+g", m);
+      builds.push_back({{"lights", lights.size()}, {"node_size", node}, {"plain", buildJson(r)},
+                        {"geometry_mask", buildJson(m)},
+                        {"geometry_mask_memory_ratio", double(m.gpu_bytes) / double(r.gpu_bytes)}});
+    }
+  out["builds"] = builds;
+
+  // --- 2. Incremental updates vs full rebuild ---
+  std::printf("\n2. Updates (0.5r; lights move up to r/4; median of %d; ms)\n", update_reps);
+  std::printf("%-8s %8s %10s %10s %8s %8s %8s %8s %9s %9s\n", "lights", "moving", "update", "rebuild", "ratio",
+              "octrees", "tree", "sync", "rehashed", "re-offset");
+  json updates = json::array();
+  for (const auto& [label, lights0] : light_sets) {
+    hashed::HashedConfig cfg;
+    cfg.node_size = "0.5r";
+    cfg.max_incremental_fraction = 1.0;  // measure the incremental path itself
+    std::vector<double> rebuild_ms;
+    for (int i = 0; i < update_reps; ++i) {
+      hashed::HashedStructure hs(cfg);
+      hs.build(lights0);
+      rebuild_ms.push_back(hs.lastBuild().total_ms);
+    }
+    const double rebuild = median(rebuild_ms);
+    for (const double fraction : {0.01, 0.1, 1.0}) {
+      std::mt19937_64 rng(23);
+      auto lights = lights0;
+      hashed::HashedStructure hs(cfg);
+      hs.build(lights);
+      std::vector<double> total, oct, tree, sync;
+      std::size_t rehashed = 0, reoffset = 0, full = 0;
+      for (int i = 0; i < update_reps; ++i) {
+        moveLights(lights, std::max<std::size_t>(1, std::size_t(fraction * double(lights.size()))), rng);
+        const auto& st = hs.update(lights);
+        full += st.full_rebuild;
+        total.push_back(st.total_ms);
+        oct.push_back(st.light_octrees_ms);
+        tree.push_back(st.tree_ms);
+        sync.push_back(st.sync_ms);
+        rehashed += st.sync.rehashed_tables;
+        reoffset += st.sync.reoffsets;
+      }
+      const double upd = median(total);
+      std::printf("%-8s %7.0f%% %10.2f %10.2f %7.1f%% %8.2f %8.2f %8.2f %9zu %9zu%s\n", label.c_str(), fraction * 100,
+                  upd, rebuild, 100.0 * upd / rebuild, median(oct), median(tree), median(sync), rehashed, reoffset,
+                  full ? "  (some left the bounds: rebuilt)" : "");
+      updates.push_back({{"lights", lights.size()}, {"fraction", fraction}, {"update_ms", upd},
+                         {"rebuild_ms", rebuild}, {"ratio", upd / rebuild}, {"light_octrees_ms", median(oct)},
+                         {"tree_ms", median(tree)}, {"sync_ms", median(sync)}, {"rehashed_tables", rehashed},
+                         {"reoffset_groups", reoffset}, {"full_rebuilds", full}, {"updates", update_reps}});
+    }
+  }
+  out["updates"] = updates;
+
+  // --- 3. Thesis suite: the 1890-light Spaceship Indoor set ---
+  std::printf("\n3. Thesis suite: Spaceship Indoor, 1890 lights\n");
+  const std::string suite_lights = suite_dir + "/lights/1890#3x_3y_3z.json";
+  if (!std::filesystem::exists(suite_lights)) {
+    std::printf("   SKIPPED: %s not found (the project does not ship the thesis suite)\n", suite_lights.c_str());
+    out["thesis_suite"] = {{"skipped", "missing " + suite_lights}};
+  } else {
+    const auto lights = loadLightsJson(suite_lights);
+    printBuildHeader();
+    json suite = json::array();
+    for (const auto& node : {"0.25r", "0.5r", "1r"}) {
+      hashed::HashedConfig cfg;
+      cfg.node_size = node;
+      const BuildRecord r = timedBuild(lights, cfg, nullptr, std::max(reps, 5));
+      printBuild(std::to_string(lights.size()), node, r);
+      suite.push_back({{"lights", lights.size()}, {"node_size", node}, {"build", buildJson(r)}});
+    }
+    out["thesis_suite"] = suite;
+  }
+
+  // --- 4. Light evaluations per shaded pixel (same run: tiled, clustered) ---
+  if (!no_render) {
+    auto gl = createHeadlessContext();
+    const auto share = gl->shareHandles();
+    auto rt = ClRuntime::create(DeviceChoice::resolve(device), &share);
+    std::printf("\n4. Light evaluations per covered pixel, deferred, %ux%u, %u camera frames\n%s\n%s\n", width, height,
+                camera_frames, rt->describe().c_str(), gl->describe().c_str());
+    std::printf("%-8s %-20s %12s %12s %10s %10s %12s\n", "lights", "technique", "evals/px", "bound/px",
+                "x bound", "x tiled", "memory MiB");
+    FrameRenderer r(*rt, base.scene, width, height);
+    const auto& path = base.cameras.frames;
+    std::vector<const Camera*> cams;
+    for (unsigned i = 0; i < camera_frames; ++i)
+      cams.push_back(&path[std::size_t(i) * path.size() / std::max(1u, camera_frames)]);
+    json evals = json::array();
+    for (const auto& [label, lights] : light_sets) {
+      r.setLights(lights);
+      std::vector<std::pair<std::string, TechniqueParams>> runs;
+      for (const auto& t : splitList(compare)) runs.emplace_back(t, TechniqueParams{});
+      for (const auto& node : splitList(node_sizes)) {
+        TechniqueParams p;
+        p.node_size = node;
+        runs.emplace_back("hashed-deferred " + node, p);
+      }
+      double tiled_px = 0;
+      for (const auto& [name, params] : runs) {
+        const std::string tech = name.substr(0, name.find(' '));
+        std::unique_ptr<LightAssigner> a;
+        try {
+          a = makeAssigner(tech, *rt, params);
+        } catch (const UserError& e) {
+          std::printf("%-8s %-20s skipped: %s\n", label.c_str(), name.c_str(), e.what());
+          continue;
+        }
+        attachSceneGeometry(*a, base.scene);
+        std::uint64_t ev = 0, lb = 0, px = 0;
+        std::size_t mem = 0;
+        for (const Camera* c : cams) {
+          const FrameResult fr = r.render(*c, *a, {Pipeline::Deferred, true});
+          ev += fr.light_evaluations;
+          lb += fr.lower_bound;
+          px += fr.covered_pixels;
+          mem = std::max(mem, fr.memory_bytes);
+        }
+        const double per_px = double(ev) / double(px), bound_px = double(lb) / double(px);
+        if (tech == "tiled-deferred") tiled_px = per_px;
+        std::printf("%-8s %-20s %12.2f %12.2f %10.3f %10s %12.3f\n", label.c_str(), name.c_str(), per_px, bound_px,
+                    per_px / bound_px, tiled_px > 0 ? std::to_string(per_px / tiled_px).substr(0, 6).c_str() : "-",
+                    mib(double(mem)));
+        evals.push_back({{"lights", lights.size()}, {"technique", name}, {"evaluations_per_pixel", per_px},
+                         {"lower_bound_per_pixel", bound_px}, {"ratio_to_bound", per_px / bound_px},
+                         {"ratio_to_tiled", tiled_px > 0 ? per_px / tiled_px : 0.0}, {"memory_bytes", mem},
+                         {"covered_pixels", px}});
+      }
+    }
+    out["light_evaluations"] = evals;
+  }
+
+  if (!json_path.empty()) {
+    std::ofstream f(json_path);
+    if (!f) throw UserError("--json: cannot write '" + json_path + "'");
+    f << out.dump(2) << "\n";
+    std::printf("\nwrote %s\n", json_path.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const UserError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+}

@@ -1,0 +1,45 @@
+#pragma once
+// Runs a benchmark plan: for every resolution (one FrameRenderer each), light
+// set, technique variant and selected camera frame, one counting render (light
+// evaluations, exact lower bound, covered pixels) and, separately, `repeat`
+// timed renders without counting (counting costs shading time), reporting the
+// per-pass median. Each (resolution, light set, variant) run starts with
+// `warmup` untimed renders of its first frame, so shader compilation and
+// one-off structure builds do not land in the first frame's times.
+// Needs a current GL context and a CL runtime that shares with it.
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "host/bench/BenchInputs.hpp"
+#include "host/bench/BenchTypes.hpp"
+#include "host/bench/Progress.hpp"
+
+namespace ml {
+
+class ClRuntime;
+
+struct BenchPlan {
+  std::vector<TechniqueVariant> variants;
+  std::vector<LightSetInput> light_sets;
+  std::vector<std::pair<unsigned, unsigned>> sizes;
+  std::vector<std::size_t> frames;  // indices into the scene's camera path
+  bool counts = true;
+  bool timing = true;
+  unsigned repeat = 1;
+  unsigned warmup = 1;
+  // Non-empty: the shaded image of every record goes here as
+  // <run>_f<frame>.png (spaces and brackets replaced), for eyeballing.
+  std::string image_dir;
+};
+
+std::size_t planSteps(const BenchPlan& plan);  // renders of frames the progress counts (one per record)
+
+// Records in loop order (size, light set, variant, frame). `on_record` sees
+// each record as soon as it exists (e.g. to stream it).
+std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const BenchPlan& plan, Progress* progress,
+                                  const std::function<void(const FrameRecord&)>& on_record = {});
+
+}  // namespace ml

@@ -1,0 +1,89 @@
+#include "host/clustered/ClusteredAssigner.hpp"
+
+#include "gl/GlCheck.hpp"
+#include "host/cl/ClRuntime.hpp"
+
+namespace ml {
+
+ClusteredAssigner::ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMethod unique,
+                                     ClusterAssignMethod assign)
+    : rt_(rt), tile_size_(tile_size), uniquer_(rt, unique), lights_(rt, assign) {
+  ranges_ = std::make_unique<SharedBuffer>(rt, 4096 * sizeof(gpu::LightRange), "cluster light ranges");
+  indices_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(std::uint32_t), "cluster light indices");
+  map_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(std::uint32_t), "pixel cluster map");
+}
+
+void ClusteredAssigner::assign(const FrameInputs& in) {
+  cl::CommandQueue& q = rt_.queue();
+  // Rebuilt per frame: it depends on the camera's near/far/fov and viewport.
+  grid_ = ClusterGrid::make(in.camera_params, tile_size_);
+  map_->reserve(std::size_t(in.width) * in.height * sizeof(std::uint32_t));
+  in.lights.acquireForCl(q, ClAccess::Read);
+  in.depth->acquireForCl(q, ClAccess::Read);
+  map_->acquireForCl(q, ClAccess::Write);
+  uniquer_.keys(q, in.depth->cl(), in.camera_params, grid_, &in.cl_timer);
+  clusters_ = uniquer_.unique(q, grid_, &in.cl_timer, &map_->cl());
+  map_->releaseToGl(q);
+  in.depth->releaseToGl(q);
+  const std::uint32_t total = lights_.count(q, in.lights.cl(), in.light_count, in.camera_params, grid_,
+                                            uniquer_.uniqueKeys(), clusters_, &in.cl_timer);
+  last_total_ = total;
+  // GL owns the output buffers while they grow; CL takes them for the fill.
+  ranges_->reserve(std::size_t(clusters_) * sizeof(gpu::LightRange));
+  indices_->reserve(std::size_t(total) * sizeof(std::uint32_t));
+  ranges_->acquireForCl(q, ClAccess::Write);
+  indices_->acquireForCl(q, ClAccess::Write);
+  lights_.fill(q, ranges_->cl(), indices_->cl(), &in.cl_timer);
+  indices_->releaseToGl(q);
+  ranges_->releaseToGl(q);
+  in.lights.releaseToGl(q);
+}
+
+void ClusteredAssigner::bindForShading(const ShaderProgram& program) const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, indices_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, ranges_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, map_->gl());
+  program.set("u_cluster_width", grid_.width);
+  glCheck("binding the cluster buffers");
+}
+
+std::vector<std::uint32_t> ClusteredAssigner::readClusterMap() {
+  std::vector<std::uint32_t> out(std::size_t(grid_.width) * grid_.height);
+  cl::CommandQueue& q = rt_.queue();
+  map_->acquireForCl(q, ClAccess::Read);
+  if (!out.empty()) q.enqueueReadBuffer(map_->cl(), CL_TRUE, 0, out.size() * 4, out.data());
+  map_->releaseToGl(q);
+  q.finish();
+  return out;
+}
+
+std::vector<float> ClusteredAssigner::clusterViewRgba(const std::vector<std::uint32_t>& cluster_map) {
+  std::vector<float> rgba(cluster_map.size() * 4, 0.0f);
+  for (std::size_t p = 0; p < cluster_map.size(); ++p) {
+    rgba[p * 4 + 3] = 1.0f;
+    if (cluster_map[p] == kClusterInvalid) continue;
+    // Hashed, not sequential: neighbouring clusters have neighbouring indices.
+    std::uint32_t h = cluster_map[p] * 0x9E3779B1u;
+    h ^= h >> 15;
+    h *= 0x85EBCA77u;
+    h ^= h >> 13;
+    for (int c = 0; c < 3; ++c) rgba[p * 4 + c] = 0.2f + 0.8f * float((h >> (8 * c)) & 0xffu) / 255.0f;
+  }
+  return rgba;
+}
+
+std::size_t ClusteredAssigner::memoryBytes() const {
+  return std::size_t(clusters_) * sizeof(gpu::LightRange) + std::size_t(last_total_) * sizeof(std::uint32_t) +
+         std::size_t(grid_.width) * grid_.height * sizeof(std::uint32_t) + uniquer_.scratchBytes() +
+         lights_.scratchBytes();
+}
+
+std::vector<std::pair<std::string, double>> ClusteredAssigner::stats() const {
+  return {{"unique clusters", double(clusters_)},
+          {"cluster index entries", double(last_total_)},
+          {"cluster tile", double(tile_size_)},
+          {"depth slices", double(grid_.slices)},
+          {"bvh levels", double(lights_.method() == ClusterAssignMethod::Bvh ? lights_.bvhLevels() : 0)}};
+}
+
+}  // namespace ml

@@ -1,0 +1,49 @@
+#pragma once
+// Clustered shading as a LightAssigner (clustered forward with a depth
+// pre-pass, clustered deferred over the G-buffer depth). Per frame, all on the
+// CL device: cluster keys from the depth, unique clusters (ClusterUniquer, the
+// --unique method) with the pixel -> cluster map written straight into a
+// shared buffer, per-cluster light lists (ClusterLightAssigner, --cluster-assign)
+// into shared buffers. lookup_clustered.glsl reads the fragment's cluster from
+// the map, then its (offset, count) range and the index list.
+// SSBOs: 1 light indices, 2 cluster ranges (LightRange per unique cluster),
+// 3 pixel -> cluster map (uint per pixel, 0xffffffff = sky).
+#include <memory>
+
+#include "gl/SharedBuffer.hpp"
+#include "host/assign/LightAssigner.hpp"
+#include "host/clustered/ClusterLightAssigner.hpp"
+#include "host/clustered/ClusterUniquer.hpp"
+
+namespace ml {
+
+class ClusteredAssigner final : public LightAssigner {
+ public:
+  ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMethod unique, ClusterAssignMethod assign);
+  std::string name() const override { return "clustered"; }
+  bool needsDepth() const override { return true; }
+  void assign(const FrameInputs& in) override;
+  std::string lookupShader() const override { return "lookup_clustered.glsl"; }
+  void bindForShading(const ShaderProgram& program) const override;
+  std::size_t memoryBytes() const override;
+  std::vector<std::pair<std::string, double>> stats() const override;
+
+  // Last frame's outputs, for views and tests (host copies, blocking).
+  std::vector<std::uint32_t> readClusterMap();
+  std::uint32_t uniqueClusters() const { return clusters_; }
+  // The cluster view: each unique cluster a colour (hashed from its index),
+  // sky black; RGBA floats, row 0 bottom, for writeImage.
+  static std::vector<float> clusterViewRgba(const std::vector<std::uint32_t>& cluster_map);
+  const ClusterGrid& grid() const { return grid_; }
+
+ private:
+  ClRuntime& rt_;
+  unsigned tile_size_;
+  ClusterUniquer uniquer_;
+  ClusterLightAssigner lights_;
+  ClusterGrid grid_;
+  std::unique_ptr<SharedBuffer> ranges_, indices_, map_;
+  std::uint32_t clusters_ = 0, last_total_ = 0;
+};
+
+}  // namespace ml

@@ -1,0 +1,30 @@
+#pragma once
+// Incremental updates of a HashedStructure (thesis future work §8.2.3,
+// Tables 8.1/8.2). Contract, per call with the new light array:
+//  1. Diff by index against the current lights: moved/resized (position or
+//     radius differ), added (indices past the old count), removed (indices
+//     past the new count). Colour-only changes need nothing: shaders read
+//     colours from the light buffer.
+//  2. Rebuild the old and new light octrees of the changed lights (parallel),
+//     remove the old ones from the scene octree (Table 8.2), insert the new
+//     ones (Table 7.1 / 8.1), then merge what became mergeable: the tree is
+//     again canonical, i.e. exactly what a fresh build would produce.
+//  3. Re-derive the hash entries of the touched nodes and edit the tables in
+//     place; a table is rehashed only when an insert cannot be placed even by
+//     re-offsetting its group (see PerfectSpatialHash).
+//  Lazy removal (HashedConfig::lazy_removal) skips step 2's removals for moved
+//  lights, leaving harmless extra indices, until the stale fraction calls for
+//  an exact clean-up; lookups are then a superset of a fresh build's until
+//  that flush.
+#include <vector>
+
+#include "host/hashed/HashedStructure.hpp"
+
+namespace ml::hashed {
+
+class DynamicLightUpdater {
+ public:
+  static void apply(HashedStructure& s, const std::vector<gpu::PointLight>& lights, UpdateStats& stats);
+};
+
+}  // namespace ml::hashed

@@ -1,0 +1,52 @@
+#pragma once
+// Which octree nodes contain geometry (future work A of the thesis, seed 003
+// §2): the scene's triangles voxelised at the octree's cell resolution, and
+// the same occupancy for every shallower depth. Contract:
+//  - A cell counts as containing geometry when a triangle touches the cell's
+//    box widened by `margin_cells` on every side (triangle/box separating-axis
+//    test), so points computed on or near a surface (interpolated in forward,
+//    reconstructed from depth in deferred) always fall in a marked cell.
+//  - has(t, c) is exact for every depth t <= bounds.depth; cells outside the
+//    octree never contain geometry.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "host/hashed/OctreeBounds.hpp"
+#include "host/scene/Scene.hpp"
+
+namespace ml::hashed {
+
+class GeometryMask {
+ public:
+  GeometryMask(const Scene& scene, const OctreeBounds& bounds, double margin_cells);
+  // Every cell marked (for tests: geometry everywhere).
+  static GeometryMask everywhere(const OctreeBounds& bounds);
+
+  bool has(unsigned depth, const glm::uvec3& c) const;
+  std::size_t cellCount() const { return cell_count_; }
+  std::size_t memoryBytes() const;
+  double buildMs() const { return build_ms_; }
+
+ private:
+  explicit GeometryMask(const OctreeBounds& b) : depth_(b.depth) {}
+  void setCells(std::vector<std::uint64_t> keys);
+  unsigned depth_;
+  // Per depth: a bitset when the depth's full grid is small, else the sorted
+  // packed coordinates of the occupied nodes.
+  std::vector<std::vector<std::uint64_t>> dense_;
+  std::vector<std::vector<std::uint64_t>> sparse_;
+  std::size_t cell_count_ = 0;
+  double build_ms_ = 0.0;
+  bool everywhere_ = false;
+};
+
+inline std::uint64_t packCoord(const glm::uvec3& c) {
+  return std::uint64_t(c.x) | (std::uint64_t(c.y) << 16) | (std::uint64_t(c.z) << 32);
+}
+inline glm::uvec3 unpackCoord(std::uint64_t k) {
+  return {std::uint32_t(k & 0xFFFF), std::uint32_t((k >> 16) & 0xFFFF), std::uint32_t((k >> 32) & 0xFFFF)};
+}
+
+}  // namespace ml::hashed

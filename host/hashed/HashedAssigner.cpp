@@ -1,0 +1,250 @@
+#include "host/hashed/HashedAssigner.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "gl/GlCheck.hpp"
+
+namespace ml {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+hashed::HashedConfig configFrom(const TechniqueParams& p) {
+  hashed::HashedConfig c;
+  c.node_size = p.node_size;
+  c.start_depth = p.start_depth;
+  c.geometry_mask = p.geometry_mask;
+  return c;
+}
+
+// Uploads the given element indices of `words` (elem_words per element) at
+// element base `base`, one call per run of consecutive indices.
+std::size_t uploadRuns(GLuint buffer, std::size_t base, unsigned elem_words, const std::vector<std::uint32_t>& words,
+                       std::vector<std::uint32_t> idx) {
+  std::sort(idx.begin(), idx.end());
+  idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
+  std::size_t bytes = 0;
+  for (std::size_t i = 0; i < idx.size();) {
+    std::size_t j = i + 1;
+    while (j < idx.size() && idx[j] == idx[j - 1] + 1) ++j;
+    const std::size_t first = idx[i], count = j - i;
+    const std::size_t len = count * elem_words * 4;
+    glNamedBufferSubData(buffer, GLintptr((base + first) * elem_words * 4), GLsizeiptr(len),
+                         words.data() + first * elem_words);
+    bytes += len;
+    i = j;
+  }
+  return bytes;
+}
+
+}  // namespace
+
+HashedAssigner::HashedAssigner(std::string name, const TechniqueParams& params)
+    : HashedAssigner(std::move(name), configFrom(params)) {}
+
+HashedAssigner::HashedAssigner(std::string name, const hashed::HashedConfig& config)
+    : name_(std::move(name)), config_(config) {
+  hashed::parseNodeSize(config_.node_size);  // a bad --node-size fails before any frame
+}
+
+HashedAssigner::~HashedAssigner() {
+  for (Buffer* b : {&list_, &header_, &offsets_, &desc_, &data_})
+    if (b->id) glDeleteBuffers(1, &b->id);
+}
+
+void HashedAssigner::ensure(Buffer& b, std::size_t bytes, bool keep_headroom) {
+  bytes = std::max<std::size_t>(bytes, 16);
+  if (b.id && bytes <= b.capacity) return;
+  if (b.id) glDeleteBuffers(1, &b.id);
+  b.capacity = keep_headroom ? bytes + bytes / 2 : bytes;
+  glCreateBuffers(1, &b.id);
+  glNamedBufferData(b.id, GLsizeiptr(b.capacity), nullptr, GL_DYNAMIC_DRAW);
+}
+
+void HashedAssigner::assign(const FrameInputs& in) {
+  if (!structure_) structure_ = std::make_unique<hashed::HashedStructure>(config_, scene_);
+  if (structure_->built() && !in.lights_changed) return;
+  const hashed::UpdateStats& st = structure_->update(in.host_lights);
+  if (st.full_rebuild) ++full_rebuilds_;
+  else ++incremental_updates_;
+  in.host_timings.add(st.full_rebuild ? "hashed-build" : "hashed-update", st.total_ms);
+  upload();
+  in.host_timings.add("hashed-upload", upload_ms_);
+}
+
+HashedAssigner::Image HashedAssigner::packHost() const {
+  const hashed::LinklessOctree& lo = structure_->linkless();
+  Image im;
+  im.header = lo.headerWords();
+  im.offsets.resize(lo.offsetWordCount());
+  im.desc.resize(lo.descSlotCount() * 2);
+  im.data.resize(lo.dataSlotCount() * 4);
+  for (unsigned i = 0; i < lo.layerCount(); ++i) {
+    std::copy(lo.desc(i).offsetWords().begin(), lo.desc(i).offsetWords().end(), im.offsets.begin() + lo.offsetBase(i, false));
+    std::copy(lo.data(i).offsetWords().begin(), lo.data(i).offsetWords().end(), im.offsets.begin() + lo.offsetBase(i, true));
+    std::copy(lo.desc(i).tableWords().begin(), lo.desc(i).tableWords().end(), im.desc.begin() + lo.descSlotBase(i) * 2);
+    std::copy(lo.data(i).tableWords().begin(), lo.data(i).tableWords().end(), im.data.begin() + lo.dataSlotBase(i) * 4);
+  }
+  return im;
+}
+
+bool HashedAssigner::gpuMatchesHost(std::string* why) const {
+  if (!structure_ || !structure_->built()) return false;
+  const Image im = packHost();
+  const auto& list = structure_->linkless().pool().list();
+  auto same = [&](const Buffer& b, const std::vector<std::uint32_t>& want, const char* what) {
+    std::vector<std::uint32_t> got(want.size());
+    if (!want.empty()) glGetNamedBufferSubData(b.id, 0, GLsizeiptr(want.size() * 4), got.data());
+    if (got == want) return true;
+    if (why) *why = what;
+    return false;
+  };
+  return same(header_, im.header, "header") && same(offsets_, im.offsets, "offset tables") &&
+         same(desc_, im.desc, "description tables") && same(data_, im.data, "data tables") &&
+         same(list_, list, "light index list");
+}
+
+void HashedAssigner::uploadAll() {
+  hashed::LinklessOctree& lo = structure_->linkless();
+  upload_bytes_ = 0;
+  Image im = packHost();
+  const std::vector<std::uint32_t>& header = im.header;
+  ensure(header_, header.size() * 4, false);
+  glNamedBufferSubData(header_.id, 0, GLsizeiptr(header.size() * 4), header.data());
+  for (unsigned i = 0; i < lo.layerCount(); ++i) {
+    lo.desc(i).takeDirty();
+    lo.data(i).takeDirty();
+  }
+  auto& offsets = im.offsets;
+  auto& desc = im.desc;
+  auto& data = im.data;
+  for (auto [buf, v] : {std::pair{&offsets_, &offsets}, {&desc_, &desc}, {&data_, &data}}) {
+    ensure(*buf, v->size() * 4, false);
+    if (!v->empty()) glNamedBufferSubData(buf->id, 0, GLsizeiptr(v->size() * 4), v->data());
+    upload_bytes_ += v->size() * 4;
+  }
+  const auto& list = lo.pool().list();
+  lo.pool().takeDirty();
+  ensure(list_, list.size() * 4, true);
+  if (!list.empty()) glNamedBufferSubData(list_.id, 0, GLsizeiptr(list.size() * 4), list.data());
+  upload_bytes_ += list.size() * 4 + header.size() * 4;
+  uploaded_layout_ = lo.layoutVersion();
+}
+
+void HashedAssigner::upload() {
+  const auto t0 = Clock::now();
+  hashed::LinklessOctree& lo = structure_->linkless();
+  if (lo.layoutVersion() != uploaded_layout_) {
+    uploadAll();
+  } else {
+    upload_bytes_ = 0;
+    for (unsigned i = 0; i < lo.layerCount(); ++i) {
+      auto table = [&](auto& h, GLuint slots_buf, std::size_t slot_base, std::size_t offset_base) {
+        constexpr unsigned kw = std::decay_t<decltype(h)>::kWords;
+        auto d = h.takeDirty();
+        if (d.all) {
+          glNamedBufferSubData(slots_buf, GLintptr(slot_base * kw * 4), GLsizeiptr(h.tableWords().size() * 4),
+                               h.tableWords().data());
+          glNamedBufferSubData(offsets_.id, GLintptr(offset_base * 4), GLsizeiptr(h.offsetWords().size() * 4),
+                               h.offsetWords().data());
+          upload_bytes_ += h.bytes();
+          return;
+        }
+        upload_bytes_ += uploadRuns(slots_buf, slot_base, kw, h.tableWords(), std::move(d.slots));
+        upload_bytes_ += uploadRuns(offsets_.id, offset_base, 1, h.offsetWords(), std::move(d.offsets));
+      };
+      table(lo.desc(i), desc_.id, lo.descSlotBase(i), lo.offsetBase(i, false));
+      table(lo.data(i), data_.id, lo.dataSlotBase(i), lo.offsetBase(i, true));
+    }
+    const auto& list = lo.pool().list();
+    const auto d = lo.pool().takeDirty();
+    const std::size_t from = d.all ? 0 : std::min(d.from, list.size());
+    if (list.size() * 4 > list_.capacity) {
+      ensure(list_, list.size() * 4, true);
+      if (!list.empty()) glNamedBufferSubData(list_.id, 0, GLsizeiptr(list.size() * 4), list.data());
+      upload_bytes_ += list.size() * 4;
+    } else if (from < list.size()) {
+      glNamedBufferSubData(list_.id, GLintptr(from * 4), GLsizeiptr((list.size() - from) * 4), list.data() + from);
+      upload_bytes_ += (list.size() - from) * 4;
+    }
+  }
+  glCheck("uploading the hashed-shading tables");
+  upload_ms_ = msSince(t0);
+}
+
+void HashedAssigner::bindForShading(const ShaderProgram&) const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, list_.id);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, header_.id);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, offsets_.id);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, desc_.id);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, data_.id);
+}
+
+std::size_t HashedAssigner::memoryBytes() const {
+  return structure_ && structure_->built() ? structure_->linkless().gpuBytes() : 0;
+}
+
+std::vector<std::pair<std::string, double>> HashedAssigner::stats() const {
+  std::vector<std::pair<std::string, double>> s;
+  if (!structure_ || !structure_->built()) return s;
+  const auto& lo = structure_->linkless();
+  const auto& b = structure_->bounds();
+  const auto& bs = structure_->lastBuild();
+  s.emplace_back("node size", b.cell_size);
+  s.emplace_back("octree depth", b.depth);
+  s.emplace_back("start depth", b.start_depth);
+  s.emplace_back("layers", lo.layerCount());
+  std::uint64_t attempts = 0, rejected = 0;
+  std::size_t desc_slots = 0, data_slots = 0, offs = 0;
+  for (const auto& l : lo.layerStats()) {
+    const std::string p = "L" + std::to_string(l.depth - b.start_depth) + " ";
+    s.emplace_back(p + "branches", double(l.desc_keys));
+    s.emplace_back(p + "filled leaves", double(l.data_keys));
+    s.emplace_back(p + "desc table", double(l.desc_slots));
+    s.emplace_back(p + "data table", double(l.data_slots));
+    s.emplace_back(p + "offset tables", double(l.desc_offsets + l.data_offsets));
+    s.emplace_back(p + "bytes", double(l.bytes));
+    attempts += (l.desc_attempts ? l.desc_attempts - 1 : 0) + (l.data_attempts ? l.data_attempts - 1 : 0);
+    rejected += l.rejected_candidates;
+    desc_slots += l.desc_slots;
+    data_slots += l.data_slots;
+    offs += l.desc_offsets + l.data_offsets;
+  }
+  s.emplace_back("hash failed attempts", double(attempts));
+  s.emplace_back("offsets rejected", double(rejected));
+  s.emplace_back("hash table slots", double(desc_slots + data_slots));
+  s.emplace_back("offset entries", double(offs));
+  s.emplace_back("table bytes", double(lo.tableBytes()));
+  s.emplace_back("index list entries", double(lo.pool().list().size()));
+  s.emplace_back("unshared entries", double(bs.leaf_index_entries));
+  s.emplace_back("scene octree nodes", double(bs.scene_nodes));
+  if (structure_->mask()) s.emplace_back("geometry cells", double(bs.mask_cells));
+  s.emplace_back("build ms", bs.total_ms);
+  s.emplace_back("  bounds ms", bs.bounds_ms);
+  if (structure_->mask()) s.emplace_back("  geometry mask ms", bs.mask_ms);
+  s.emplace_back("  light octrees ms", bs.light_octrees_ms);
+  s.emplace_back("  merge ms", bs.merge_ms);
+  s.emplace_back("  normalize ms", bs.normalize_ms);
+  s.emplace_back("  hashes ms", bs.hash_ms);
+  s.emplace_back("full builds", double(full_rebuilds_));
+  if (incremental_updates_) {
+    const auto& u = structure_->lastUpdate();
+    s.emplace_back("updates", double(incremental_updates_));
+    s.emplace_back("last update ms", u.total_ms);
+    s.emplace_back("  lights moved", double(u.moved + u.added + u.removed));
+    s.emplace_back("  slots in place", double(u.sync.in_place + u.sync.updates + u.sync.erases));
+    s.emplace_back("  groups re-offset", double(u.sync.reoffsets));
+    s.emplace_back("  tables rehashed", double(u.sync.rehashed_tables));
+  }
+  s.emplace_back("upload ms", upload_ms_);
+  s.emplace_back("upload bytes", double(upload_bytes_));
+  return s;
+}
+
+void attachSceneGeometry(LightAssigner& assigner, const Scene& scene) {
+  if (auto* h = dynamic_cast<HashedAssigner*>(&assigner)) h->setScene(&scene);
+}
+
+}  // namespace ml

@@ -1,0 +1,78 @@
+#pragma once
+// Hashed shading as a LightAssigner (`--technique hashed-forward|hashed-deferred`).
+// Contract:
+//  - The first assign() builds the structure on the host (HashedStructure,
+//    TBB-parallel); later frames with lights_changed update it incrementally
+//    (DynamicLightUpdater); other frames do nothing. No per-frame work reads
+//    host memory: shading reads only the GL buffers below.
+//  - GL buffers (plain GL: only GLSL reads them): binding 1 light index
+//    list, 2 header, 3 offset tables, 4 description slots, 5 light-data slots
+//    (layout: LinklessOctree.hpp, lookup_hashed.glsl). After an update only
+//    the edited slots, offsets and the list's new tail are uploaded, unless a
+//    table was rehashed to a new size (then everything is).
+//  - The geometry mask needs the scene's triangles: call
+//    attachSceneGeometry() before the first frame (the render command does).
+#include <epoxy/gl.h>
+
+#include <memory>
+#include <string>
+
+#include "host/assign/LightAssigner.hpp"
+#include "host/assign/Techniques.hpp"
+#include "host/hashed/HashedStructure.hpp"
+
+namespace ml {
+
+class HashedAssigner final : public LightAssigner {
+ public:
+  HashedAssigner(std::string name, const TechniqueParams& params);
+  explicit HashedAssigner(std::string name, const hashed::HashedConfig& config);
+  ~HashedAssigner() override;
+  HashedAssigner(const HashedAssigner&) = delete;
+  HashedAssigner& operator=(const HashedAssigner&) = delete;
+
+  std::string name() const override { return name_; }
+  void assign(const FrameInputs& in) override;
+  std::string lookupShader() const override { return "lookup_hashed.glsl"; }
+  void bindForShading(const ShaderProgram& program) const override;
+  std::size_t memoryBytes() const override;
+  std::vector<std::pair<std::string, double>> stats() const override;
+
+  void setScene(const Scene* scene) { scene_ = scene; }
+  const hashed::HashedStructure* structure() const { return structure_.get(); }
+  hashed::HashedConfig& config() { return config_; }
+  double lastUploadMs() const { return upload_ms_; }
+  // Reads the GL buffers back and compares them word for word with the host
+  // tables (tests: partial uploads after updates leave no stale word).
+  bool gpuMatchesHost(std::string* why = nullptr) const;
+  std::size_t lastUploadBytes() const { return upload_bytes_; }
+
+ private:
+  struct Buffer {
+    GLuint id = 0;
+    std::size_t capacity = 0;  // bytes
+  };
+  void upload();
+  void uploadAll();
+  struct Image {
+    std::vector<std::uint32_t> header, offsets, desc, data;
+  };
+  Image packHost() const;
+  static void ensure(Buffer& b, std::size_t bytes, bool keep_headroom);
+
+  std::string name_;
+  hashed::HashedConfig config_;
+  const Scene* scene_ = nullptr;
+  std::unique_ptr<hashed::HashedStructure> structure_;
+  Buffer list_, header_, offsets_, desc_, data_;
+  std::uint64_t uploaded_layout_ = ~0ull;
+  double upload_ms_ = 0.0;
+  std::size_t upload_bytes_ = 0;
+  std::size_t full_rebuilds_ = 0, incremental_updates_ = 0;
+};
+
+// Gives hashed assigners the scene geometry for --geometry-mask; other
+// techniques ignore it.
+void attachSceneGeometry(LightAssigner& assigner, const Scene& scene);
+
+}  // namespace ml

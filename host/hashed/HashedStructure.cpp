@@ -1,0 +1,99 @@
+#include "host/hashed/HashedStructure.hpp"
+
+#include <chrono>
+
+#include "host/hashed/DynamicLightUpdater.hpp"
+#include "host/hashed/LightOctreeBuilder.hpp"
+#include "host/util/Error.hpp"
+
+namespace ml::hashed {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+}  // namespace
+
+HashedStructure::HashedStructure(const HashedConfig& config, const Scene* scene) : cfg_(config), scene_(scene) {
+  parseNodeSize(cfg_.node_size);  // fail early on a bad flag
+  if (cfg_.geometry_mask && !scene_)
+    throw UserError("--geometry-mask: hashed shading was given no scene geometry to mask with");
+}
+
+HashedStructure::~HashedStructure() = default;
+
+void HashedStructure::build(const std::vector<gpu::PointLight>& lights) {
+  const auto t0 = Clock::now();
+  const OctreeBounds b = computeBounds(lights, cfg_);
+  const double bounds_ms = msSince(t0);
+  build(lights, b);
+  build_stats_.bounds_ms = bounds_ms;
+  build_stats_.total_ms += bounds_ms;
+}
+
+void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds) {
+  checkMemory(lights, bounds, cfg_.memory_limit, cfg_.node_size);
+  BuildStats st;
+  const auto t0 = Clock::now();
+  bounds_ = bounds;
+  linkless_.reset();
+  tree_.reset();
+  if (cfg_.geometry_mask) {
+    auto t = Clock::now();
+    mask_ = std::make_unique<GeometryMask>(*scene_, bounds_, cfg_.geometry_margin_cells);
+    st.mask_ms = msSince(t);
+    st.mask_cells = mask_->cellCount();
+  } else {
+    mask_.reset();
+  }
+
+  auto t = Clock::now();
+  octrees_.clear();
+  octrees_ = buildLightOctrees(lights, bounds_);
+  const auto& octrees = octrees_;
+  st.light_octrees_ms = msSince(t);
+  for (const auto& o : octrees) {
+    st.light_octree_nodes += o.nodes.size();
+    st.filled_cells += o.filled_cells;
+  }
+
+  t = Clock::now();
+  tree_ = std::make_unique<SceneOctree>(bounds_, mask_.get());
+  for (const auto& o : octrees) tree_->insert(o);
+  st.merge_ms = msSince(t);
+
+  t = Clock::now();
+  tree_->normalize();
+  st.normalize_ms = msSince(t);
+
+  t = Clock::now();
+  linkless_ = std::make_unique<LinklessOctree>(bounds_, cfg_);
+  linkless_->buildFrom(*tree_);
+  st.hash_ms = msSince(t);
+
+  st.scene_nodes = tree_->nodeCount();
+  st.index_entries = linkless_->pool().list().size();
+  st.leaf_index_entries = tree_->indexEntries();
+  st.distinct_sets = linkless_->pool().rangeCount();
+  st.total_ms = msSince(t0);
+  build_stats_ = st;
+  lights_ = lights;
+  stale_.clear();
+  ++builds_;
+}
+
+std::size_t HashedStructure::lightOctreeBytes() const {
+  std::size_t s = octrees_.size() * sizeof(LightOctree);
+  for (const auto& o : octrees_) s += o.nodes.capacity();
+  return s;
+}
+
+const UpdateStats& HashedStructure::update(const std::vector<gpu::PointLight>& lights) {
+  UpdateStats st;
+  DynamicLightUpdater::apply(*this, lights, st);
+  update_stats_ = st;
+  ++updates_;
+  return update_stats_;
+}
+
+}  // namespace ml::hashed

@@ -1,0 +1,56 @@
+#pragma once
+// One light as an octree (thesis §7.2.3, Fig. 7.11-7.13). Contract:
+//  - First the light's minimal grid: the cells of its (clamped) cell box, all
+//    assumed to overlap the sphere, then a breadth-first flood fill from the
+//    box's 8 corners marks the cells that do not (a cell outside the sphere
+//    is reachable from its octant's corner through cells outside the sphere,
+//    so the fill finds them all).
+//  - Then the octree, top-down from the smallest node enclosing the grid,
+//    by the thesis's decision tree: a node is an empty leaf when the grid
+//    cell in it closest to the light is empty (spheres are convex), a full
+//    leaf when it lies inside the grid and the farthest cell is full too,
+//    else a branch. The result is the minimal octree of the light's cells.
+//  - Stored compactly in preorder (1 byte per node), children in bit order
+//    k = x + 2y + 4z, so the scene octree can walk it without pointers.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "host/hashed/OctreeBounds.hpp"
+
+namespace ml::hashed {
+
+enum class LightNode : std::uint8_t { Empty = 0, Full = 1, Branch = 2 };
+
+struct LightOctree {
+  std::uint32_t light = 0;
+  unsigned root_depth = 0;
+  glm::uvec3 root{0};                // coordinates at root_depth
+  std::vector<LightNode> nodes;      // preorder; empty vector: touches no cell
+  std::size_t filled_cells = 0;      // grid cells overlapping the sphere
+  bool empty() const { return nodes.empty() || nodes.front() == LightNode::Empty; }
+};
+
+// Scratch space reused across lights by one thread (the grid).
+struct LightGridScratch {
+  std::vector<std::uint8_t> grid;
+  std::vector<std::uint32_t> queue;
+};
+
+LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, const OctreeBounds& bounds,
+                             LightGridScratch& scratch);
+
+// Every light's octree, built in parallel (TBB); out[i] belongs to lights[i].
+std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds);
+
+// Skips the preorder subtree starting at `cursor`.
+inline void skipLightSubtree(const LightNode*& cursor) {
+  std::uint32_t pending = 1;
+  while (pending) {
+    --pending;
+    if (*cursor++ == LightNode::Branch) pending += 8;
+  }
+}
+
+}  // namespace ml::hashed

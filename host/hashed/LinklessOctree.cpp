@@ -1,0 +1,281 @@
+#include "host/hashed/LinklessOctree.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <bit>
+#include <cstring>
+#include <stdexcept>
+
+namespace ml::hashed {
+namespace {
+
+std::uint64_t tableSeed(std::uint64_t seed, unsigned layer, bool data) {
+  SplitMix64 s{seed ^ (0x51ED270B27A1ull * (2 * layer + (data ? 1 : 0) + 1))};
+  return s.next();
+}
+
+}  // namespace
+
+LinklessOctree::LinklessOctree(const OctreeBounds& bounds, const HashedConfig& config)
+    : b_(bounds), cfg_(config), rng_{config.seed ^ 0xD1B54A32D192ED03ull} {
+  const unsigned layers = b_.depth - b_.start_depth;
+  desc_.resize(layers);
+  data_.resize(layers);
+  build_stats_.resize(layers);
+  computeBases();
+}
+
+void LinklessOctree::buildFrom(const SceneOctree& tree) {
+  const unsigned ds = b_.start_depth, layers = layerCount();
+  std::vector<std::vector<DescHash::Entry>> desc_entries(layers);
+  std::vector<std::vector<DataHash::Entry>> data_entries(layers);
+  pool_.clear();
+  tree.forEachNode([&](unsigned t, const glm::uvec3& c, const SceneOctree::NodeView& v) {
+    if (!v.leaf) {
+      if (t >= ds && t < b_.depth) desc_entries[t - ds].push_back({c, {v.leaf_mask, v.filled_mask}});
+    } else if (!v.lights->empty()) {
+      if (t <= ds) throw std::logic_error("scene octree: filled leaf at or above the start depth");
+      data_entries[t - ds - 1].push_back({c, {pool_.acquire(*v.lights), std::uint32_t(v.lights->size())}});
+    }
+  });
+  std::vector<PshBuildReport> reports(2 * layers);
+  std::size_t keys = 0;
+  for (unsigned i = 0; i < layers; ++i) keys += desc_entries[i].size() + data_entries[i].size();
+  auto hashTable = [&](unsigned task) {
+    const unsigned i = task / 2;
+    const bool data = task & 1;
+    PshBuildParams p;
+    p.seed = tableSeed(cfg_.seed, i, data);
+    p.slack = cfg_.table_slack;
+    if (data) data_[i] = DataHash::build(data_entries[i], p, &reports[task]);
+    else desc_[i] = DescHash::build(desc_entries[i], p, &reports[task]);
+  };
+  // Tables are independent; small layers are not worth a thread hand-off.
+  if (keys < 20000) {
+    for (unsigned task = 0; task < 2 * layers; ++task) hashTable(task);
+  } else {
+    tbb::parallel_for(0u, 2 * layers, hashTable);
+  }
+  for (unsigned i = 0; i < layers; ++i) {
+    LayerStats& s = build_stats_[i];
+    s = LayerStats{};
+    s.depth = ds + i;
+    s.desc_attempts = reports[2 * i].attempts;
+    s.data_attempts = reports[2 * i + 1].attempts;
+    s.rejected_candidates = reports[2 * i].rejected + reports[2 * i + 1].rejected;
+    s.hash_ms = reports[2 * i].ms + reports[2 * i + 1].ms;
+  }
+  computeBases();
+  ++layout_version_;
+}
+
+void LinklessOctree::computeBases() {
+  const unsigned layers = layerCount();
+  offset_base_.assign(2 * layers + 1, 0);
+  desc_base_.assign(layers + 1, 0);
+  data_base_.assign(layers + 1, 0);
+  for (unsigned i = 0; i < layers; ++i) {
+    offset_base_[2 * i + 1] = offset_base_[2 * i] + desc_[i].offsetCount();
+    offset_base_[2 * i + 2] = offset_base_[2 * i + 1] + data_[i].offsetCount();
+    desc_base_[i + 1] = desc_base_[i] + desc_[i].slots();
+    data_base_[i + 1] = data_base_[i] + data_[i].slots();
+  }
+}
+
+std::size_t LinklessOctree::offsetBase(unsigned layer, bool data) const { return offset_base_[2 * layer + (data ? 1 : 0)]; }
+std::size_t LinklessOctree::descSlotBase(unsigned layer) const { return desc_base_[layer]; }
+std::size_t LinklessOctree::dataSlotBase(unsigned layer) const { return data_base_[layer]; }
+std::size_t LinklessOctree::offsetWordCount() const { return offset_base_.back(); }
+std::size_t LinklessOctree::descSlotCount() const { return desc_base_.back(); }
+std::size_t LinklessOctree::dataSlotCount() const { return data_base_.back(); }
+
+std::vector<std::uint32_t> LinklessOctree::headerWords() const {
+  std::vector<std::uint32_t> h(8 + 16 * layerCount(), 0);
+  h[0] = std::bit_cast<std::uint32_t>(b_.origin_f.x);
+  h[1] = std::bit_cast<std::uint32_t>(b_.origin_f.y);
+  h[2] = std::bit_cast<std::uint32_t>(b_.origin_f.z);
+  h[3] = std::bit_cast<std::uint32_t>(b_.cell_scale);
+  h[4] = b_.depth;
+  h[5] = b_.start_depth;
+  h[6] = layerCount();
+  auto put = [](std::uint32_t* w, const glm::uvec3& dims, std::size_t base) {
+    w[0] = dims.x;
+    w[1] = dims.y;
+    w[2] = dims.z;
+    w[3] = std::uint32_t(base);
+  };
+  for (unsigned i = 0; i < layerCount(); ++i) {
+    std::uint32_t* w = &h[8 + 16 * i];
+    put(w, desc_[i].m(), descSlotBase(i));
+    put(w + 4, desc_[i].r(), offsetBase(i, false));
+    put(w + 8, data_[i].m(), dataSlotBase(i));
+    put(w + 12, data_[i].r(), offsetBase(i, true));
+  }
+  return h;
+}
+
+LinklessOctree::Range LinklessOctree::lookup(const glm::vec3& world) const {
+  // Mirrors lightListFor() in gl/shaders/lookup_hashed.glsl.
+  const glm::vec3 q = (world - b_.origin_f) * b_.cell_scale;
+  const float n = float(1u << b_.depth);
+  if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < n && q.y < n && q.z < n)) return {};
+  const glm::uvec3 cell = glm::min(glm::uvec3(q), glm::uvec3((1u << b_.depth) - 1u));
+  for (unsigned i = 0; i < layerCount(); ++i) {
+    const unsigned depth = b_.start_depth + i;
+    const glm::uvec3 cur = cell >> (b_.depth - depth);
+    const glm::uvec3 nxt = cell >> (b_.depth - depth - 1);
+    const auto d = desc_[i].lookup(cur);
+    if (!d) return {};  // no node here: no lights
+    const glm::uvec3 k = nxt & 1u;
+    const unsigned bit = k.x + 2 * k.y + 4 * k.z;
+    if ((d->leaf >> bit) & 1u) {
+      if ((d->filled >> bit) & 1u) {
+        const auto r = data_[i].lookup(nxt);
+        if (r) return {r->offset, r->count};
+      }
+      return {};
+    }
+  }
+  return {};
+}
+
+std::vector<std::uint32_t> LinklessOctree::lightsAt(const glm::vec3& world) const {
+  const Range r = lookup(world);
+  return {pool_.list().begin() + r.offset, pool_.list().begin() + r.offset + r.count};
+}
+
+void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std::uint64_t>& touched,
+                                  SyncStats& st) {
+  const unsigned ds = b_.start_depth, layers = layerCount();
+  struct DescOp {
+    glm::uvec3 key;
+    bool present;
+    DescTraits::Payload p;
+  };
+  struct DataOp {
+    glm::uvec3 key;
+    bool present;
+    DataTraits::Payload p;
+  };
+  std::vector<std::vector<DescOp>> desc_ops(layers);
+  std::vector<std::vector<DataOp>> data_ops(layers);
+  std::vector<std::uint32_t> release;
+  st.keys += touched.size();
+  for (const std::uint64_t key : touched) {
+    const unsigned t = keyDepth(key);
+    const glm::uvec3 c = keyCoord(key);
+    const bool has_desc = t >= ds && t < b_.depth;
+    const bool has_data = t > ds && t <= b_.depth;
+    if (!has_desc && !has_data) continue;
+    const SceneOctree::NodeView v = tree.find(t, c);
+    if (has_desc) {
+      const auto have = desc_[t - ds].lookup(c);
+      const bool want = v.exists && !v.leaf;
+      const DescTraits::Payload p{v.leaf_mask, v.filled_mask};
+      if (want != bool(have) || (want && !(*have == p))) desc_ops[t - ds].push_back({c, want, p});
+    }
+    if (has_data) {
+      const unsigned i = t - ds - 1;
+      const auto have = data_[i].lookup(c);
+      const bool want = v.exists && v.leaf && !v.lights->empty();
+      if (want) {
+        const DataTraits::Payload p{pool_.acquire(*v.lights), std::uint32_t(v.lights->size())};
+        if (have && *have == p) {
+          pool_.release(p.offset);
+        } else {
+          data_ops[i].push_back({c, true, p});
+          if (have) release.push_back(have->offset);
+        }
+      } else if (have) {
+        data_ops[i].push_back({c, false, {}});
+        release.push_back(have->offset);
+      }
+    }
+  }
+  for (const auto off : release) pool_.release(off);
+
+  bool layout_changed = false;
+  PshBuildParams rehash;
+  rehash.slack = cfg_.rehash_slack;
+  rehash.sigma = cfg_.rehash_sigma;
+  auto apply = [&](auto& table, auto& ops, unsigned layer, bool data) {
+    using Hash = std::decay_t<decltype(table)>;
+    if (ops.empty()) return;
+    // Erases first: their slots may take the inserts.
+    for (const auto& op : ops)
+      if (!op.present) {
+        table.erase(op.key);
+        ++st.erases;
+      }
+    std::vector<typename Hash::Entry> failed;
+    for (const auto& op : ops) {
+      if (!op.present) continue;
+      if (table.update(op.key, op.p)) {
+        ++st.updates;
+        continue;
+      }
+      ++st.inserts;
+      if (!failed.empty()) {
+        failed.push_back({op.key, op.p});
+        continue;
+      }
+      switch (table.insert(op.key, op.p, rng_)) {
+        case Hash::InsertResult::InPlace: ++st.in_place; break;
+        case Hash::InsertResult::Reoffset: ++st.reoffsets; break;
+        case Hash::InsertResult::Failed: failed.push_back({op.key, op.p}); break;
+      }
+    }
+    if (!failed.empty()) {
+      // The thesis's criterion: a new key collides -> rebuild this table.
+      auto all = table.entries();
+      all.insert(all.end(), failed.begin(), failed.end());
+      rehash.seed = tableSeed(cfg_.seed, layer, data) ^ rng_.next();
+      const std::size_t old_slots = table.slots(), old_offsets = table.offsetCount();
+      table = Hash::build(all, rehash);
+      ++st.rehashed_tables;
+      if (table.slots() != old_slots || table.offsetCount() != old_offsets) layout_changed = true;
+    }
+  };
+  for (unsigned i = 0; i < layers; ++i) {
+    apply(desc_[i], desc_ops[i], i, false);
+    apply(data_[i], data_ops[i], i, true);
+  }
+  if (pool_.wantsCompaction()) {
+    const auto remap = pool_.compact();
+    for (auto& d : data_)
+      d.remapPayloads([&](const DataTraits::Payload& p) { return DataTraits::Payload{remap.at(p.offset), p.count}; });
+    st.compacted = true;
+  }
+  if (layout_changed) {
+    computeBases();
+    ++layout_version_;
+  }
+}
+
+std::vector<LayerStats> LinklessOctree::layerStats() const {
+  std::vector<LayerStats> out = build_stats_;
+  for (unsigned i = 0; i < layerCount(); ++i) {
+    LayerStats& s = out[i];
+    s.depth = b_.start_depth + i;
+    s.desc_keys = desc_[i].size();
+    s.data_keys = data_[i].size();
+    s.desc_slots = desc_[i].slots();
+    s.data_slots = data_[i].slots();
+    s.desc_offsets = desc_[i].offsetCount();
+    s.data_offsets = data_[i].offsetCount();
+    s.bytes = desc_[i].bytes() + data_[i].bytes();
+  }
+  return out;
+}
+
+std::size_t LinklessOctree::tableBytes() const {
+  std::size_t s = 0;
+  for (unsigned i = 0; i < layerCount(); ++i) s += desc_[i].bytes() + data_[i].bytes();
+  return s;
+}
+
+std::size_t LinklessOctree::gpuBytes() const {
+  return tableBytes() + (8 + 16 * layerCount()) * 4 + pool_.list().size() * 4;
+}
+
+}  // namespace ml::hashed

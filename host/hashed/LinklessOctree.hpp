@@ -1,0 +1,104 @@
+#pragma once
+// The GPU form of the scene octree [CJC09] (thesis §7.1.5, §7.2.5): per layer
+// i = 0 .. depth - start_depth - 1 two perfect spatial hashes,
+//   desc[i]: key = a branch at depth start_depth + i -> leaf/filled masks of
+//            its 8 children (nodes at the start depth absent from desc[0]
+//            hold no lights),
+//   data[i]: key = a filled leaf at depth start_depth + i + 1 -> its range in
+//            the light index list,
+// plus the light index list. Contract:
+//  - lookup() is lookup_hashed.glsl's lightListFor, in the same order and the
+//    same float expression for the cell; tests hold the GLSL to it through
+//    images and counts.
+//  - buildFrom() hashes every layer of a canonical scene octree (layers in
+//    parallel); applyTouched() re-derives only the given node keys and edits
+//    the hashes in place (rehashing a table only when an insert cannot be
+//    placed): afterwards every lookup equals that of buildFrom() on the same
+//    tree.
+//  - The GPU image: a header (origin, scale, depth, start depth, layer count,
+//    then per layer and table (desc, data) the hash table's dimensions and
+//    slot base, and the offset table's dimensions and offset base),
+//    one offset buffer, one desc slot buffer (uvec2) and one data slot buffer
+//    (uvec4), all layers concatenated. layoutVersion() changes whenever a
+//    table's size (and so any base) changes.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "host/hashed/LightSetPool.hpp"
+#include "host/hashed/OctreeBounds.hpp"
+#include "host/hashed/PerfectSpatialHash.hpp"
+#include "host/hashed/SceneOctree.hpp"
+
+namespace ml::hashed {
+
+struct LayerStats {
+  unsigned depth = 0;               // depth of the desc keys
+  std::size_t desc_keys = 0, data_keys = 0;
+  std::size_t desc_slots = 0, data_slots = 0;      // m^3
+  std::size_t desc_offsets = 0, data_offsets = 0;  // r^3
+  std::size_t bytes = 0;
+  unsigned desc_attempts = 0, data_attempts = 0;
+  std::uint64_t rejected_candidates = 0;
+  double hash_ms = 0.0;
+};
+
+struct SyncStats {
+  std::size_t keys = 0;            // touched keys examined
+  std::size_t inserts = 0, updates = 0, erases = 0;
+  std::size_t in_place = 0, reoffsets = 0;  // how the inserts were placed
+  std::size_t rehashed_tables = 0;
+  bool compacted = false;
+};
+
+class LinklessOctree {
+ public:
+  LinklessOctree(const OctreeBounds& bounds, const HashedConfig& config);
+
+  void buildFrom(const SceneOctree& tree);
+  void applyTouched(const SceneOctree& tree, const std::vector<std::uint64_t>& touched, SyncStats& stats);
+
+  struct Range {
+    std::uint32_t offset = 0, count = 0;
+  };
+  Range lookup(const glm::vec3& world) const;
+  std::vector<std::uint32_t> lightsAt(const glm::vec3& world) const;
+
+  const OctreeBounds& bounds() const { return b_; }
+  unsigned layerCount() const { return unsigned(desc_.size()); }
+  const DescHash& desc(unsigned i) const { return desc_[i]; }
+  const DataHash& data(unsigned i) const { return data_[i]; }
+  DescHash& desc(unsigned i) { return desc_[i]; }
+  DataHash& data(unsigned i) { return data_[i]; }
+  LightSetPool& pool() { return pool_; }
+  const LightSetPool& pool() const { return pool_; }
+  std::vector<LayerStats> layerStats() const;
+  const std::vector<LayerStats>& buildStats() const { return build_stats_; }
+  std::size_t tableBytes() const;
+  std::size_t gpuBytes() const;  // tables + header + light index list
+
+  // GPU image.
+  std::uint64_t layoutVersion() const { return layout_version_; }
+  std::vector<std::uint32_t> headerWords() const;
+  std::size_t offsetBase(unsigned layer, bool data) const;  // in words
+  std::size_t descSlotBase(unsigned layer) const;           // in slots
+  std::size_t dataSlotBase(unsigned layer) const;
+  std::size_t offsetWordCount() const;
+  std::size_t descSlotCount() const;
+  std::size_t dataSlotCount() const;
+
+ private:
+  void computeBases();
+  OctreeBounds b_;
+  HashedConfig cfg_;
+  std::vector<DescHash> desc_;
+  std::vector<DataHash> data_;
+  std::vector<LayerStats> build_stats_;
+  LightSetPool pool_;
+  SplitMix64 rng_;
+  std::uint64_t layout_version_ = 0;
+  std::vector<std::size_t> offset_base_, desc_base_, data_base_;
+};
+
+}  // namespace ml::hashed

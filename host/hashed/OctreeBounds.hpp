@@ -1,0 +1,127 @@
+#pragma once
+// The octree's place in the world (thesis §7.2.2) and the user parameters that
+// fix it. Contract:
+//  - The octree is a cube of side 2^depth * cell_size whose cells (the deepest
+//    nodes, size `cell_size` = the thesis's minimal node size d) are addressed
+//    by integer coordinates in [0, 2^depth)^3. A node at depth t has
+//    coordinates in [0, 2^t)^3; its parent is coord >> 1.
+//  - World -> cell mapping is ONE float expression, `(p - origin_f) * cell_scale`,
+//    evaluated identically by the GLSL lookup, the CPU lookup and the builders
+//    (which widen every light by `eps_cells` so that float rounding of that
+//    expression can never put a point in a cell that misses its light).
+//  - Parameters are validated here, before anything is allocated: a
+//    non-positive node size, more than kMaxDepth layers or an estimated
+//    footprint above the memory limit throw UserError naming the flag.
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host/shared/gpu_types.h"
+
+namespace ml::hashed {
+
+// Coordinates are packed in 16 bits per axis in the hash entries, and 0xFFFF
+// marks an empty slot: 2^15 cells per axis is the limit.
+constexpr unsigned kMaxDepth = 15;
+
+struct NodeSizeSpec {
+  double value = 0.5;
+  bool relative = true;  // value times the largest light radius
+};
+// "0.5r" (relative to the largest light radius) or "2.0" (world units).
+// Throws UserError naming --node-size for anything else or for value <= 0.
+NodeSizeSpec parseNodeSize(const std::string& text);
+
+struct HashedConfig {
+  std::string node_size = "0.5r";
+  unsigned start_depth = 3;  // requested; clamped to depth - 1 (see OctreeBounds)
+  bool geometry_mask = false;
+  // Build refuses parameter sets whose estimated footprint exceeds this.
+  std::size_t memory_limit = std::size_t(1) << 30;
+  std::uint64_t seed = 23;  // the thesis's seed for random offset candidates
+  // Hash tables get m >= slack * n entries: 1.0 is the thesis's sizing; a
+  // dynamic update that forces a rehash rebuilds that table with
+  // `rehash_slack` so that later inserts find empty slots more often.
+  double table_slack = 1.0;
+  double rehash_slack = 1.25;
+  // Offset entries per key of a rehashed table (the thesis's 1/6 for static
+  // tables): smaller offset groups re-offset into free slots far more often,
+  // so later inserts rarely need another rehash. Costs 4 bytes per 2 keys.
+  double rehash_sigma = 0.5;
+  // Extra room around the lights' bounds, as a fraction of their extent, so
+  // moving lights leave the octree (forcing a full rebuild) less often.
+  // Empty space costs nothing but, at worst, one more layer.
+  double bounds_padding = 0.05;
+  // Dynamic updates: skip removing moved lights from the nodes they left
+  // (extra indices are harmless: the light's attenuation is 0 there) until
+  // `lazy_flush_fraction` of the lights are stale; then clean up exactly.
+  bool lazy_removal = false;
+  double lazy_flush_fraction = 0.25;
+  // An update touching more than this fraction of the lights rebuilds
+  // instead (same result, less work).
+  double max_incremental_fraction = 0.5;
+  // Geometry mask: cells within this many cell sizes of a triangle count as
+  // containing geometry, so deferred shading's reconstructed positions (off
+  // the surface by depth-buffer rounding) still land in a kept cell.
+  double geometry_margin_cells = 0.05;
+};
+
+struct OctreeBounds {
+  glm::dvec3 origin{0.0};
+  double cell_size = 1.0;   // d: edge of the deepest nodes, world units
+  unsigned depth = 1;       // L: number of layers below the root; 2^L cells per axis
+  unsigned start_depth = 0; // effective d_s in [0, depth - 1]
+  glm::vec3 origin_f{0.0f}; // the float copies the lookups use
+  float cell_scale = 1.0f;  // float(1 / cell_size)
+  double eps_cells = 1e-4;  // conservative widening of light spheres, in cells
+
+  std::uint32_t cellsPerAxis() const { return 1u << depth; }
+  double side() const { return cell_size * double(cellsPerAxis()); }
+  // The mirrored float expression; may be outside [0, 2^depth).
+  glm::vec3 cellCoordF(const glm::vec3& p) const { return (p - origin_f) * cell_scale; }
+  // Light centre and radius in cell units (double, for overlap tests).
+  glm::dvec3 toCells(const glm::dvec3& p) const { return (p - glm::dvec3(origin_f)) * double(cell_scale); }
+  double radiusCells(double r) const { return r * double(cell_scale); }
+  bool operator==(const OctreeBounds& o) const {
+    return origin_f == o.origin_f && cell_scale == o.cell_scale && depth == o.depth && start_depth == o.start_depth;
+  }
+};
+
+// Resolves the node size (relative sizes use the largest radius in `lights`)
+// and the cube around the lights' spheres (centred, widened by a small
+// rounding offset, the thesis's c, plus `padding` of the extent), then checks
+// the estimated memory against `memory_limit`. Empty light sets get a unit
+// octree of depth 1 that every lookup reads as empty.
+OctreeBounds computeBounds(const std::vector<gpu::PointLight>& lights, const HashedConfig& config);
+
+// Same, for a caller-chosen box (e.g. a level's extent) and absolute node size.
+OctreeBounds boundsForBox(const glm::dvec3& box_min, const glm::dvec3& box_max, double node_size,
+                          unsigned start_depth, const std::string& flag = "--node-size");
+
+// Estimated peak bytes of a build: per-light grids and octrees, the scene
+// octree's leaves and light index list (bounded by the sum of the lights'
+// cell boxes), and the hash tables. Throws UserError naming --node-size when
+// it exceeds `limit`.
+std::size_t estimateBuildBytes(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b);
+void checkMemory(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b, std::size_t limit,
+                 const std::string& node_size_text);
+
+// True when every light's sphere (widened by eps) lies inside the octree.
+bool lightsInside(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b);
+
+// The inclusive cell box [lo, hi] a light's sphere touches, clamped to the octree.
+struct CellBox {
+  glm::ivec3 lo{0}, hi{-1};
+  bool empty() const { return hi.x < lo.x || hi.y < lo.y || hi.z < lo.z; }
+};
+CellBox lightCellBox(const gpu::PointLight& light, const OctreeBounds& b);
+
+// Squared distance from the light centre `c` (cell units) to the cell box
+// [lo, hi + 1) widened by eps, compared with r^2: the node-light overlap test
+// of thesis Listing 7 (as its prose states it: closest point closer than r).
+bool sphereOverlapsCells(const glm::dvec3& c, double r, const glm::ivec3& lo, const glm::ivec3& hi, double eps);
+
+}  // namespace ml::hashed

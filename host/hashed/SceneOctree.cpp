@@ -1,0 +1,350 @@
+#include "host/hashed/SceneOctree.hpp"
+
+#include <algorithm>
+
+namespace ml::hashed {
+namespace {
+
+void skipChildren(const LightNode*& cur) {
+  for (int k = 0; k < 8; ++k) skipLightSubtree(cur);
+}
+
+unsigned childBit(const glm::uvec3& child) { return (child.x & 1u) | ((child.y & 1u) << 1) | ((child.z & 1u) << 2); }
+
+const std::vector<std::uint32_t> kNoLights;
+
+}  // namespace
+
+SceneOctree::SceneOctree(const OctreeBounds& bounds, const GeometryMask* mask) : b_(bounds), mask_(mask) {
+  nodes_.emplace_back();
+  sets_.emplace_back();
+}
+
+void SceneOctree::record(unsigned t, const glm::uvec3& c) {
+  if (!recording_) return;
+  touched_.push_back(nodeKey(t, c));
+  // The parent's description (its children's leaf/filled bits) may change too.
+  if (t > 0) touched_.push_back(nodeKey(t - 1, c >> 1u));
+}
+
+void SceneOctree::recordChildren(unsigned t, const glm::uvec3& c) {
+  if (!recording_) return;
+  touched_.push_back(nodeKey(t, c));
+  if (t > 0) touched_.push_back(nodeKey(t - 1, c >> 1u));
+  for (unsigned k = 0; k < 8; ++k) touched_.push_back(nodeKey(t + 1, childCoord(c, k)));
+}
+
+std::vector<std::uint64_t> SceneOctree::takeTouched() {
+  std::vector<std::uint64_t> out;
+  out.swap(touched_);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::int32_t SceneOctree::allocBlock() {
+  if (!free_blocks_.empty()) {
+    const std::int32_t b = free_blocks_.back();
+    free_blocks_.pop_back();
+    return b;
+  }
+  const std::int32_t b = std::int32_t(nodes_.size());
+  nodes_.resize(nodes_.size() + 8);
+  sets_.resize(sets_.size() + 8);
+  return b;
+}
+
+// Table 7.1, "leaf meets branch": the leaf becomes a branch whose children
+// carry its lights (children without geometry stay empty: nothing queries them).
+void SceneOctree::split(std::int32_t n, unsigned t, const glm::uvec3& c) {
+  const std::int32_t block = allocBlock();
+  for (unsigned k = 0; k < 8; ++k) {
+    const std::int32_t ch = block + std::int32_t(k);
+    nodes_[ch] = Node{};
+    nodes_[ch].dirty = true;
+    if (care(t + 1, childCoord(c, k))) sets_[ch] = sets_[n];
+    else sets_[ch].clear();
+  }
+  nodes_[n].child = block;
+  std::vector<std::uint32_t>().swap(sets_[n]);
+  recordChildren(t, c);
+}
+
+bool SceneOctree::addToSet(std::int32_t n, std::uint32_t l) {
+  auto& s = sets_[n];
+  if (s.empty() || s.back() < l) {
+    s.push_back(l);  // full builds insert lights in index order
+    return true;
+  }
+  const auto it = std::lower_bound(s.begin(), s.end(), l);
+  if (it != s.end() && *it == l) return false;
+  s.insert(it, l);
+  return true;
+}
+
+bool SceneOctree::eraseFromSet(std::int32_t n, std::uint32_t l) {
+  auto& s = sets_[n];
+  const auto it = std::lower_bound(s.begin(), s.end(), l);
+  if (it == s.end() || *it != l) return false;
+  s.erase(it);
+  return true;
+}
+
+void SceneOctree::insert(const LightOctree& lo) {
+  if (lo.empty()) return;
+  std::int32_t n = 0;
+  unsigned t = 0;
+  glm::uvec3 c(0);
+  // Descend to the light octree's root, splitting leaves on the way.
+  while (t < lo.root_depth) {
+    if (!care(t, c)) return;
+    nodes_[n].dirty = true;
+    if (isLeaf(n)) split(n, t, c);
+    const glm::uvec3 cc = lo.root >> (lo.root_depth - t - 1);
+    n = nodes_[n].child + std::int32_t(childBit(cc));
+    ++t;
+    c = cc;
+  }
+  const LightNode* cur = lo.nodes.data();
+  insertRec(n, t, c, cur, lo.light);
+}
+
+void SceneOctree::insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur,
+                            std::uint32_t l) {
+  const LightNode type = *cur++;
+  if (type == LightNode::Empty) return;  // Table 7.1: "stop"
+  if (!care(t, c)) {
+    if (type == LightNode::Branch) skipChildren(cur);
+    return;
+  }
+  if (type == LightNode::Full) {
+    addFull(n, t, c, l);
+    return;
+  }
+  nodes_[n].dirty = true;
+  if (isLeaf(n)) split(n, t, c);
+  const std::int32_t ch = nodes_[n].child;
+  for (unsigned k = 0; k < 8; ++k) insertRec(ch + std::int32_t(k), t + 1, childCoord(c, k), cur, l);
+}
+
+// Table 7.1, full light node: added to a leaf, or to every child of a branch.
+void SceneOctree::addFull(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
+  if (!care(t, c)) return;
+  nodes_[n].dirty = true;
+  if (isLeaf(n)) {
+    if (t > b_.start_depth) {
+      if (addToSet(n, l)) record(t, c);
+      return;
+    }
+    split(n, t, c);  // no non-empty leaves at or above the start depth
+  }
+  const std::int32_t ch = nodes_[n].child;
+  for (unsigned k = 0; k < 8; ++k) addFull(ch + std::int32_t(k), t + 1, childCoord(c, k), l);
+}
+
+void SceneOctree::remove(const LightOctree& lo) {
+  if (lo.empty()) return;
+  std::int32_t n = 0;
+  unsigned t = 0;
+  glm::uvec3 c(0);
+  while (t < lo.root_depth) {
+    if (!care(t, c)) return;
+    if (isLeaf(n)) {
+      if (eraseFromSet(n, lo.light)) {
+        nodes_[n].dirty = true;
+        record(t, c);
+      }
+      return;
+    }
+    nodes_[n].dirty = true;
+    const glm::uvec3 cc = lo.root >> (lo.root_depth - t - 1);
+    n = nodes_[n].child + std::int32_t(childBit(cc));
+    ++t;
+    c = cc;
+  }
+  const LightNode* cur = lo.nodes.data();
+  removeRec(n, t, c, cur, lo.light);
+}
+
+// Table 8.2: remove the index where the light's octree is non-empty; a leaf
+// holds the light for all of its cells or for none, so leaves need no split.
+void SceneOctree::removeRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur,
+                            std::uint32_t l) {
+  const LightNode type = *cur++;
+  if (type == LightNode::Empty) return;
+  if (!care(t, c)) {
+    if (type == LightNode::Branch) skipChildren(cur);
+    return;
+  }
+  if (isLeaf(n)) {
+    if (eraseFromSet(n, l)) {
+      nodes_[n].dirty = true;
+      record(t, c);
+    }
+    if (type == LightNode::Branch) skipChildren(cur);
+    return;
+  }
+  nodes_[n].dirty = true;
+  if (type == LightNode::Full) {
+    removeAll(n, t, c, l);
+    return;
+  }
+  const std::int32_t ch = nodes_[n].child;
+  for (unsigned k = 0; k < 8; ++k) removeRec(ch + std::int32_t(k), t + 1, childCoord(c, k), cur, l);
+}
+
+void SceneOctree::removeAll(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
+  if (isLeaf(n)) {
+    if (eraseFromSet(n, l)) {
+      nodes_[n].dirty = true;
+      record(t, c);
+    }
+    return;
+  }
+  nodes_[n].dirty = true;
+  const std::int32_t ch = nodes_[n].child;
+  for (unsigned k = 0; k < 8; ++k) removeAll(ch + std::int32_t(k), t + 1, childCoord(c, k), l);
+}
+
+SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc) {
+  switch (parent) {
+    case Cover::Empty: return Cover::Empty;
+    case Cover::Full: return Cover::Full;
+    case Cover::Branch: return Cover(*s.cur++);
+    case Cover::Above:
+      if ((s.o.root >> (s.o.root_depth - t1)) != cc) return Cover::Empty;
+      return t1 == s.o.root_depth ? Cover(*s.cur++) : Cover::Above;
+  }
+  return Cover::Empty;
+}
+
+void SceneOctree::consume(Cover k, Stream& s) {
+  if (k == Cover::Branch) skipChildren(s.cur);
+}
+
+void SceneOctree::replace(const LightOctree& a, const LightOctree& b) {
+  Stream sa{a, a.nodes.data()}, sb{b, b.nodes.data()};
+  auto top = [](const LightOctree& o, Stream& s) {
+    if (o.empty()) return Cover::Empty;
+    return o.root_depth == 0 ? Cover(*s.cur++) : Cover::Above;
+  };
+  const Cover ka = top(a, sa), kb = top(b, sb);
+  replaceRec(0, 0, glm::uvec3(0), ka, sa, kb, sb, b.light);
+}
+
+void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
+                             Stream& sb, std::uint32_t l) {
+  const bool pa = ka == Cover::Branch || ka == Cover::Above, pb = kb == Cover::Branch || kb == Cover::Above;
+  if (!care(t, c) || (!pa && !pb && ka == kb)) {  // nothing stored here, or no change
+    consume(ka, sa);
+    consume(kb, sb);
+    return;
+  }
+  if (!pa && !pb) {  // whole node gained or lost the light
+    if (kb == Cover::Full) addFull(n, t, c, l);
+    else removeAll(n, t, c, l);
+    return;
+  }
+  nodes_[n].dirty = true;
+  if (isLeaf(n)) {
+    if (!pb) {  // the new version covers this leaf entirely or not at all
+      consume(ka, sa);
+      if (kb == Cover::Full) addFull(n, t, c, l);
+      else if (eraseFromSet(n, l)) record(t, c);
+      return;
+    }
+    split(n, t, c);  // Table 8.1: the new version covers part of the leaf
+  }
+  const std::int32_t ch = nodes_[n].child;
+  for (unsigned k = 0; k < 8; ++k) {
+    const glm::uvec3 cc = childCoord(c, k);
+    const Cover ca = childCover(ka, sa, t + 1, cc), cb = childCover(kb, sb, t + 1, cc);
+    replaceRec(ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
+  }
+}
+
+void SceneOctree::removeEverywhere(std::uint32_t l) { removeAll(0, 0, glm::uvec3(0), l); }
+
+void SceneOctree::normalize() { normalizeRec(0, 0, glm::uvec3(0)); }
+
+void SceneOctree::normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c) {
+  if (!nodes_[n].dirty) return;
+  nodes_[n].dirty = false;
+  if (isLeaf(n)) return;
+  const std::int32_t ch = nodes_[n].child;
+  for (unsigned k = 0; k < 8; ++k) normalizeRec(ch + std::int32_t(k), t + 1, childCoord(c, k));
+  // Merge when the children that matter are leaves with one light set.
+  const std::vector<std::uint32_t>* common = nullptr;
+  for (unsigned k = 0; k < 8; ++k) {
+    const std::int32_t x = ch + std::int32_t(k);
+    if (!care(t + 1, childCoord(c, k))) continue;  // an empty leaf that takes any set
+    if (!isLeaf(x)) return;
+    if (!common) common = &sets_[x];
+    else if (*common != sets_[x]) return;
+  }
+  const bool empty = !common || common->empty();
+  if (!empty && t <= b_.start_depth) return;
+  if (!empty) sets_[n] = *common;
+  else sets_[n].clear();
+  for (unsigned k = 0; k < 8; ++k) std::vector<std::uint32_t>().swap(sets_[ch + std::int32_t(k)]);
+  nodes_[n].child = -1;
+  free_blocks_.push_back(ch);
+  recordChildren(t, c);
+}
+
+SceneOctree::NodeView SceneOctree::view(std::int32_t n) const {
+  NodeView v;
+  v.exists = true;
+  v.leaf = isLeaf(n);
+  if (v.leaf) {
+    v.lights = &sets_[n];
+    return v;
+  }
+  for (unsigned k = 0; k < 8; ++k) {
+    const std::int32_t x = nodes_[n].child + std::int32_t(k);
+    if (isLeaf(x)) {
+      v.leaf_mask |= std::uint8_t(1u << k);
+      if (!sets_[x].empty()) v.filled_mask |= std::uint8_t(1u << k);
+    }
+  }
+  return v;
+}
+
+SceneOctree::NodeView SceneOctree::find(unsigned depth, const glm::uvec3& coord) const {
+  std::int32_t n = 0;
+  for (unsigned t = 0; t < depth; ++t) {
+    if (isLeaf(n)) return {};
+    const glm::uvec3 cc = coord >> (depth - t - 1);
+    n = nodes_[n].child + std::int32_t(childBit(cc));
+  }
+  return view(n);
+}
+
+const std::vector<std::uint32_t>& SceneOctree::lightsAtCell(const glm::uvec3& c) const {
+  std::int32_t n = 0;
+  for (unsigned t = 0; t < b_.depth && !isLeaf(n); ++t) {
+    const glm::uvec3 cc = c >> (b_.depth - t - 1);
+    n = nodes_[n].child + std::int32_t(childBit(cc));
+  }
+  return isLeaf(n) ? sets_[n] : kNoLights;
+}
+
+std::vector<SceneOctree::LayerCounts> SceneOctree::countsPerDepth() const {
+  std::vector<LayerCounts> out(b_.depth + 1);
+  forEachNode([&](unsigned t, const glm::uvec3&, const NodeView& v) {
+    if (!v.leaf) ++out[t].branches;
+    else if (v.lights->empty()) ++out[t].empty_leaves;
+    else ++out[t].filled_leaves;
+  });
+  return out;
+}
+
+std::size_t SceneOctree::indexEntries() const {
+  std::size_t s = 0;
+  forEachNode([&](unsigned, const glm::uvec3&, const NodeView& v) {
+    if (v.leaf) s += v.lights->size();
+  });
+  return s;
+}
+
+}  // namespace ml::hashed

@@ -1,0 +1,131 @@
+#pragma once
+// The scene octree: per leaf the sorted indices of the lights overlapping it
+// (thesis §7.2.4), built by merging light octrees top-down per Table 7.1 and
+// edited by removing them again (Table 8.2). Contract:
+//  - Canonical form after normalize(): a node is a leaf iff every cell below
+//    it that "matters" holds the same light set; with a geometry mask only
+//    cells containing geometry matter (the relaxed merge rule, future work
+//    A), and subtrees without geometry are empty leaves. Without a mask every
+//    cell matters. Nodes at depth <= start_depth are never non-empty leaves
+//    (the linkless octree stores depth start_depth + 1 and deeper leaves).
+//    The canonical form depends only on the light set, not on the order of
+//    insertions and removals: that is what makes incremental updates equal
+//    to a fresh build.
+//  - insert()/remove() leave the tree valid (every leaf's set is exactly the
+//    lights covering its cells) but maybe not minimal; normalize() merges
+//    the subtrees they touched.
+//  - With recording on, every node whose type or set changed, every node
+//    created or freed, and their parents are reported by takeTouched(): the
+//    keys whose hash entries the linkless octree must re-derive.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "host/hashed/GeometryMask.hpp"
+#include "host/hashed/LightOctreeBuilder.hpp"
+#include "host/hashed/OctreeBounds.hpp"
+
+namespace ml::hashed {
+
+// Depth in bits 48..51, coordinates in 16 bits each below.
+inline std::uint64_t nodeKey(unsigned depth, const glm::uvec3& c) {
+  return (std::uint64_t(depth) << 48) | packCoord(c);
+}
+inline unsigned keyDepth(std::uint64_t k) { return unsigned(k >> 48); }
+inline glm::uvec3 keyCoord(std::uint64_t k) { return unpackCoord(k & 0xFFFFFFFFFFFFull); }
+inline glm::uvec3 childCoord(const glm::uvec3& c, unsigned k) {
+  return c * 2u + glm::uvec3(k & 1u, (k >> 1) & 1u, (k >> 2) & 1u);
+}
+
+class SceneOctree {
+ public:
+  SceneOctree(const OctreeBounds& bounds, const GeometryMask* mask);
+
+  void insert(const LightOctree& light);
+  void remove(const LightOctree& light);
+  // A light's new version replacing its old one (same index): walks both
+  // octrees together and touches only the nodes whose coverage differs
+  // (seed 003's additions and removals per node), which for small moves is
+  // a thin shell instead of two whole spheres.
+  void replace(const LightOctree& old_version, const LightOctree& new_version);
+  // Removes `light` from every leaf (e.g. a light whose old octree is unknown).
+  void removeEverywhere(std::uint32_t light);
+  void normalize();
+
+  void setRecording(bool on) { recording_ = on; }
+  // Sorted, unique keys touched since the last call.
+  std::vector<std::uint64_t> takeTouched();
+
+  struct NodeView {
+    bool exists = false;  // false: inside a leaf above `depth`, or outside
+    bool leaf = false;
+    const std::vector<std::uint32_t>* lights = nullptr;  // leaves
+    std::uint8_t leaf_mask = 0, filled_mask = 0;          // branches: the 8 children
+  };
+  NodeView find(unsigned depth, const glm::uvec3& coord) const;
+  // The light set of the leaf containing cell `c` (deepest level), or empty.
+  const std::vector<std::uint32_t>& lightsAtCell(const glm::uvec3& c) const;
+
+  // Preorder walk: f(depth, coord, view) for every node.
+  template <class F>
+  void forEachNode(F&& f) const {
+    walk(0, 0, glm::uvec3(0), f);
+  }
+
+  struct LayerCounts {
+    std::size_t branches = 0, filled_leaves = 0, empty_leaves = 0;
+  };
+  std::vector<LayerCounts> countsPerDepth() const;
+  std::size_t nodeCount() const { return nodes_.size() - 8 * free_blocks_.size(); }
+  std::size_t indexEntries() const;  // sum of leaf set sizes
+  const OctreeBounds& bounds() const { return b_; }
+
+ private:
+  struct Node {
+    std::int32_t child = -1;  // first of 8 consecutive children, -1: leaf
+    bool dirty = false;
+  };
+  bool care(unsigned t, const glm::uvec3& c) const { return !mask_ || mask_->has(t, c); }
+  bool isLeaf(std::int32_t n) const { return nodes_[n].child < 0; }
+  NodeView view(std::int32_t n) const;
+  void record(unsigned t, const glm::uvec3& c);
+  void recordChildren(unsigned t, const glm::uvec3& c);
+  std::int32_t allocBlock();
+  void split(std::int32_t n, unsigned t, const glm::uvec3& c);
+  void insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
+  void addFull(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
+  void removeRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
+  void removeAll(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
+  bool addToSet(std::int32_t n, std::uint32_t l);
+  bool eraseFromSet(std::int32_t n, std::uint32_t l);
+  void normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c);
+  // Coverage of a node by a light during replace(): Above = an ancestor of
+  // the light octree's root (partial, no stream read yet).
+  enum class Cover : std::uint8_t { Empty = 0, Full = 1, Branch = 2, Above = 3 };
+  struct Stream {
+    const LightOctree& o;
+    const LightNode* cur;
+  };
+  static Cover childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc);
+  static void consume(Cover k, Stream& s);
+  void replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb, Stream& sb,
+                  std::uint32_t l);
+
+  template <class F>
+  void walk(std::int32_t n, unsigned t, const glm::uvec3& c, F& f) const {
+    f(t, c, view(n));
+    if (!isLeaf(n))
+      for (unsigned k = 0; k < 8; ++k) walk(nodes_[n].child + std::int32_t(k), t + 1, childCoord(c, k), f);
+  }
+
+  OctreeBounds b_;
+  const GeometryMask* mask_;
+  std::vector<Node> nodes_;                      // nodes_[0] is the root
+  std::vector<std::vector<std::uint32_t>> sets_; // per node; only leaves use theirs
+  std::vector<std::int32_t> free_blocks_;
+  bool recording_ = false;
+  std::vector<std::uint64_t> touched_;
+};
+
+}  // namespace ml::hashed

@@ -1,0 +1,108 @@
+// Clustered forward and clustered deferred render the brute-force image, for
+// each unique-cluster method and assignment, and their lists lose no light
+// that matters (exact lower bound equality).
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "gl/FrameRenderer.hpp"
+#include "host/app/SceneInputs.hpp"
+#include "host/assign/BruteForceAssigner.hpp"
+#include "host/clustered/ClusteredAssigner.hpp"
+#include "support/ImageCompare.hpp"
+#include "support/TestDevice.hpp"
+#include "support/TestGl.hpp"
+
+namespace ml {
+namespace {
+
+constexpr unsigned kW = 320, kH = 180;
+
+const SceneInputs& scene() {
+  static SceneInputs s = [] {
+    SceneInputArgs a;
+    a.lights = "1024";
+    return loadSceneInputs(a);
+  }();
+  return s;
+}
+
+struct Reference {
+  std::vector<float> image;
+  FrameResult result;
+};
+
+const Reference& bruteReference(Pipeline p) {
+  static std::map<Pipeline, Reference> cache;
+  if (auto it = cache.find(p); it != cache.end()) return it->second;
+  FrameRenderer r(test::runtime(), scene().scene, kW, kH);
+  r.setLights(scene().lights);
+  BruteForceAssigner brute;
+  Reference ref;
+  ref.result = r.render(scene().cameras.frames.front(), brute, {p, true});
+  ref.image = r.targets().readColor();
+  return cache.emplace(p, std::move(ref)).first->second;
+}
+
+struct Param {
+  Pipeline pipeline;
+  unsigned tile;
+  UniqueMethod unique;
+  ClusterAssignMethod assign;
+};
+class RenderClustered : public ::testing::TestWithParam<Param> {};
+
+TEST_P(RenderClustered, MatchesBruteForce) {
+  test::glContext();
+  const auto [pipeline, tile, unique, assign] = GetParam();
+  const Reference& ref = bruteReference(pipeline);
+  FrameRenderer r(test::runtime(), scene().scene, kW, kH);
+  r.setLights(scene().lights);
+  ClusteredAssigner clustered(test::runtime(), tile, unique, assign);
+  FrameResult res = r.render(scene().cameras.frames.front(), clustered, {pipeline, true});
+  const auto img = r.targets().readColor();
+  // Lights left out contribute exactly zero, so only the summation order differs.
+  const auto diff = test::compareImages(img, ref.image, 1.0 / 255.0);
+  EXPECT_LT(diff.mean_abs, 1e-4);
+  EXPECT_EQ(diff.frac_over_tol, 0.0) << "max diff " << diff.max_abs;
+  EXPECT_EQ(res.lower_bound, ref.result.lower_bound);
+  EXPECT_EQ(res.covered_pixels, ref.result.covered_pixels);
+  EXPECT_GE(res.light_evaluations, res.lower_bound);
+  EXPECT_LT(res.light_evaluations, ref.result.light_evaluations / 4);
+  // The map covers exactly the covered pixels, with valid cluster indices.
+  const auto map = clustered.readClusterMap();
+  std::size_t mapped = 0;
+  for (auto c : map)
+    if (c != kClusterInvalid) {
+      ASSERT_LT(c, clustered.uniqueClusters());
+      ++mapped;
+    }
+  EXPECT_EQ(mapped, res.covered_pixels);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Clusters, RenderClustered,
+    ::testing::Values(Param{Pipeline::Deferred, 32, UniqueMethod::PageTable, ClusterAssignMethod::Bvh},
+                      Param{Pipeline::Deferred, 16, UniqueMethod::Sort, ClusterAssignMethod::Brute},
+                      Param{Pipeline::Deferred, 32, UniqueMethod::TileSort, ClusterAssignMethod::Bvh},
+                      Param{Pipeline::Forward, 32, UniqueMethod::PageTable, ClusterAssignMethod::Bvh},
+                      Param{Pipeline::Forward, 64, UniqueMethod::Sort, ClusterAssignMethod::Bvh}),
+    [](const auto& info) {
+      return std::string(info.param.pipeline == Pipeline::Forward ? "forward" : "deferred") + "_" +
+             std::to_string(info.param.tile) + "_" +
+             (info.param.unique == UniqueMethod::TileSort ? std::string("tilesort") : uniqueMethodName(info.param.unique)) +
+             "_" + clusterAssignName(info.param.assign);
+    });
+
+TEST(RenderClusteredEdges, OddScreenSizeAndNoLights) {
+  test::glContext();
+  FrameRenderer r(test::runtime(), scene().scene, 101, 37);
+  r.setLights({});
+  ClusteredAssigner clustered(test::runtime(), 32, UniqueMethod::PageTable, ClusterAssignMethod::Bvh);
+  FrameResult res = r.render(scene().cameras.frames.front(), clustered, {Pipeline::Forward, true});
+  EXPECT_EQ(res.light_evaluations, 0u);
+  EXPECT_GT(res.covered_pixels, 0u);
+}
+
+}  // namespace
+}  // namespace ml

@@ -1,0 +1,234 @@
+// compute::RadixSorter against std::stable_sort: uint32 / uint64 keys, with and
+// without payload, partial key_bits, both kernel shapes, the sizes and
+// key distributions. Payloads are the input indices, so any instability shows.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "host/compute/Distributions.hpp"
+#include "host/compute/HostIo.hpp"
+#include "host/compute/RadixSort.hpp"
+#include "support/TestDevice.hpp"
+
+namespace ml::compute {
+namespace {
+
+const std::size_t kBig = (1u << 20) + 7;
+const std::size_t kSmallSizes[] = {0, 1, 2, 31, 32, 33, 1023, 1024, 1025};
+const KeyDist kDists[] = {KeyDist::Random,   KeyDist::AllEqual,   KeyDist::Sorted,
+                          KeyDist::Reversed, KeyDist::AllBitsSet, KeyDist::FewDistinct};
+
+// What is sorted: key width, payload or not, and how many key bits count.
+enum class Variant { Keys32, Pairs32, Pairs32Bits13, Pairs64, Keys64Bits40 };
+
+const char* variantName(Variant v) {
+  switch (v) {
+    case Variant::Keys32:
+      return "Keys32";
+    case Variant::Pairs32:
+      return "Pairs32";
+    case Variant::Pairs32Bits13:
+      return "Pairs32Bits13";
+    case Variant::Pairs64:
+      return "Pairs64";
+    case Variant::Keys64Bits40:
+      return "Keys64Bits40";
+  }
+  return "?";
+}
+
+template <class T>
+::testing::AssertionResult sameVectors(const std::vector<T>& got, const std::vector<T>& want, const char* what) {
+  if (got.size() != want.size()) return ::testing::AssertionFailure() << what << ": size differs";
+  for (std::size_t i = 0; i < got.size(); ++i)
+    if (got[i] != want[i])
+      return ::testing::AssertionFailure() << what << ": first mismatch at " << i << " of " << got.size()
+                                           << ": got " << got[i] << ", want " << want[i];
+  return ::testing::AssertionSuccess();
+}
+
+template <class K>
+void runCase(Shape shape, std::size_t n, KeyDist dist, bool with_values, unsigned key_bits) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  RadixSorter sorter(rt, Options{.shape = shape});
+
+  // Keys use all bits even when fewer are sorted: the extra bits must travel
+  // with their key without taking part in the order.
+  const std::vector<K> keys = makeKeys<K>(n, dist, seed);
+  std::vector<std::uint32_t> values(n);
+  std::iota(values.begin(), values.end(), 0u);
+
+  // One element of slack past n, poisoned, catches writes beyond the end.
+  cl::Buffer key_buf = upload(rt.context(), q, keys, 1);
+  cl::Buffer val_buf = upload(rt.context(), q, values, 1);
+  const std::uint32_t poison_word = 0xDEADBEEFu;
+  q.enqueueFillBuffer(key_buf, poison_word, n * sizeof(K), sizeof(K));
+  q.enqueueFillBuffer(val_buf, poison_word, n * 4, 4);
+
+  if constexpr (sizeof(K) == 4)
+    sorter.sort(q, key_buf, with_values ? &val_buf : nullptr, n, key_bits);
+  else
+    sorter.sort64(q, key_buf, with_values ? &val_buf : nullptr, n, key_bits);
+
+  const K mask = key_bits >= sizeof(K) * 8 ? ~K(0) : ((K(1) << key_bits) - 1);
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return (keys[a] & mask) < (keys[b] & mask); });
+  std::vector<K> want_keys(n);
+  for (std::size_t i = 0; i < n; ++i) want_keys[i] = keys[order[i]];
+
+  auto got = download<K>(q, key_buf, n + 1);
+  EXPECT_EQ(std::uint32_t(got[n]), poison_word) << "wrote past n";
+  got.resize(n);
+  EXPECT_TRUE(sameVectors(got, want_keys, "keys"));
+  auto got_values = download<std::uint32_t>(q, val_buf, n + 1);
+  EXPECT_EQ(got_values[n], poison_word) << "wrote past n";
+  got_values.resize(n);
+  if (with_values)
+    EXPECT_TRUE(sameVectors(got_values, order, "payload (stability)"));
+  else
+    EXPECT_TRUE(sameVectors(got_values, values, "untouched payload"));
+}
+
+void runVariant(Shape shape, std::size_t n, KeyDist dist, Variant v) {
+  switch (v) {
+    case Variant::Keys32:
+      return runCase<std::uint32_t>(shape, n, dist, false, 32);
+    case Variant::Pairs32:
+      return runCase<std::uint32_t>(shape, n, dist, true, 32);
+    case Variant::Pairs32Bits13:
+      return runCase<std::uint32_t>(shape, n, dist, true, 13);
+    case Variant::Pairs64:
+      return runCase<std::uint64_t>(shape, n, dist, true, 64);
+    case Variant::Keys64Bits40:
+      return runCase<std::uint64_t>(shape, n, dist, false, 40);
+  }
+}
+
+using RadixParam = std::tuple<Shape, std::size_t, KeyDist, Variant>;
+
+class RadixSortTest : public ::testing::TestWithParam<RadixParam> {};
+
+TEST_P(RadixSortTest, MatchesStableSort) {
+  const auto [shape, n, dist, variant] = GetParam();
+  runVariant(shape, n, dist, variant);
+}
+
+std::string radixName(const ::testing::TestParamInfo<RadixParam>& info) {
+  const auto [shape, n, dist, variant] = info.param;
+  return std::string(shape == Shape::CpuChunked ? "Cpu" : "Gpu") + "_n" + std::to_string(n) + "_" +
+         keyDistName(dist) + "_" + variantName(variant);
+}
+
+const auto kShapes = ::testing::Values(Shape::CpuChunked, Shape::GpuWorkGroup);
+const auto kVariants = ::testing::Values(Variant::Keys32, Variant::Pairs32, Variant::Pairs32Bits13,
+                                         Variant::Pairs64, Variant::Keys64Bits40);
+
+INSTANTIATE_TEST_SUITE_P(Compute, RadixSortTest,
+                         ::testing::Combine(kShapes, ::testing::ValuesIn(kSmallSizes), ::testing::ValuesIn(kDists),
+                                            kVariants),
+                         radixName);
+// 2^20 + 7: every variant on random keys, every distribution on 32-bit pairs
+// (the expensive cases, kept to what adds coverage).
+INSTANTIATE_TEST_SUITE_P(ComputeBigRandom, RadixSortTest,
+                         ::testing::Combine(kShapes, ::testing::Values(kBig), ::testing::Values(KeyDist::Random),
+                                            kVariants),
+                         radixName);
+INSTANTIATE_TEST_SUITE_P(ComputeBigDists, RadixSortTest,
+                         ::testing::Combine(kShapes, ::testing::Values(kBig),
+                                            ::testing::Values(KeyDist::AllEqual, KeyDist::Sorted, KeyDist::Reversed,
+                                                              KeyDist::AllBitsSet, KeyDist::FewDistinct),
+                                            ::testing::Values(Variant::Pairs32)),
+                         radixName);
+
+TEST(ComputeRadixSort, DigitWidthsAndOddPassCounts) {
+  // Non-default digit widths on both shapes; 3 and 5 bits give odd pass
+  // counts (result copied back from scratch) and a narrower last pass.
+  for (Shape shape : {Shape::CpuChunked, Shape::GpuWorkGroup})
+    for (unsigned bits : {3u, 5u, 8u}) {
+      SCOPED_TRACE(std::string(shapeName(shape)) + " radix_bits=" + std::to_string(bits));
+      const std::uint64_t seed = test::freshSeed();
+      SCOPED_TRACE("seed=" + std::to_string(seed));
+      auto& rt = test::runtime();
+      auto& q = rt.queue();
+      RadixSorter sorter(rt, Options{.shape = shape, .radix_bits = bits});
+      const std::size_t n = 20000;
+      auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed, 0x3FFFFFu);
+      cl::Buffer buf = upload(rt.context(), q, keys);
+      sorter.sort(q, buf, nullptr, n, 22);
+      std::sort(keys.begin(), keys.end());
+      EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, buf, n), keys, "keys"));
+    }
+}
+
+TEST(ComputeRadixSort, FreeFunctionsAndReuseAcrossSizes) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  // Growing then shrinking n reuses (and grows) the shared sorter's scratch.
+  for (std::size_t n : {100u, 70000u, 5u, 300000u}) {
+    auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed + n);
+    std::vector<std::uint32_t> values(n);
+    std::iota(values.begin(), values.end(), 0u);
+    cl::Buffer kb = upload(rt.context(), q, keys), vb = upload(rt.context(), q, values);
+    radix_sort(q, kb, &vb, n, 32);
+    std::vector<std::uint32_t> order(values);
+    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
+    EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, vb, n), order, "payload"));
+    auto keys64 = makeKeys<std::uint64_t>(n, KeyDist::Random, seed ^ n);
+    cl::Buffer kb64 = upload(rt.context(), q, keys64);
+    radix_sort64(q, kb64, nullptr, n);
+    std::sort(keys64.begin(), keys64.end());
+    EXPECT_TRUE(sameVectors(download<std::uint64_t>(q, kb64, n), keys64, "keys64"));
+  }
+}
+
+TEST(ComputeRadixSort, UnalignedHostPointerBuffers) {
+  // The CPU scatter streams whole 64-byte lines when the buffers allow it; a
+  // buffer over an unaligned host allocation must still sort correctly.
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  const std::size_t n = 100003;
+  auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed);
+  std::vector<std::uint32_t> key_store(n + 1), val_store(n + 3);
+  std::copy(keys.begin(), keys.end(), key_store.begin() + 1);
+  for (std::size_t i = 0; i < n; ++i) val_store[i + 3] = static_cast<std::uint32_t>(i);
+  for (Shape shape : {Shape::CpuChunked, Shape::GpuWorkGroup}) {
+    SCOPED_TRACE(shapeName(shape));
+    std::copy(keys.begin(), keys.end(), key_store.begin() + 1);
+    for (std::size_t i = 0; i < n; ++i) val_store[i + 3] = static_cast<std::uint32_t>(i);
+    cl::Buffer kb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, key_store.data() + 1);
+    cl::Buffer vb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, val_store.data() + 3);
+    RadixSorter sorter(rt, Options{.shape = shape});
+    sorter.sort(q, kb, &vb, n, 32);
+    std::vector<std::uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
+    EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, vb, n), order, "payload"));
+  }
+}
+
+TEST(ComputeRadixSort, RejectsBadArguments) {
+  auto& rt = test::runtime();
+  RadixSorter sorter(rt);
+  cl::Buffer buf(rt.context(), CL_MEM_READ_WRITE, 64);
+  EXPECT_THROW(sorter.sort(rt.queue(), buf, nullptr, 16, 33), std::invalid_argument);
+  EXPECT_THROW(sorter.sort(rt.queue(), buf, nullptr, 17, 32), std::invalid_argument);
+  EXPECT_THROW(sorter.sort(rt.queue(), buf, &buf, 4, 32), std::invalid_argument);
+  EXPECT_THROW(sorter.sort64(rt.queue(), buf, nullptr, 9, 64), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ml::compute

@@ -1,0 +1,203 @@
+// Dynamic lights: after random sequences of moves, resizes, additions and
+// removals, incremental updates look up exactly what a fresh build of the
+// same lights (same bounds) looks up, with the same octree; lazy removal is
+// a conservative superset until its flush, then exact again.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "hashed_support.hpp"
+#include "host/hashed/DynamicLightUpdater.hpp"
+#include "host/util/DataPaths.hpp"
+#include "support/TestDevice.hpp"
+
+namespace ml::hashed {
+namespace {
+
+using namespace test_support;
+
+constexpr double kBox = 50.0;
+
+// One random edit batch, keeping every light inside [0, kBox]^3.
+void randomEdits(std::mt19937_64& rng, std::vector<gpu::PointLight>& lights, double fraction, double rmax) {
+  auto clampInside = [&](gpu::PointLight& l) {
+    const float r = std::min(l.position_radius.w, float(rmax));
+    l.position_radius.w = r;
+    l.position_radius.x = std::clamp(l.position_radius.x, r, float(kBox) - r);
+    l.position_radius.y = std::clamp(l.position_radius.y, r, float(kBox) - r);
+    l.position_radius.z = std::clamp(l.position_radius.z, r, float(kBox) - r);
+  };
+  const std::size_t edits = std::max<std::size_t>(1, std::size_t(double(lights.size()) * fraction));
+  for (std::size_t e = 0; e < edits; ++e) {
+    const int op = int(rng() % 10);
+    if (lights.empty() || op == 9) {  // add
+      gpu::PointLight l = makeLight(glm::vec3(uni(rng, 0, kBox), uni(rng, 0, kBox), uni(rng, 0, kBox)),
+                                    float(uni(rng, 0.5, rmax)), glm::vec3(1));
+      clampInside(l);
+      lights.push_back(l);
+      continue;
+    }
+    const std::size_t i = rng() % lights.size();
+    if (op == 8) {  // remove: the last light takes the slot
+      lights[i] = lights.back();
+      lights.pop_back();
+    } else if (op == 7) {  // resize
+      lights[i].position_radius.w *= float(uni(rng, 0.5, 1.6));
+      clampInside(lights[i]);
+    } else if (op == 6) {  // colour only: no structural change
+      lights[i].color.x = float(uni(rng, 0, 1));
+    } else {  // move: mostly small steps, sometimes a jump
+      const double step = op == 5 ? kBox * 0.5 : lights[i].position_radius.w * 0.3;
+      lights[i].position_radius.x += float(uni(rng, -step, step));
+      lights[i].position_radius.y += float(uni(rng, -step, step));
+      lights[i].position_radius.z += float(uni(rng, -step, step));
+      clampInside(lights[i]);
+    }
+  }
+}
+
+void expectSameAsFreshBuild(const HashedStructure& updated, const Scene* scene, std::mt19937_64& rng,
+                            const std::vector<glm::vec3>& points) {
+  HashedStructure fresh(updated.config(), scene);
+  fresh.build(updated.lights(), updated.bounds());
+  expectTablesPerfect(updated.linkless());
+  // The same canonical octree, node for node per depth.
+  const auto a = updated.tree().countsPerDepth(), b = fresh.tree().countsPerDepth();
+  for (std::size_t t = 0; t < a.size(); ++t) {
+    EXPECT_EQ(a[t].branches, b[t].branches) << "depth " << t;
+    EXPECT_EQ(a[t].filled_leaves, b[t].filled_leaves) << "depth " << t;
+  }
+  for (unsigned i = 0; i < fresh.linkless().layerCount(); ++i) {
+    EXPECT_EQ(updated.linkless().desc(i).size(), fresh.linkless().desc(i).size());
+    EXPECT_EQ(updated.linkless().data(i).size(), fresh.linkless().data(i).size());
+  }
+  for (const auto& p : points) ASSERT_EQ(updated.linkless().lightsAt(p), fresh.linkless().lightsAt(p));
+  for (int i = 0; i < 2000; ++i) {
+    const glm::vec3 p = randomPointIn(rng, updated.bounds());
+    ASSERT_EQ(updated.linkless().lightsAt(p), fresh.linkless().lightsAt(p)) << p.x << "," << p.y << "," << p.z;
+  }
+}
+
+TEST(HashedDynamic, RandomEditsEqualAFreshBuild) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  for (const double fraction : {0.01, 0.1, 0.3}) {
+    SCOPED_TRACE("fraction " + std::to_string(fraction));
+    auto lights = randomLights(rng, 300, kBox, 1.0, 3.0, false);
+    HashedConfig cfg;
+    cfg.node_size = "0.5";
+    cfg.start_depth = fraction > 0.2 ? 0 : 3;
+    cfg.max_incremental_fraction = 1.0;  // always incremental
+    HashedStructure hs(cfg);
+    hs.build(lights, boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, cfg.start_depth));
+    std::size_t reoffsets = 0, in_place = 0;
+    for (int round = 0; round < 8; ++round) {
+      randomEdits(rng, lights, fraction, 3.0);
+      const UpdateStats& st = hs.update(lights);
+      EXPECT_FALSE(st.full_rebuild) << st.reason;
+      reoffsets += st.sync.reoffsets;
+      in_place += st.sync.in_place;
+      expectSameAsFreshBuild(hs, nullptr, rng, {});
+      if (HasFailure()) return;
+    }
+    EXPECT_GT(in_place, 0u);
+  }
+}
+
+TEST(HashedDynamic, RandomEditsWithGeometryMaskEqualAFreshBuild) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const Scene scene = loadGltfScene(dataPath("default/scene.glb"));
+  // Lights inside the default scene's main hall and rooms.
+  std::vector<gpu::PointLight> lights = loadLightsJson(dataPath("default/lights.json"));
+  lights.resize(300);
+  HashedConfig cfg;
+  cfg.node_size = "0.5r";
+  cfg.geometry_mask = true;
+  cfg.bounds_padding = 0.2;
+  cfg.max_incremental_fraction = 1.0;
+  HashedStructure hs(cfg, &scene);
+  hs.build(lights);
+  std::vector<glm::vec3> surface;
+  for (int i = 0; i < 3000; ++i) {
+    const std::size_t t = rng() % (scene.indices.size() / 3);
+    double u = uni(rng, 0, 1), v = uni(rng, 0, 1);
+    if (u + v > 1) u = 1 - u, v = 1 - v;
+    const glm::dvec3 a(scene.vertices[scene.indices[3 * t]].position), b(scene.vertices[scene.indices[3 * t + 1]].position),
+        c(scene.vertices[scene.indices[3 * t + 2]].position);
+    surface.push_back(glm::vec3(a + u * (b - a) + v * (c - a)));
+  }
+  int incremental = 0;
+  for (int round = 0; round < 6; ++round) {
+    for (int e = 0; e < 30; ++e) {
+      auto& l = lights[rng() % lights.size()];
+      l.position_radius.x += float(uni(rng, -0.8, 0.8));
+      l.position_radius.z += float(uni(rng, -0.8, 0.8));
+      l.position_radius.w *= float(uni(rng, 0.8, 1.2));
+    }
+    const UpdateStats& st = hs.update(lights);
+    if (st.full_rebuild) continue;  // a light left the padded bounds: nothing incremental to check
+    ++incremental;
+    expectSameAsFreshBuild(hs, &scene, rng, surface);
+    if (HasFailure()) return;
+  }
+  EXPECT_GE(incremental, 3);
+}
+
+TEST(HashedDynamic, LazyRemovalIsASupersetUntilItsFlush) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  auto lights = randomLights(rng, 200, kBox, 1.0, 3.0, false);
+  HashedConfig cfg;
+  cfg.node_size = "0.75";
+  cfg.lazy_removal = true;
+  cfg.lazy_flush_fraction = 0.2;
+  cfg.max_incremental_fraction = 1.0;
+  HashedStructure hs(cfg);
+  hs.build(lights, boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.75, 3));
+  bool flushed = false;
+  for (int round = 0; round < 12 && !flushed; ++round) {
+    randomEdits(rng, lights, 0.03, 3.0);
+    const UpdateStats& st = hs.update(lights);
+    flushed = st.flushed;
+    HashedStructure fresh(cfg);
+    fresh.build(lights, hs.bounds());
+    for (int i = 0; i < 1500; ++i) {
+      const glm::vec3 p = randomPointIn(rng, hs.bounds());
+      const auto lazy = hs.linkless().lightsAt(p), exact = fresh.linkless().lightsAt(p);
+      if (flushed) {
+        ASSERT_EQ(lazy, exact);
+      } else {
+        ASSERT_TRUE(std::includes(lazy.begin(), lazy.end(), exact.begin(), exact.end()));
+        for (const auto l : lazy) ASSERT_LT(l, lights.size()) << "a removed light is still listed";
+      }
+    }
+  }
+  EXPECT_TRUE(flushed) << "the stale fraction never called for a flush";
+}
+
+TEST(HashedDynamic, LeavingTheBoundsOrMovingMostLightsRebuilds) {
+  std::mt19937_64 rng(3);
+  auto lights = randomLights(rng, 50, kBox, 1.0, 2.0, false);
+  HashedConfig cfg;
+  cfg.node_size = "1.0";
+  HashedStructure hs(cfg);
+  EXPECT_TRUE(hs.update(lights).full_rebuild);  // the first update builds
+  lights[3].position_radius.x = 1000.0f;
+  const UpdateStats& st = hs.update(lights);
+  EXPECT_TRUE(st.full_rebuild);
+  EXPECT_EQ(hs.linkless().lightsAt({1000.0f, lights[3].position_radius.y, lights[3].position_radius.z}),
+            std::vector<std::uint32_t>{3});
+  for (auto& l : lights) l.position_radius.y += 0.1f;
+  EXPECT_TRUE(hs.update(lights).full_rebuild);
+  lights[0].color.y = 0.25f;
+  const UpdateStats& colour = hs.update(lights);
+  EXPECT_FALSE(colour.full_rebuild);
+  EXPECT_EQ(colour.sync.keys, 0u);
+}
+
+}  // namespace
+}  // namespace ml::hashed

@@ -1,0 +1,79 @@
+// Bad hashed-shading parameters are user errors naming the flag, found
+// before anything large is allocated.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <random>
+
+#include "hashed_support.hpp"
+#include "host/util/Error.hpp"
+#include "support/RunCommand.hpp"
+
+namespace ml::hashed {
+namespace {
+
+template <class F>
+std::string userErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "(no UserError)";
+}
+
+TEST(HashedParams, NodeSizeMustBeAPositiveNumber) {
+  for (const char* bad : {"0", "-1", "0r", "-0.5r", "abc", "r", "", "nan", "1e400", "2x"}) {
+    const std::string msg = userErrorOf([&] { parseNodeSize(bad); });
+    EXPECT_NE(msg.find("--node-size"), std::string::npos) << bad << ": " << msg;
+  }
+  EXPECT_DOUBLE_EQ(parseNodeSize("0.5r").value, 0.5);
+  EXPECT_TRUE(parseNodeSize("0.5r").relative);
+  EXPECT_FALSE(parseNodeSize("2").relative);
+  HashedConfig cfg;
+  cfg.node_size = "0";
+  EXPECT_NE(userErrorOf([&] { HashedStructure hs(cfg); }).find("--node-size"), std::string::npos);
+}
+
+TEST(HashedParams, HugeFootprintsAreRefusedBeforeAllocating) {
+  std::mt19937_64 rng(1);
+  const auto lights = test_support::randomLights(rng, 20000, 100.0, 1.0, 1.0, false);
+  HashedConfig cfg;
+  cfg.node_size = "0.02r";  // ~100^3 cells per light: ~20 billion (light, cell) pairs
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string msg = userErrorOf([&] {
+    HashedStructure hs(cfg);
+    hs.build(lights);
+  });
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_NE(msg.find("--node-size"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("GiB"), std::string::npos) << msg;
+  EXPECT_LT(s, 1.0) << "the check must not build anything";
+
+  // More cells per axis than the key packing allows.
+  const std::vector<gpu::PointLight> two = {makeLight({0, 0, 0}, 1.0f, glm::vec3(1)),
+                                            makeLight({1e5f, 0, 0}, 1.0f, glm::vec3(1))};
+  cfg.node_size = "0.5";
+  const std::string deep = userErrorOf([&] { computeBounds(two, cfg); });
+  EXPECT_NE(deep.find("--node-size"), std::string::npos) << deep;
+
+  // A configurable limit.
+  cfg.node_size = "0.5r";
+  cfg.memory_limit = 1 << 16;
+  EXPECT_NE(userErrorOf([&] { computeBounds(lights, cfg); }).find("limit"), std::string::npos);
+}
+
+TEST(HashedParams, GeometryMaskNeedsAScene) {
+  HashedConfig cfg;
+  cfg.geometry_mask = true;
+  EXPECT_NE(userErrorOf([&] { HashedStructure hs(cfg, nullptr); }).find("--geometry-mask"), std::string::npos);
+}
+
+TEST(HashedParams, RenderCommandReportsTheFlag) {
+  const auto r = test::runManylights("render --technique hashed-deferred --node-size 0 --size 32x18");
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("--node-size"), std::string::npos) << r.out << r.err;
+}
+
+}  // namespace
+}  // namespace ml::hashed

@@ -1,0 +1,81 @@
+#pragma once
+// Shared helpers of the hashed-shading tests: random light sets (including
+// huge lights and lights touching the bounds), random points, the per-cell
+// reference light sets and table checks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "host/hashed/HashedStructure.hpp"
+#include "host/scene/LightSet.hpp"
+
+namespace ml::hashed::test_support {
+
+inline double uni(std::mt19937_64& rng, double a, double b) {
+  return a + (b - a) * double(rng() >> 11) * 0x1.0p-53;
+}
+
+// n lights in [0, size]^3 with radii in [rmin, rmax]; some huge ones and some
+// whose spheres reach the box's faces when `extremes`.
+inline std::vector<gpu::PointLight> randomLights(std::mt19937_64& rng, std::size_t n, double size, double rmin,
+                                                 double rmax, bool extremes) {
+  std::vector<gpu::PointLight> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    glm::vec3 p(uni(rng, 0, size), uni(rng, 0, size), uni(rng, 0, size));
+    double r = uni(rng, rmin, rmax);
+    if (extremes && i % 17 == 3) r = size * uni(rng, 0.3, 0.9);  // covers much of the scene
+    if (extremes && i % 13 == 5) r = rmin * 0.05;                // much smaller than a cell
+    if (extremes && i % 11 == 7) p[int(rng() % 3)] = (rng() & 1) ? 0.0f : float(size);  // at the bounds
+    out.push_back(makeLight(p, float(r), glm::vec3(1.0f)));
+  }
+  return out;
+}
+
+// Lights the lookup must list at cell `c`: exactly those the builder's
+// overlap predicate accepts (the canonical octree is exact per cell).
+inline std::vector<std::uint32_t> lightsOverlappingCell(const std::vector<gpu::PointLight>& lights,
+                                                        const OctreeBounds& b, const glm::uvec3& c) {
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t i = 0; i < lights.size(); ++i) {
+    const auto& l = lights[i];
+    const glm::dvec3 lc = b.toCells({l.position_radius.x, l.position_radius.y, l.position_radius.z});
+    if (sphereOverlapsCells(lc, b.radiusCells(l.position_radius.w), glm::ivec3(c), glm::ivec3(c), b.eps_cells))
+      out.push_back(i);
+  }
+  return out;
+}
+
+inline glm::vec3 randomPointIn(std::mt19937_64& rng, const OctreeBounds& b) {
+  const double s = b.side();
+  return glm::vec3(b.origin + glm::dvec3(uni(rng, 0, s), uni(rng, 0, s), uni(rng, 0, s)));
+}
+
+inline bool cellOf(const OctreeBounds& b, const glm::vec3& p, glm::uvec3& cell) {
+  const glm::vec3 q = b.cellCoordF(p);
+  const float n = float(b.cellsPerAxis());
+  if (!(q.x >= 0 && q.y >= 0 && q.z >= 0 && q.x < n && q.y < n && q.z < n)) return false;
+  cell = glm::min(glm::uvec3(q), glm::uvec3(b.cellsPerAxis() - 1));
+  return true;
+}
+
+// Every table of the linkless octree is perfect and reads back its keys.
+inline void expectTablesPerfect(const LinklessOctree& lo) {
+  for (unsigned i = 0; i < lo.layerCount(); ++i) {
+    auto check = [&](const auto& h) {
+      std::size_t n = 0;
+      h.forEach([&](const glm::uvec3& k, const auto& p) {
+        ++n;
+        const auto got = h.lookup(k);
+        ASSERT_TRUE(got.has_value());
+        EXPECT_TRUE(*got == p);
+      });
+      EXPECT_EQ(n, h.size());
+    };
+    check(lo.desc(i));
+    check(lo.data(i));
+  }
+}
+
+}  // namespace ml::hashed::test_support
