@@ -141,7 +141,8 @@ int run(int argc, char** argv) {
   CLI::App app{"Hashed shading: build, memory, light evaluations and dynamic updates"};
   std::string json_path, light_counts = "1024,4096", node_sizes = "0.25r,0.5r,1r,2r", size = "640x360";
   std::string suite_dir = "/work/shared/data/thesis-suite/scenes/spaceship-indoor";
-  std::string compare = "tiled-deferred,clustered-deferred", device;
+  // "tiled-deferred@32/none": the thesis's tiled baseline (32x32 tiles, no depth bounds).
+  std::string compare = "tiled-deferred,tiled-deferred@32/none,clustered-deferred", device;
   int reps = 3, update_reps = 5;
   unsigned camera_frames = 4;
   bool no_render = false;
@@ -176,7 +177,7 @@ int run(int argc, char** argv) {
   }
 
   // --- 1. Build time, memory, table sizes vs node size and light count ---
-  std::printf("\n1. Build (default scene, generated lights; median of %d; times in ms)\n", reps);
+  std::printf("\n1. Build (default scene, generated lights; median of %d; times in ms; +g: geometry mask)\n", reps);
   printBuildHeader();
   json builds = json::array();
   for (const auto& [label, lights] : light_sets)
@@ -267,7 +268,7 @@ int run(int argc, char** argv) {
     auto rt = ClRuntime::create(DeviceChoice::resolve(device), &share);
     std::printf("\n4. Light evaluations per covered pixel, deferred, %ux%u, %u camera frames\n%s\n%s\n", width, height,
                 camera_frames, rt->describe().c_str(), gl->describe().c_str());
-    std::printf("%-8s %-20s %12s %12s %10s %10s %12s\n", "lights", "technique", "evals/px", "bound/px",
+    std::printf("%-8s %-24s %12s %12s %10s %10s %12s\n", "lights", "technique", "evals/px", "bound/px",
                 "x bound", "x tiled", "memory MiB");
     FrameRenderer r(*rt, base.scene, width, height);
     const auto& path = base.cameras.frames;
@@ -278,20 +279,30 @@ int run(int argc, char** argv) {
     for (const auto& [label, lights] : light_sets) {
       r.setLights(lights);
       std::vector<std::pair<std::string, TechniqueParams>> runs;
-      for (const auto& t : splitList(compare)) runs.emplace_back(t, TechniqueParams{});
-      for (const auto& node : splitList(node_sizes)) {
+      for (const auto& t : splitList(compare)) {
         TechniqueParams p;
-        p.node_size = node;
-        runs.emplace_back("hashed-deferred " + node, p);
+        if (const auto at = t.find('@'); at != std::string::npos) {
+          const auto slash = t.find('/', at);
+          p.tile_size = unsigned(std::stoul(t.substr(at + 1, slash - at - 1)));
+          if (slash != std::string::npos) p.tile_depth = t.substr(slash + 1);
+        }
+        runs.emplace_back(t, p);
       }
+      for (const auto& node : splitList(node_sizes))
+        for (const bool mask : {false, true}) {
+          TechniqueParams p;
+          p.node_size = node;
+          p.geometry_mask = mask;
+          runs.emplace_back("hashed-deferred " + node + (mask ? "+g" : ""), p);
+        }
       double tiled_px = 0;
       for (const auto& [name, params] : runs) {
-        const std::string tech = name.substr(0, name.find(' '));
+        const std::string tech = name.substr(0, std::min(name.find(' '), name.find('@')));
         std::unique_ptr<LightAssigner> a;
         try {
           a = makeAssigner(tech, *rt, params);
         } catch (const UserError& e) {
-          std::printf("%-8s %-20s skipped: %s\n", label.c_str(), name.c_str(), e.what());
+          std::printf("%-8s %-24s skipped: %s\n", label.c_str(), name.c_str(), e.what());
           continue;
         }
         attachSceneGeometry(*a, base.scene);
@@ -305,8 +316,8 @@ int run(int argc, char** argv) {
           mem = std::max(mem, fr.memory_bytes);
         }
         const double per_px = double(ev) / double(px), bound_px = double(lb) / double(px);
-        if (tech == "tiled-deferred") tiled_px = per_px;
-        std::printf("%-8s %-20s %12.2f %12.2f %10.3f %10s %12.3f\n", label.c_str(), name.c_str(), per_px, bound_px,
+        if (name == "tiled-deferred") tiled_px = per_px;
+        std::printf("%-8s %-24s %12.2f %12.2f %10.3f %10s %12.3f\n", label.c_str(), name.c_str(), per_px, bound_px,
                     per_px / bound_px, tiled_px > 0 ? std::to_string(per_px / tiled_px).substr(0, 6).c_str() : "-",
                     mib(double(mem)));
         evals.push_back({{"lights", lights.size()}, {"technique", name}, {"evaluations_per_pixel", per_px},

@@ -63,16 +63,38 @@ TEST(HashedParams, HugeFootprintsAreRefusedBeforeAllocating) {
   EXPECT_NE(userErrorOf([&] { computeBounds(lights, cfg); }).find("limit"), std::string::npos);
 }
 
-TEST(HashedParams, GeometryMaskNeedsAScene) {
+TEST(HashedParams, GeometryMaskNeedsASceneAndFitsTheLimit) {
   HashedConfig cfg;
   cfg.geometry_mask = true;
   EXPECT_NE(userErrorOf([&] { HashedStructure hs(cfg, nullptr); }).find("--geometry-mask"), std::string::npos);
+  // A big floor at a tiny node size: refused before voxelising.
+  Scene floor;
+  for (const glm::vec3 p : {glm::vec3(-50, 0, -50), glm::vec3(50, 0, -50), glm::vec3(50, 0, 50), glm::vec3(-50, 0, 50)})
+    floor.vertices.push_back({p, glm::vec3(0, 1, 0), glm::vec2(0)});
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  cfg.node_size = "0.01";
+  HashedStructure hs(cfg, &floor);
+  const gpu::PointLight small = makeLight({0, 1, 0}, 0.02f, glm::vec3(1));  // the light alone fits easily
+  const std::string msg = userErrorOf([&] { hs.build({small}, boundsForBox(glm::dvec3(-50), glm::dvec3(50), 0.01, 3)); });
+  EXPECT_NE(msg.find("geometry mask"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--node-size"), std::string::npos) << msg;
 }
 
 TEST(HashedParams, RenderCommandReportsTheFlag) {
   const auto r = test::runManylights("render --technique hashed-deferred --node-size 0 --size 32x18");
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_NE((r.out + r.err).find("--node-size"), std::string::npos) << r.out << r.err;
+}
+
+// --animate moves lights between timed frames: hashed updates incrementally.
+TEST(HashedParams, AnimateUpdatesIncrementally) {
+  const auto r = test::runManylights("render --technique hashed-deferred --size 64x36 --frames 3 --animate 0.05");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("hashed-update"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("updates"), std::string::npos) << r.out;
+  const auto bad = test::runManylights("render --technique hashed-deferred --size 64x36 --animate 2");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE((bad.out + bad.err).find("--animate"), std::string::npos) << bad.out << bad.err;
 }
 
 }  // namespace

@@ -22,20 +22,20 @@ bool sameVolume(const gpu::PointLight& a, const gpu::PointLight& b) {
 
 using Indexed = std::vector<std::pair<std::uint32_t, gpu::PointLight>>;
 
-std::vector<LightOctree> octreesOf(const Indexed& lights, const OctreeBounds& b) {
+std::vector<LightOctree> octreesOf(const Indexed& lights, const OctreeBounds& b, const GeometryMask* geometry) {
   std::vector<LightOctree> out(lights.size());
-  if (lights.size() < 256) {
+  if (lights.size() < 64) {
     // A few lights: waking the worker threads costs more than it saves
     // (and on a busy machine a late worker stalls the whole frame).
     LightGridScratch s;
-    for (std::size_t i = 0; i < lights.size(); ++i) out[i] = buildLightOctree(lights[i].second, lights[i].first, b, s);
+    for (std::size_t i = 0; i < lights.size(); ++i) out[i] = buildLightOctree(lights[i].second, lights[i].first, b, s, geometry);
     return out;
   }
   tbb::enumerable_thread_specific<LightGridScratch> scratch;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lights.size(), 8), [&](const auto& r) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lights.size(), 16), [&](const auto& r) {
     auto& s = scratch.local();
     for (std::size_t i = r.begin(); i != r.end(); ++i)
-      out[i] = buildLightOctree(lights[i].second, lights[i].first, b, s);
+      out[i] = buildLightOctree(lights[i].second, lights[i].first, b, s, geometry);
   });
   return out;
 }
@@ -104,7 +104,7 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   }
 
   auto t = Clock::now();
-  auto new_octrees = octreesOf(to_insert, s.bounds_);
+  auto new_octrees = octreesOf(to_insert, s.bounds_, s.lightGeometry());
   st.light_octrees_ms = msSince(t);
 
   t = Clock::now();

@@ -5,10 +5,12 @@
 //     radius differ), added (indices past the old count), removed (indices
 //     past the new count). Colour-only changes need nothing: shaders read
 //     colours from the light buffer.
-//  2. Rebuild the old and new light octrees of the changed lights (parallel),
-//     remove the old ones from the scene octree (Table 8.2), insert the new
-//     ones (Table 7.1 / 8.1), then merge what became mergeable: the tree is
-//     again canonical, i.e. exactly what a fresh build would produce.
+//  2. Build the new versions' light octrees (the old ones are cached). A
+//     moved light's old and new octrees are walked together over the scene
+//     octree, adding and removing its index only where they differ (Tables
+//     8.1/8.2); removed lights are removed, added ones inserted (Table 7.1).
+//     Then what became mergeable is merged: the tree is again canonical,
+//     i.e. exactly what a fresh build would produce.
 //  3. Re-derive the hash entries of the touched nodes and edit the tables in
 //     place; a table is rehashed only when an insert cannot be placed even by
 //     re-offsetting its group (see PerfectSpatialHash).

@@ -12,6 +12,43 @@ namespace ml::hashed {
 namespace {
 
 constexpr unsigned kDenseMaxDepth = 8;  // 8^8 bits = 2 MiB
+constexpr unsigned kDenseIndexMaxDepth = 7;  // 8^7 entries = 8 MiB
+
+// Bounds of triangle v[0..2] clipped to the box [lo, hi] (Sutherland-Hodgman);
+// false when nothing is left.
+bool clippedBounds(const glm::dvec3 v[3], const glm::dvec3& lo, const glm::dvec3& hi, GeometryMask::Box& out) {
+  glm::dvec3 poly[12], next[12];
+  int n = 3;
+  for (int i = 0; i < 3; ++i) poly[i] = v[i];
+  for (int plane = 0; plane < 6 && n > 0; ++plane) {
+    const int a = plane / 2;
+    const bool upper = plane & 1;
+    const double bound = upper ? hi[a] : lo[a];
+    auto inside = [&](const glm::dvec3& p) { return upper ? p[a] <= bound : p[a] >= bound; };
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+      const glm::dvec3& p = poly[i];
+      const glm::dvec3& q = poly[(i + 1) % n];
+      const bool pin = inside(p), qin = inside(q);
+      if (pin) next[m++] = p;
+      if (pin != qin && m < 12) {
+        const double t = (bound - p[a]) / (q[a] - p[a]);
+        glm::dvec3 x = p + t * (q - p);
+        x[a] = bound;
+        next[m++] = x;
+      }
+    }
+    n = m;
+    for (int i = 0; i < n; ++i) poly[i] = next[i];
+  }
+  if (n == 0) return false;
+  out.lo = out.hi = poly[0];
+  for (int i = 1; i < n; ++i) {
+    out.lo = glm::min(out.lo, poly[i]);
+    out.hi = glm::max(out.hi, poly[i]);
+  }
+  return true;
+}
 
 // Akenine-Moller's separating-axis test of a triangle against the box
 // centred at the origin with half size h (same on every axis).
@@ -40,6 +77,25 @@ bool triangleBoxOverlap(glm::dvec3 v0, glm::dvec3 v1, glm::dvec3 v2, double h) {
 
 }  // namespace
 
+double GeometryMask::estimateBytes(const Scene& scene, const OctreeBounds& b) {
+  // Per triangle: area / cell^2 cells on its face, plus its edge cells; each
+  // cell costs a key, a box and its share of the per-depth sets (~96 bytes).
+  double cells = 0.0;
+  const double s = double(b.cell_scale);
+  for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
+    const glm::dvec3 a(scene.vertices[scene.indices[t]].position), c1(scene.vertices[scene.indices[t + 1]].position),
+        c2(scene.vertices[scene.indices[t + 2]].position);
+    const glm::dvec3 lo = b.toCells(glm::min(a, glm::min(c1, c2))), hi = b.toCells(glm::max(a, glm::max(c1, c2)));
+    const double n = double(b.cellsPerAxis());
+    if (hi.x < 0 || hi.y < 0 || hi.z < 0 || lo.x > n || lo.y > n || lo.z > n) continue;  // outside the octree
+    const double area = 0.5 * glm::length(glm::cross(c1 - a, c2 - a)) * s * s;
+    const double edges = (glm::length(c1 - a) + glm::length(c2 - c1) + glm::length(a - c2)) * s;
+    cells += 2.0 * area + 2.0 * edges + 8.0;
+  }
+  const double side = double(b.cellsPerAxis());
+  return 96.0 * cells + (b.depth <= kDenseIndexMaxDepth ? 4.0 * side * side * side : 0.0);
+}
+
 GeometryMask GeometryMask::everywhere(const OctreeBounds& b) {
   GeometryMask m(b);
   m.everywhere_ = true;
@@ -47,11 +103,32 @@ GeometryMask GeometryMask::everywhere(const OctreeBounds& b) {
   return m;
 }
 
+bool GeometryMask::geometryBox(const glm::uvec3& c, Box& box) const {
+  if (everywhere_) {
+    box = {glm::dvec3(c), glm::dvec3(c) + 1.0};
+    return true;
+  }
+  const std::uint64_t side = std::uint64_t(1) << depth_;
+  if (c.x >= side || c.y >= side || c.z >= side) return false;
+  std::size_t at;
+  if (!dense_index_.empty()) {
+    const std::uint32_t i = dense_index_[c.x + side * (c.y + side * c.z)];
+    if (i == 0) return false;
+    at = i - 1;
+  } else {
+    const auto it = std::lower_bound(cell_keys_.begin(), cell_keys_.end(), packCoord(c));
+    if (it == cell_keys_.end() || *it != packCoord(c)) return false;
+    at = std::size_t(it - cell_keys_.begin());
+  }
+  box = cell_boxes_[at];
+  return true;
+}
+
 GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double margin_cells) : depth_(b.depth) {
   const auto t0 = std::chrono::steady_clock::now();
   const double n = double(b.cellsPerAxis());
   const double margin = std::max(margin_cells, 0.0) + b.eps_cells;
-  tbb::enumerable_thread_specific<std::vector<std::uint64_t>> local;
+  tbb::enumerable_thread_specific<std::vector<std::pair<std::uint64_t, Box>>> local;
   const std::size_t tris = scene.indices.size() / 3;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris, 256), [&](const auto& range) {
     auto& out = local.local();
@@ -67,15 +144,46 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
         for (int y = clo.y; y <= chi.y; ++y)
           for (int x = clo.x; x <= chi.x; ++x) {
             const glm::dvec3 centre(x + 0.5, y + 0.5, z + 0.5);
-            if (triangleBoxOverlap(v[0] - centre, v[1] - centre, v[2] - centre, 0.5 + margin))
-              out.push_back(packCoord(glm::uvec3(x, y, z)));
+            if (!triangleBoxOverlap(v[0] - centre, v[1] - centre, v[2] - centre, 0.5 + margin)) continue;
+            // The part of the triangle in the widened cell, widened again so
+            // points off the surface by rounding stay inside.
+            Box box;
+            if (!clippedBounds(v, centre - (0.5 + margin), centre + (0.5 + margin), box))
+              box = {glm::max(lo, centre - (0.5 + margin)), glm::min(hi, centre + (0.5 + margin))};
+            box.lo -= margin;
+            box.hi += margin;
+            out.push_back({packCoord(glm::uvec3(x, y, z)), box});
           }
     }
   });
-  std::vector<std::uint64_t> keys;
-  for (auto& l : local) keys.insert(keys.end(), l.begin(), l.end());
-  setCells(std::move(keys));
+  std::vector<std::pair<std::uint64_t, Box>> boxes;
+  for (auto& l : local) boxes.insert(boxes.end(), l.begin(), l.end());
+  setBoxes(std::move(boxes));
   build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, Box>> boxes) {
+  std::sort(boxes.begin(), boxes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  cell_keys_.clear();
+  cell_boxes_.clear();
+  for (const auto& [k, b] : boxes) {
+    if (!cell_keys_.empty() && cell_keys_.back() == k) {
+      cell_boxes_.back().lo = glm::min(cell_boxes_.back().lo, b.lo);
+      cell_boxes_.back().hi = glm::max(cell_boxes_.back().hi, b.hi);
+    } else {
+      cell_keys_.push_back(k);
+      cell_boxes_.push_back(b);
+    }
+  }
+  if (depth_ <= kDenseIndexMaxDepth) {
+    const std::uint64_t side = std::uint64_t(1) << depth_;
+    dense_index_.assign(side * side * side, 0);
+    for (std::size_t i = 0; i < cell_keys_.size(); ++i) {
+      const glm::uvec3 c = unpackCoord(cell_keys_[i]);
+      dense_index_[c.x + side * (c.y + side * c.z)] = std::uint32_t(i + 1);
+    }
+  }
+  setCells(cell_keys_);
 }
 
 void GeometryMask::setCells(std::vector<std::uint64_t> keys) {
@@ -124,7 +232,7 @@ std::size_t GeometryMask::memoryBytes() const {
   std::size_t s = 0;
   for (const auto& d : dense_) s += d.size() * 8;
   for (const auto& d : sparse_) s += d.size() * 8;
-  return s;
+  return s + cell_keys_.size() * (8 + sizeof(Box)) + dense_index_.size() * 4;
 }
 
 }  // namespace ml::hashed

@@ -8,6 +8,10 @@
 //    reconstructed from depth in deferred) always fall in a marked cell.
 //  - has(t, c) is exact for every depth t <= bounds.depth; cells outside the
 //    octree never contain geometry.
+//  - geometryBox(c) bounds the geometry inside cell c (each triangle clipped
+//    to the widened cell, the clipped polygons' bounds united), in cell
+//    units: a floor cell's box is a thin slab. Lights that miss it cannot
+//    light any surface point in the cell (see LightOctreeBuilder).
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -21,10 +25,18 @@ namespace ml::hashed {
 class GeometryMask {
  public:
   GeometryMask(const Scene& scene, const OctreeBounds& bounds, double margin_cells);
+  // Upper estimate of the bytes a mask of `scene` at `bounds` needs (cells
+  // touched by each triangle), for the memory check before building.
+  static double estimateBytes(const Scene& scene, const OctreeBounds& bounds);
   // Every cell marked (for tests: geometry everywhere).
   static GeometryMask everywhere(const OctreeBounds& bounds);
 
   bool has(unsigned depth, const glm::uvec3& c) const;
+  struct Box {
+    glm::dvec3 lo, hi;
+  };
+  // False when the cell holds no geometry.
+  bool geometryBox(const glm::uvec3& cell, Box& box) const;
   std::size_t cellCount() const { return cell_count_; }
   std::size_t memoryBytes() const;
   double buildMs() const { return build_ms_; }
@@ -32,11 +44,17 @@ class GeometryMask {
  private:
   explicit GeometryMask(const OctreeBounds& b) : depth_(b.depth) {}
   void setCells(std::vector<std::uint64_t> keys);
+  void setBoxes(std::vector<std::pair<std::uint64_t, Box>> boxes);
   unsigned depth_;
   // Per depth: a bitset when the depth's full grid is small, else the sorted
   // packed coordinates of the occupied nodes.
   std::vector<std::vector<std::uint64_t>> dense_;
   std::vector<std::vector<std::uint64_t>> sparse_;
+  // Deepest level: sorted keys with their geometry boxes, plus a dense
+  // index (key -> position + 1) when the level is small enough.
+  std::vector<std::uint64_t> cell_keys_;
+  std::vector<Box> cell_boxes_;
+  std::vector<std::uint32_t> dense_index_;
   std::size_t cell_count_ = 0;
   double build_ms_ = 0.0;
   bool everywhere_ = false;

@@ -33,6 +33,13 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights) {
 
 void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds) {
   checkMemory(lights, bounds, cfg_.memory_limit, cfg_.node_size);
+  if (cfg_.geometry_mask) {
+    const double need = GeometryMask::estimateBytes(*scene_, bounds);
+    if (need > double(cfg_.memory_limit))
+      throw UserError("--node-size " + cfg_.node_size + ": the geometry mask would need about " +
+                      std::to_string(int(need / double(1 << 20))) + " MiB (limit " +
+                      std::to_string(cfg_.memory_limit >> 20) + " MiB); use a larger node size");
+  }
   BuildStats st;
   const auto t0 = Clock::now();
   bounds_ = bounds;
@@ -49,7 +56,7 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
 
   auto t = Clock::now();
   octrees_.clear();
-  octrees_ = buildLightOctrees(lights, bounds_);
+  octrees_ = buildLightOctrees(lights, bounds_, lightGeometry());
   const auto& octrees = octrees_;
   st.light_octrees_ms = msSince(t);
   for (const auto& o : octrees) {

@@ -66,6 +66,8 @@ class HashedStructure {
   LinklessOctree& linkless() { return *linkless_; }  // uploaders take its dirty records
   const SceneOctree& tree() const { return *tree_; }
   const GeometryMask* mask() const { return mask_.get(); }
+  // The mask the light octrees test against (tight light sets), or null.
+  const GeometryMask* lightGeometry() const { return cfg_.geometry_tight_sets ? mask_.get() : nullptr; }
   const std::vector<gpu::PointLight>& lights() const { return lights_; }
   std::size_t lightOctreeBytes() const;
   const BuildStats& lastBuild() const { return build_stats_; }

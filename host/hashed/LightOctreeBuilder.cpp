@@ -68,10 +68,57 @@ struct TreeBuilder {
   }
 };
 
+// Bottom-up minimal octree of a grid whose cells are lit (kTestedIn), unlit
+// (kOutside) or without geometry (kAssumedIn: may be taken either way).
+struct GeometryTreeBuilder {
+  const Grid& grid;
+  unsigned depth;
+  std::vector<LightNode>& out;
+  enum class K { Empty, Full, Free, Mixed };
+
+  K node(unsigned t, const glm::ivec3& coord) {
+    const int shift = int(depth - t);
+    const glm::ivec3 rlo = coord << shift, rhi = ((coord + 1) << shift) - 1;
+    const glm::ivec3 glo = grid.lo, ghi = grid.lo + grid.n - 1;
+    const glm::ivec3 ilo = glm::max(rlo, glo), ihi = glm::min(rhi, ghi);
+    if (ilo.x > ihi.x || ilo.y > ihi.y || ilo.z > ihi.z) {
+      out.push_back(LightNode::Empty);
+      return K::Empty;
+    }
+    if (shift == 0) {
+      const std::uint8_t v = grid.cells[grid.index(coord)];
+      out.push_back(v == kTestedIn ? LightNode::Full : LightNode::Empty);
+      return v == kTestedIn ? K::Full : v == kOutside ? K::Empty : K::Free;
+    }
+    const std::size_t at = out.size();
+    out.push_back(LightNode::Branch);
+    bool any_full = false, any_empty = false, mixed = false;
+    for (int k = 0; k < 8; ++k) {
+      const K r = node(t + 1, coord * 2 + glm::ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1));
+      mixed = mixed || r == K::Mixed;
+      any_full = any_full || r == K::Full;
+      any_empty = any_empty || r == K::Empty;
+    }
+    if (mixed || (any_full && any_empty)) return K::Mixed;
+    out.resize(at);
+    out.push_back(any_full ? LightNode::Full : LightNode::Empty);
+    return any_full ? K::Full : any_empty ? K::Empty : K::Free;
+  }
+};
+
+bool sphereOverlapsBox(const glm::dvec3& c, double r, const GeometryMask::Box& b) {
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double v = c[a] < b.lo[a] ? b.lo[a] - c[a] : (c[a] > b.hi[a] ? c[a] - b.hi[a] : 0.0);
+    d2 += v * v;
+  }
+  return d2 < r * r;
+}
+
 }  // namespace
 
 LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, const OctreeBounds& b,
-                             LightGridScratch& scratch) {
+                             LightGridScratch& scratch, const GeometryMask* geometry) {
   LightOctree lo;
   lo.light = index;
   const CellBox box = lightCellBox(light, b);
@@ -86,6 +133,33 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
   const std::size_t count = std::size_t(g.n.x) * std::size_t(g.n.y) * std::size_t(g.n.z);
   scratch.grid.assign(count, kAssumedIn);
   g.cells = scratch.grid.data();
+  if (geometry) {
+    // Every cell: lit when the sphere reaches the cell's geometry.
+    std::size_t lit = 0;
+    for (int z = box.lo.z; z <= box.hi.z; ++z)
+      for (int y = box.lo.y; y <= box.hi.y; ++y)
+        for (int x = box.lo.x; x <= box.hi.x; ++x) {
+          const glm::ivec3 p(x, y, z);
+          GeometryMask::Box gb;
+          std::uint8_t& v = g.cells[g.index(p)];
+          if (!geometry->geometryBox(glm::uvec3(p), gb)) continue;  // stays kAssumedIn: no geometry
+          gb.lo -= eps;
+          gb.hi += eps;
+          v = sphereOverlapsBox(c, r, gb) ? kTestedIn : kOutside;
+          lit += v == kTestedIn;
+        }
+    lo.filled_cells = lit;
+    if (lit == 0) return lo;
+    unsigned k = 0;
+    while ((box.lo.x >> k) != (box.hi.x >> k) || (box.lo.y >> k) != (box.hi.y >> k) || (box.lo.z >> k) != (box.hi.z >> k))
+      ++k;
+    lo.root_depth = b.depth - k;
+    lo.root = glm::uvec3(box.lo >> int(k));
+    GeometryTreeBuilder tb{g, b.depth, lo.nodes};
+    tb.node(lo.root_depth, glm::ivec3(lo.root));
+    lo.nodes.shrink_to_fit();
+    return lo;
+  }
   auto& q = scratch.queue;
   q.clear();
   auto outside = [&](const glm::ivec3& p) { return !sphereOverlapsCells(c, r, p, p, eps); };
@@ -128,18 +202,19 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
   return lo;
 }
 
-std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b) {
+std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b,
+                                           const GeometryMask* geometry) {
   std::vector<LightOctree> out(lights.size());
   if (lights.size() < 256) {  // less work than waking the worker threads
     LightGridScratch s;
-    for (std::size_t i = 0; i < lights.size(); ++i) out[i] = buildLightOctree(lights[i], std::uint32_t(i), b, s);
+    for (std::size_t i = 0; i < lights.size(); ++i) out[i] = buildLightOctree(lights[i], std::uint32_t(i), b, s, geometry);
     return out;
   }
   tbb::enumerable_thread_specific<LightGridScratch> scratch;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lights.size(), 16), [&](const auto& range) {
     LightGridScratch& s = scratch.local();
     for (std::size_t i = range.begin(); i != range.end(); ++i)
-      out[i] = buildLightOctree(lights[i], std::uint32_t(i), b, s);
+      out[i] = buildLightOctree(lights[i], std::uint32_t(i), b, s, geometry);
   });
   return out;
 }

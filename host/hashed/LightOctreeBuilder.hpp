@@ -12,11 +12,18 @@
 //    else a branch. The result is the minimal octree of the light's cells.
 //  - Stored compactly in preorder (1 byte per node), children in bit order
 //    k = x + 2y + 4z, so the scene octree can walk it without pointers.
+//  - With a geometry mask (beyond the thesis), a cell is filled only when the
+//    sphere reaches the geometry inside it (GeometryMask::geometryBox); cells
+//    without geometry cannot be lit and may join full nodes. That predicate
+//    is not convex in the cell position, so the flood fill and the decision
+//    tree's closest/farthest shortcuts give way to testing every cell of the
+//    grid and merging bottom-up; the result is still a minimal octree.
 #include <glm/glm.hpp>
 
 #include <cstdint>
 #include <vector>
 
+#include "host/hashed/GeometryMask.hpp"
 #include "host/hashed/OctreeBounds.hpp"
 
 namespace ml::hashed {
@@ -39,10 +46,11 @@ struct LightGridScratch {
 };
 
 LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, const OctreeBounds& bounds,
-                             LightGridScratch& scratch);
+                             LightGridScratch& scratch, const GeometryMask* geometry = nullptr);
 
 // Every light's octree, built in parallel (TBB); out[i] belongs to lights[i].
-std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds);
+std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds,
+                                           const GeometryMask* geometry = nullptr);
 
 // Skips the preorder subtree starting at `cursor`.
 inline void skipLightSubtree(const LightNode*& cursor) {

@@ -66,7 +66,10 @@ struct HashedConfig {
   // Geometry mask: cells within this many cell sizes of a triangle count as
   // containing geometry, so deferred shading's reconstructed positions (off
   // the surface by depth-buffer rounding) still land in a kept cell.
-  double geometry_margin_cells = 0.05;
+  double geometry_margin_cells = 0.01;
+  // With the mask, list a light for a cell only when it reaches the geometry
+  // inside the cell, not just the cell (beyond the thesis: tighter lists).
+  bool geometry_tight_sets = true;
 };
 
 struct OctreeBounds {
