@@ -31,21 +31,23 @@ struct IndexedLightOctree {
         for (int k = 0; k < 8; ++k) j = fill(j);
       return end[i] = j;
     };
-    if (!o.nodes.empty()) fill(0);
+    for (const auto start : o.root_start) fill(start);
   }
   // Whether the light octree marks cell `c` (deepest level) as covered.
   bool covers(unsigned depth, const glm::uvec3& c) const {
-    if (lo.empty()) return false;
-    if ((c >> (depth - lo.root_depth)) != lo.root) return false;
-    std::uint32_t i = 0;
-    for (unsigned t = lo.root_depth;; ++t) {
-      if (lo.nodes[i] != LightNode::Branch) return lo.nodes[i] == LightNode::Full;
-      const glm::uvec3 child = c >> (depth - t - 1);
-      const unsigned bit = (child.x & 1u) | ((child.y & 1u) << 1) | ((child.z & 1u) << 2);
-      std::uint32_t j = i + 1;
-      for (unsigned k = 0; k < bit; ++k) j = end[j];
-      i = j;
+    for (std::size_t r = 0; r < lo.roots.size(); ++r) {
+      if ((c >> (depth - lo.root_depth)) != lo.roots[r]) continue;
+      std::uint32_t i = lo.root_start[r];
+      for (unsigned t = lo.root_depth;; ++t) {
+        if (lo.nodes[i] != LightNode::Branch) return lo.nodes[i] == LightNode::Full;
+        const glm::uvec3 child = c >> (depth - t - 1);
+        const unsigned bit = (child.x & 1u) | ((child.y & 1u) << 1) | ((child.z & 1u) << 2);
+        std::uint32_t j = i + 1;
+        for (unsigned k = 0; k < bit; ++k) j = end[j];
+        i = j;
+      }
     }
+    return false;
   }
 };
 
@@ -97,7 +99,11 @@ TEST(HashedOctree, LightOctreesMatchTheCellOverlapTest) {
       }
       EXPECT_FALSE(same) << "mergeable branch in light " << i;
     };
-    if (!lo_tree.empty()) walk(lo_tree.root_depth);
+    for (std::size_t r = 0; r < lo_tree.roots.size(); ++r) {
+      cur = lo_tree.nodes.data() + lo_tree.root_start[r];
+      walk(lo_tree.root_depth);
+    }
+    EXPECT_LE(lo_tree.roots.size(), 8u);
   }
 }
 

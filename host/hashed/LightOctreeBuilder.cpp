@@ -106,6 +106,31 @@ struct GeometryTreeBuilder {
   }
 };
 
+// Roots: the nodes at the deepest depth where the box spans at most 2 nodes
+// per axis; `emit` appends a root's subtree, kept unless it is one empty leaf.
+template <class F>
+void forEachRoot(const CellBox& box, unsigned depth, LightOctree& lo, F&& emit) {
+  unsigned k = 0;
+  while ((box.hi.x >> k) - (box.lo.x >> k) > 1 || (box.hi.y >> k) - (box.lo.y >> k) > 1 ||
+         (box.hi.z >> k) - (box.lo.z >> k) > 1)
+    ++k;
+  lo.root_depth = depth - k;
+  const glm::ivec3 rlo = box.lo >> int(k), rhi = box.hi >> int(k);
+  for (int z = rlo.z; z <= rhi.z; ++z)
+    for (int y = rlo.y; y <= rhi.y; ++y)
+      for (int x = rlo.x; x <= rhi.x; ++x) {
+        const std::size_t at = lo.nodes.size();
+        emit(glm::ivec3(x, y, z));
+        if (lo.nodes.size() == at + 1 && lo.nodes[at] == LightNode::Empty) {
+          lo.nodes.pop_back();
+          continue;
+        }
+        lo.roots.emplace_back(x, y, z);
+        lo.root_start.push_back(std::uint32_t(at));
+      }
+  lo.nodes.shrink_to_fit();
+}
+
 bool sphereOverlapsBox(const glm::dvec3& c, double r, const GeometryMask::Box& b) {
   double d2 = 0.0;
   for (int a = 0; a < 3; ++a) {
@@ -150,14 +175,8 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
         }
     lo.filled_cells = lit;
     if (lit == 0) return lo;
-    unsigned k = 0;
-    while ((box.lo.x >> k) != (box.hi.x >> k) || (box.lo.y >> k) != (box.hi.y >> k) || (box.lo.z >> k) != (box.hi.z >> k))
-      ++k;
-    lo.root_depth = b.depth - k;
-    lo.root = glm::uvec3(box.lo >> int(k));
     GeometryTreeBuilder tb{g, b.depth, lo.nodes};
-    tb.node(lo.root_depth, glm::ivec3(lo.root));
-    lo.nodes.shrink_to_fit();
+    forEachRoot(box, b.depth, lo, [&](const glm::ivec3& root) { tb.node(lo.root_depth, root); });
     return lo;
   }
   auto& q = scratch.queue;
@@ -190,15 +209,9 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
   lo.filled_cells = count - q.size();
   if (lo.filled_cells == 0) return lo;
 
-  unsigned k = 0;
-  while ((box.lo.x >> k) != (box.hi.x >> k) || (box.lo.y >> k) != (box.hi.y >> k) || (box.lo.z >> k) != (box.hi.z >> k))
-    ++k;
-  lo.root_depth = b.depth - k;
-  lo.root = glm::uvec3(box.lo >> int(k));
   lo.nodes.reserve(count / 2 + 16);
   TreeBuilder tb{g, c, b.depth, lo.nodes};
-  tb.node(lo.root_depth, glm::ivec3(lo.root));
-  lo.nodes.shrink_to_fit();
+  forEachRoot(box, b.depth, lo, [&](const glm::ivec3& root) { tb.node(lo.root_depth, root); });
   return lo;
 }
 

@@ -5,8 +5,12 @@
 //    box's 8 corners marks the cells that do not (a cell outside the sphere
 //    is reachable from its octant's corner through cells outside the sphere,
 //    so the fill finds them all).
-//  - Then the octree, top-down from the smallest node enclosing the grid,
-//    by the thesis's decision tree: a node is an empty leaf when the grid
+//  - Then the octree, top-down by the thesis's decision tree. One departure:
+//    the thesis roots it at the smallest node enclosing the grid, which for
+//    a grid straddling a coarse boundary is far larger than the light and
+//    fills the octree with empty siblings; here the roots are the (at most
+//    8) nodes at the deepest depth where the grid spans at most 2 nodes per
+//    axis, empty ones dropped. Per root the decision tree is the thesis's: a node is an empty leaf when the grid
 //    cell in it closest to the light is empty (spheres are convex), a full
 //    leaf when it lies inside the grid and the farthest cell is full too,
 //    else a branch. The result is the minimal octree of the light's cells.
@@ -33,10 +37,11 @@ enum class LightNode : std::uint8_t { Empty = 0, Full = 1, Branch = 2 };
 struct LightOctree {
   std::uint32_t light = 0;
   unsigned root_depth = 0;
-  glm::uvec3 root{0};                // coordinates at root_depth
-  std::vector<LightNode> nodes;      // preorder; empty vector: touches no cell
-  std::size_t filled_cells = 0;      // grid cells overlapping the sphere
-  bool empty() const { return nodes.empty() || nodes.front() == LightNode::Empty; }
+  std::vector<glm::uvec3> roots;          // coordinates at root_depth, 1..8 of them
+  std::vector<std::uint32_t> root_start;  // where each root's preorder subtree starts in `nodes`
+  std::vector<LightNode> nodes;           // preorder subtrees, one after the other
+  std::size_t filled_cells = 0;           // grid cells overlapping the sphere
+  bool empty() const { return roots.empty(); }
 };
 
 // Scratch space reused across lights by one thread (the grid).

@@ -91,22 +91,28 @@ bool SceneOctree::eraseFromSet(std::int32_t n, std::uint32_t l) {
 }
 
 void SceneOctree::insert(const LightOctree& lo) {
-  if (lo.empty()) return;
-  std::int32_t n = 0;
-  unsigned t = 0;
-  glm::uvec3 c(0);
-  // Descend to the light octree's root, splitting leaves on the way.
-  while (t < lo.root_depth) {
-    if (!care(t, c)) return;
-    nodes_[n].dirty = true;
-    if (isLeaf(n)) split(n, t, c);
-    const glm::uvec3 cc = lo.root >> (lo.root_depth - t - 1);
-    n = nodes_[n].child + std::int32_t(childBit(cc));
-    ++t;
-    c = cc;
+  for (std::size_t r = 0; r < lo.roots.size(); ++r) {
+    std::int32_t n = 0;
+    unsigned t = 0;
+    glm::uvec3 c(0);
+    bool stored = true;
+    // Descend to the root, splitting leaves on the way.
+    while (t < lo.root_depth) {
+      if (!care(t, c)) {
+        stored = false;
+        break;
+      }
+      nodes_[n].dirty = true;
+      if (isLeaf(n)) split(n, t, c);
+      const glm::uvec3 cc = lo.roots[r] >> (lo.root_depth - t - 1);
+      n = nodes_[n].child + std::int32_t(childBit(cc));
+      ++t;
+      c = cc;
+    }
+    if (!stored) continue;
+    const LightNode* cur = lo.nodes.data() + lo.root_start[r];
+    insertRec(n, t, c, cur, lo.light);
   }
-  const LightNode* cur = lo.nodes.data();
-  insertRec(n, t, c, cur, lo.light);
 }
 
 void SceneOctree::insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur,
@@ -143,27 +149,34 @@ void SceneOctree::addFull(std::int32_t n, unsigned t, const glm::uvec3& c, std::
 }
 
 void SceneOctree::remove(const LightOctree& lo) {
-  if (lo.empty()) return;
-  std::int32_t n = 0;
-  unsigned t = 0;
-  glm::uvec3 c(0);
-  while (t < lo.root_depth) {
-    if (!care(t, c)) return;
-    if (isLeaf(n)) {
-      if (eraseFromSet(n, lo.light)) {
-        nodes_[n].dirty = true;
-        record(t, c);
+  for (std::size_t r = 0; r < lo.roots.size(); ++r) {
+    std::int32_t n = 0;
+    unsigned t = 0;
+    glm::uvec3 c(0);
+    bool below = true;
+    while (t < lo.root_depth) {
+      if (!care(t, c)) {
+        below = false;
+        break;
       }
-      return;
+      if (isLeaf(n)) {
+        if (eraseFromSet(n, lo.light)) {
+          nodes_[n].dirty = true;
+          record(t, c);
+        }
+        below = false;
+        break;
+      }
+      nodes_[n].dirty = true;
+      const glm::uvec3 cc = lo.roots[r] >> (lo.root_depth - t - 1);
+      n = nodes_[n].child + std::int32_t(childBit(cc));
+      ++t;
+      c = cc;
     }
-    nodes_[n].dirty = true;
-    const glm::uvec3 cc = lo.root >> (lo.root_depth - t - 1);
-    n = nodes_[n].child + std::int32_t(childBit(cc));
-    ++t;
-    c = cc;
+    if (!below) continue;
+    const LightNode* cur = lo.nodes.data() + lo.root_start[r];
+    removeRec(n, t, c, cur, lo.light);
   }
-  const LightNode* cur = lo.nodes.data();
-  removeRec(n, t, c, cur, lo.light);
 }
 
 // Table 8.2: remove the index where the light's octree is non-empty; a leaf
@@ -212,8 +225,13 @@ SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, unsigned t1,
     case Cover::Full: return Cover::Full;
     case Cover::Branch: return Cover(*s.cur++);
     case Cover::Above:
-      if ((s.o.root >> (s.o.root_depth - t1)) != cc) return Cover::Empty;
-      return t1 == s.o.root_depth ? Cover(*s.cur++) : Cover::Above;
+      for (std::size_t r = 0; r < s.o.roots.size(); ++r) {
+        if ((s.o.roots[r] >> (s.o.root_depth - t1)) != cc) continue;
+        if (t1 < s.o.root_depth) return Cover::Above;
+        s.cur = s.o.nodes.data() + s.o.root_start[r];
+        return Cover(*s.cur++);
+      }
+      return Cover::Empty;
   }
   return Cover::Empty;
 }
@@ -226,7 +244,7 @@ void SceneOctree::replace(const LightOctree& a, const LightOctree& b) {
   Stream sa{a, a.nodes.data()}, sb{b, b.nodes.data()};
   auto top = [](const LightOctree& o, Stream& s) {
     if (o.empty()) return Cover::Empty;
-    return o.root_depth == 0 ? Cover(*s.cur++) : Cover::Above;
+    return o.root_depth == 0 ? Cover(*s.cur++) : Cover::Above;  // depth 0: the one root is the scene root
   };
   const Cover ka = top(a, sa), kb = top(b, sb);
   replaceRec(0, 0, glm::uvec3(0), ka, sa, kb, sb, b.light);
