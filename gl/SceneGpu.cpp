@@ -13,10 +13,14 @@ SceneGpu::SceneGpu(const Scene& scene) : batches_(scene.batches), materials_(sce
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glCreateBuffers(1, &ibo_);
-  glNamedBufferStorage(vbo_, static_cast<GLsizeiptr>(scene.vertices.size() * sizeof(Vertex) + 1),
-                       scene.vertices.empty() ? nullptr : scene.vertices.data(), 0);
-  glNamedBufferStorage(ibo_, static_cast<GLsizeiptr>(scene.indices.size() * sizeof(std::uint32_t) + 1),
-                       scene.indices.empty() ? nullptr : scene.indices.data(), 0);
+  // Zero-sized storage is an error in GL, so empty scenes get one byte with no data
+  // (passing the data pointer with a padded size would read past the vector).
+  const auto upload = [](GLuint buffer, const void* data, std::size_t bytes) {
+    glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 1)),
+                         bytes ? data : nullptr, 0);
+  };
+  upload(vbo_, scene.vertices.data(), scene.vertices.size() * sizeof(Vertex));
+  upload(ibo_, scene.indices.data(), scene.indices.size() * sizeof(std::uint32_t));
   index_count_ = scene.indices.size();
   glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, sizeof(Vertex));
   glVertexArrayElementBuffer(vao_, ibo_);

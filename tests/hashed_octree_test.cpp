@@ -31,11 +31,11 @@ struct IndexedLightOctree {
         for (int k = 0; k < 8; ++k) j = fill(j);
       return end[i] = j;
     };
-    for (const auto start : o.root_start) fill(start);
+    for (unsigned r = 0; r < o.root_count; ++r) fill(o.root_start[r]);
   }
   // Whether the light octree marks cell `c` (deepest level) as covered.
   bool covers(unsigned depth, const glm::uvec3& c) const {
-    for (std::size_t r = 0; r < lo.roots.size(); ++r) {
+    for (unsigned r = 0; r < lo.root_count; ++r) {
       if ((c >> (depth - lo.root_depth)) != lo.roots[r]) continue;
       std::uint32_t i = lo.root_start[r];
       for (unsigned t = lo.root_depth;; ++t) {
@@ -99,11 +99,11 @@ TEST(HashedOctree, LightOctreesMatchTheCellOverlapTest) {
       }
       EXPECT_FALSE(same) << "mergeable branch in light " << i;
     };
-    for (std::size_t r = 0; r < lo_tree.roots.size(); ++r) {
+    for (unsigned r = 0; r < lo_tree.root_count; ++r) {
       cur = lo_tree.nodes.data() + lo_tree.root_start[r];
       walk(lo_tree.root_depth);
     }
-    EXPECT_LE(lo_tree.roots.size(), 8u);
+    EXPECT_LE(lo_tree.root_count, 8u);
   }
 }
 

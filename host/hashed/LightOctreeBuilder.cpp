@@ -24,47 +24,56 @@ struct Grid {
 
 struct TreeBuilder {
   const Grid& grid;
-  glm::dvec3 centre;
+  glm::ivec3 centre_cell;  // floor(centre), clamped to the grid
+  glm::dvec3 twice_centre;
   unsigned depth;
   std::vector<LightNode>& out;
-
-  // Axis distance from the centre to cell k.
-  double axisDist(int a, int k) const {
-    const double c = centre[a];
-    return std::max({0.0, double(k) - c, c - double(k + 1)});
-  }
+  glm::ivec3 ghi;  // last grid cell
 
   void node(unsigned t, const glm::ivec3& coord) {
-    const int shift = int(depth - t);
-    const glm::ivec3 rlo = coord << shift, rhi = ((coord + 1) << shift) - 1;
-    const glm::ivec3 glo = grid.lo, ghi = grid.lo + grid.n - 1;
-    const glm::ivec3 ilo = glm::max(rlo, glo), ihi = glm::min(rhi, ghi);
+    const int size = 1 << (depth - t);
+    nodeAt(coord * size, size);
+  }
+
+  // The node with min corner `rlo` and edge `size` (cells).
+  void nodeAt(const glm::ivec3& rlo, int size) {
+    const glm::ivec3 rhi = rlo + (size - 1);
+    const glm::ivec3 ilo = glm::max(rlo, grid.lo), ihi = glm::min(rhi, ghi);
     if (ilo.x > ihi.x || ilo.y > ihi.y || ilo.z > ihi.z) {
       out.push_back(LightNode::Empty);
       return;
     }
-    glm::ivec3 closest;
-    for (int a = 0; a < 3; ++a)
-      closest[a] = int(std::clamp(std::floor(centre[a]), double(ilo[a]), double(ihi[a])));
+    // Closest cell: per axis the one nearest the centre (distances add up per axis).
+    const glm::ivec3 closest = glm::clamp(centre_cell, ilo, ihi);
     if (!grid.filled(closest)) {
       out.push_back(LightNode::Empty);
       return;
     }
-    if (shift == 0) {
+    if (size == 1) {
       out.push_back(LightNode::Full);
       return;
     }
-    const bool inside = ilo == rlo && ihi == rhi;
-    if (inside) {
+    if (ilo == rlo && ihi == rhi) {
+      // Farthest: per axis the end whose far face is farther from the centre.
       glm::ivec3 farthest;
-      for (int a = 0; a < 3; ++a) farthest[a] = axisDist(a, ilo[a]) >= axisDist(a, ihi[a]) ? ilo[a] : ihi[a];
+      for (int a = 0; a < 3; ++a) farthest[a] = twice_centre[a] >= double(ilo[a] + ihi[a] + 1) ? ilo[a] : ihi[a];
       if (grid.filled(farthest)) {
         out.push_back(LightNode::Full);
         return;
       }
     }
     out.push_back(LightNode::Branch);
-    for (int k = 0; k < 8; ++k) node(t + 1, coord * 2 + glm::ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1));
+    const int half = size / 2;
+    for (int k = 0; k < 8; ++k) {
+      const glm::ivec3 clo = rlo + glm::ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1) * half;
+      // Children outside the grid are empty: no call needed.
+      if (clo.x > ghi.x || clo.y > ghi.y || clo.z > ghi.z || clo.x + half <= grid.lo.x ||
+          clo.y + half <= grid.lo.y || clo.z + half <= grid.lo.z) {
+        out.push_back(LightNode::Empty);
+        continue;
+      }
+      nodeAt(clo, half);
+    }
   }
 };
 
@@ -125,8 +134,8 @@ void forEachRoot(const CellBox& box, unsigned depth, LightOctree& lo, F&& emit) 
           lo.nodes.pop_back();
           continue;
         }
-        lo.roots.emplace_back(x, y, z);
-        lo.root_start.push_back(std::uint32_t(at));
+        lo.roots[lo.root_count] = glm::uvec3(x, y, z);
+        lo.root_start[lo.root_count++] = std::uint32_t(at);
       }
   lo.nodes.shrink_to_fit();
 }
@@ -210,7 +219,8 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
   if (lo.filled_cells == 0) return lo;
 
   lo.nodes.reserve(count / 2 + 16);
-  TreeBuilder tb{g, c, b.depth, lo.nodes};
+  const glm::ivec3 centre_cell(glm::clamp(glm::floor(c), glm::dvec3(box.lo), glm::dvec3(box.hi)));
+  TreeBuilder tb{g, centre_cell, 2.0 * c, b.depth, lo.nodes, box.hi};
   forEachRoot(box, b.depth, lo, [&](const glm::ivec3& root) { tb.node(lo.root_depth, root); });
   return lo;
 }

@@ -24,6 +24,7 @@
 //    grid and merging bottom-up; the result is still a minimal octree.
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -37,11 +38,12 @@ enum class LightNode : std::uint8_t { Empty = 0, Full = 1, Branch = 2 };
 struct LightOctree {
   std::uint32_t light = 0;
   unsigned root_depth = 0;
-  std::vector<glm::uvec3> roots;          // coordinates at root_depth, 1..8 of them
-  std::vector<std::uint32_t> root_start;  // where each root's preorder subtree starts in `nodes`
-  std::vector<LightNode> nodes;           // preorder subtrees, one after the other
-  std::size_t filled_cells = 0;           // grid cells overlapping the sphere
-  bool empty() const { return roots.empty(); }
+  unsigned root_count = 0;                    // 0: the light touches no cell
+  std::array<glm::uvec3, 8> roots{};           // coordinates at root_depth
+  std::array<std::uint32_t, 8> root_start{};   // where each root's preorder subtree starts in `nodes`
+  std::vector<LightNode> nodes;                // preorder subtrees, one after the other
+  std::size_t filled_cells = 0;                // grid cells overlapping the sphere
+  bool empty() const { return root_count == 0; }
 };
 
 // Scratch space reused across lights by one thread (the grid).

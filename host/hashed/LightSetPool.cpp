@@ -1,7 +1,6 @@
 #include "host/hashed/LightSetPool.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 
 namespace ml::hashed {
@@ -15,62 +14,101 @@ std::uint64_t LightSetPool::hashOf(const std::uint32_t* p, std::size_t n) {
   return h ^ (h >> 31);
 }
 
+void LightSetPool::rebuildIndex(std::size_t capacity) {
+  std::size_t cap = 16;
+  while (cap < capacity) cap *= 2;
+  index_.assign(cap, 0);
+  for (std::uint32_t r = 0; r < recs_.size(); ++r)
+    if (recs_[r].count > 0) indexInsert(r);
+}
+
+void LightSetPool::indexInsert(std::uint32_t rec) {
+  const std::size_t mask = index_.size() - 1;
+  for (std::size_t i = recs_[rec].hash & mask;; i = (i + 1) & mask)
+    if (index_[i] == 0) {
+      index_[i] = rec + 1;
+      return;
+    }
+}
+
 std::uint32_t LightSetPool::acquire(const std::vector<std::uint32_t>& set) {
+  if (set.empty()) throw std::logic_error("light set pool: empty sets have no range");
   const std::uint64_t h = hashOf(set.data(), set.size());
-  const auto [b, e] = by_hash_.equal_range(h);
-  for (auto it = b; it != e; ++it) {
-    Rec& r = recs_.at(it->second);
-    if (r.count == set.size() &&
-        std::memcmp(&list_[it->second], set.data(), set.size() * sizeof(std::uint32_t)) == 0) {
-      if (r.refs == 0) garbage_ -= r.count;
-      ++r.refs;
-      return it->second;
+  if (!index_.empty()) {
+    const std::size_t mask = index_.size() - 1;
+    for (std::size_t i = h & mask; index_[i] != 0; i = (i + 1) & mask) {
+      Rec& r = recs_[index_[i] - 1];
+      if (r.hash == h && r.count == set.size() && std::equal(set.begin(), set.end(), list_.begin() + r.offset)) {
+        if (r.refs == 0) garbage_ -= r.count;  // revived
+        ++r.refs;
+        return r.offset;
+      }
     }
   }
   const std::uint32_t off = std::uint32_t(list_.size());
   if (list_.size() + set.size() > 0xFFFFFFF0ull) throw std::length_error("light index list exceeds 2^32 entries");
   list_.insert(list_.end(), set.begin(), set.end());
-  recs_[off] = Rec{std::uint32_t(set.size()), 1, h};
-  by_hash_.emplace(h, off);
+  std::uint32_t id;
+  if (!free_recs_.empty()) {
+    id = free_recs_.back();
+    free_recs_.pop_back();
+  } else {
+    id = std::uint32_t(recs_.size());
+    recs_.emplace_back();
+  }
+  recs_[id] = Rec{off, std::uint32_t(set.size()), 1, h};
+  rec_at_.resize(list_.size());
+  rec_at_[off] = id;
+  if (2 * (recs_.size() - free_recs_.size()) >= index_.size()) rebuildIndex(4 * recs_.size());
+  else indexInsert(id);
   return off;
 }
 
 void LightSetPool::release(std::uint32_t offset) {
-  Rec& r = recs_.at(offset);
-  if (r.refs == 0) throw std::logic_error("light set released more often than acquired");
+  Rec& r = recs_.at(rec_at_.at(offset));
+  if (r.refs == 0 || r.offset != offset) throw std::logic_error("light set released more often than acquired");
   if (--r.refs == 0) garbage_ += r.count;
 }
 
 void LightSetPool::clear() {
   list_.clear();
   recs_.clear();
-  by_hash_.clear();
+  free_recs_.clear();
+  rec_at_.clear();
+  index_.clear();
   garbage_ = 0;
   all_dirty_ = true;
 }
 
-std::unordered_map<std::uint32_t, std::uint32_t> LightSetPool::compact() {
-  std::vector<std::pair<std::uint32_t, Rec>> live;
-  live.reserve(recs_.size());
-  for (const auto& [off, r] : recs_)
-    if (r.refs > 0) live.emplace_back(off, r);
-  std::sort(live.begin(), live.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::unordered_map<std::uint32_t, std::uint32_t> remap;
-  remap.reserve(live.size());
+std::vector<std::uint32_t> LightSetPool::compact() {
+  std::vector<std::uint32_t> remap(list_.size(), 0);
   std::vector<std::uint32_t> list;
   list.reserve(list_.size() - garbage_);
-  recs_.clear();
-  by_hash_.clear();
-  for (const auto& [off, r] : live) {
-    const std::uint32_t n = std::uint32_t(list.size());
-    list.insert(list.end(), list_.begin() + off, list_.begin() + off + r.count);
-    remap.emplace(off, n);
-    recs_[n] = r;
-    by_hash_.emplace(r.hash, n);
+  std::vector<std::uint32_t> rec_at;
+  // Walk the ranges in list order (rec_at_ is valid at range starts only, so
+  // step from start to start).
+  for (std::size_t off = 0; off < list_.size();) {
+    const std::uint32_t id = rec_at_[off];
+    Rec& r = recs_[id];
+    const std::size_t next = off + r.count;
+    if (r.refs > 0) {
+      const std::uint32_t n = std::uint32_t(list.size());
+      list.insert(list.end(), list_.begin() + std::ptrdiff_t(off), list_.begin() + std::ptrdiff_t(next));
+      remap[off] = n;
+      r.offset = n;
+      rec_at.resize(list.size());
+      rec_at[n] = id;
+    } else {
+      r = Rec{};
+      free_recs_.push_back(id);
+    }
+    off = next;
   }
   list_.swap(list);
+  rec_at_.swap(rec_at);
   garbage_ = 0;
   all_dirty_ = true;
+  rebuildIndex(4 * (recs_.size() - free_recs_.size()));
   return remap;
 }
 

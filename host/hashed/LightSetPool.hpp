@@ -4,12 +4,12 @@
 // because of a third sibling) share one range. Contract:
 //  - acquire(set) returns the offset of an identical range, appending the set
 //    if it is new, and takes a reference; release(offset) drops one. A range
-//    without references is garbage until compact() repacks the live ranges
-//    and returns the old -> new offsets, which callers apply to every data
-//    entry. Sets are sorted light indices, so equal sets are equal ranges.
+//    without references is garbage (it is revived if its set comes back)
+//    until compact() repacks the live ranges and returns, per old offset, the
+//    new one, which callers apply to every data entry. Sets are sorted light
+//    indices, so equal sets are equal ranges.
 //  - Appends and compactions are recorded for partial uploads.
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 namespace ml::hashed {
@@ -23,10 +23,12 @@ class LightSetPool {
   const std::vector<std::uint32_t>& list() const { return list_; }
   std::size_t liveEntries() const { return list_.size() - garbage_; }
   std::size_t garbageEntries() const { return garbage_; }
-  std::size_t rangeCount() const { return recs_.size(); }
-  // Compaction pays when at least half the list is garbage.
+  std::size_t rangeCount() const { return recs_.size() - free_recs_.size(); }
+  // Compaction pays when garbage outweighs the live ranges (the list may
+  // reach twice its live size between compactions).
   bool wantsCompaction() const { return garbage_ > 4096 && garbage_ > list_.size() / 2; }
-  std::unordered_map<std::uint32_t, std::uint32_t> compact();
+  // new_offset[old_offset] for every live range start (other entries unspecified).
+  std::vector<std::uint32_t> compact();
 
   // First list index written since the last take (list size if none);
   // `all` after clear() or compact().
@@ -38,14 +40,20 @@ class LightSetPool {
 
  private:
   struct Rec {
-    std::uint32_t count = 0;
-    std::uint32_t refs = 0;
+    std::uint32_t offset = 0, count = 0, refs = 0;
     std::uint64_t hash = 0;
   };
   static std::uint64_t hashOf(const std::uint32_t* p, std::size_t n);
+  void indexInsert(std::uint32_t rec);
+  void rebuildIndex(std::size_t capacity);
+
   std::vector<std::uint32_t> list_;
-  std::unordered_map<std::uint32_t, Rec> recs_;               // by offset
-  std::unordered_multimap<std::uint64_t, std::uint32_t> by_hash_;  // -> offset
+  std::vector<Rec> recs_;
+  std::vector<std::uint32_t> free_recs_;
+  std::vector<std::uint32_t> rec_at_;  // list index -> rec id (valid at range starts)
+  // Open addressing by hash: rec id + 1, 0 = empty. Recs leave it only when
+  // compaction drops them, so it needs no tombstones.
+  std::vector<std::uint32_t> index_;
   std::size_t garbage_ = 0;
   bool all_dirty_ = true;
   std::size_t dirty_from_ = 0;

@@ -91,7 +91,7 @@ bool SceneOctree::eraseFromSet(std::int32_t n, std::uint32_t l) {
 }
 
 void SceneOctree::insert(const LightOctree& lo) {
-  for (std::size_t r = 0; r < lo.roots.size(); ++r) {
+  for (unsigned r = 0; r < lo.root_count; ++r) {
     std::int32_t n = 0;
     unsigned t = 0;
     glm::uvec3 c(0);
@@ -149,7 +149,7 @@ void SceneOctree::addFull(std::int32_t n, unsigned t, const glm::uvec3& c, std::
 }
 
 void SceneOctree::remove(const LightOctree& lo) {
-  for (std::size_t r = 0; r < lo.roots.size(); ++r) {
+  for (unsigned r = 0; r < lo.root_count; ++r) {
     std::int32_t n = 0;
     unsigned t = 0;
     glm::uvec3 c(0);
@@ -219,13 +219,37 @@ void SceneOctree::removeAll(std::int32_t n, unsigned t, const glm::uvec3& c, std
   for (unsigned k = 0; k < 8; ++k) removeAll(ch + std::int32_t(k), t + 1, childCoord(c, k), l);
 }
 
-SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc) {
+// end[i] = one past node i's preorder subtree, for every root's subtree.
+void subtreeEnds(const LightOctree& o, std::vector<std::uint32_t>& end) {
+  end.resize(o.nodes.size());
+  std::uint32_t stack[kMaxDepth + 1], pending[kMaxDepth + 1];  // open branches, children left to close
+  for (unsigned r = 0; r < o.root_count; ++r) {
+    // Iterative preorder: a branch's end is known once its 8th child ends.
+    std::uint32_t i = o.root_start[r];
+    int top = 0;
+    for (;;) {
+      if (o.nodes[i] == LightNode::Branch) {
+        stack[top] = i;
+        pending[top++] = 8;
+        ++i;
+        continue;
+      }
+      end[i] = i + 1;
+      std::uint32_t e = i + 1;
+      while (top > 0 && --pending[top - 1] == 0) end[stack[--top]] = e;
+      if (top == 0) break;
+      i = e;
+    }
+  }
+}
+
+inline SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc) {
   switch (parent) {
     case Cover::Empty: return Cover::Empty;
     case Cover::Full: return Cover::Full;
     case Cover::Branch: return Cover(*s.cur++);
     case Cover::Above:
-      for (std::size_t r = 0; r < s.o.roots.size(); ++r) {
+      for (unsigned r = 0; r < s.o.root_count; ++r) {
         if ((s.o.roots[r] >> (s.o.root_depth - t1)) != cc) continue;
         if (t1 < s.o.root_depth) return Cover::Above;
         s.cur = s.o.nodes.data() + s.o.root_start[r];
@@ -236,12 +260,10 @@ SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, unsigned t1,
   return Cover::Empty;
 }
 
-void SceneOctree::consume(Cover k, Stream& s) {
-  if (k == Cover::Branch) skipChildren(s.cur);
-}
-
 void SceneOctree::replace(const LightOctree& a, const LightOctree& b) {
-  Stream sa{a, a.nodes.data()}, sb{b, b.nodes.data()};
+  subtreeEnds(a, end_a_);
+  subtreeEnds(b, end_b_);
+  Stream sa{a, a.nodes.data(), end_a_.data()}, sb{b, b.nodes.data(), end_b_.data()};
   auto top = [](const LightOctree& o, Stream& s) {
     if (o.empty()) return Cover::Empty;
     return o.root_depth == 0 ? Cover(*s.cur++) : Cover::Above;  // depth 0: the one root is the scene root
@@ -263,6 +285,15 @@ void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Co
     else removeAll(n, t, c, l);
     return;
   }
+  if (ka == Cover::Branch && kb == Cover::Branch) {
+    // Identical subtrees (the light's edge did not move here): nothing to do.
+    const LightNode *ea = sa.branchEnd(), *eb = sb.branchEnd();
+    if (ea - sa.cur == eb - sb.cur && std::equal(sa.cur, ea, sb.cur)) {
+      sa.cur = ea;
+      sb.cur = eb;
+      return;
+    }
+  }
   nodes_[n].dirty = true;
   if (isLeaf(n)) {
     if (!pb) {  // the new version covers this leaf entirely or not at all
@@ -277,6 +308,7 @@ void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Co
   for (unsigned k = 0; k < 8; ++k) {
     const glm::uvec3 cc = childCoord(c, k);
     const Cover ca = childCover(ka, sa, t + 1, cc), cb = childCover(kb, sb, t + 1, cc);
+    if (ca == cb && (ca == Cover::Empty || ca == Cover::Full)) continue;  // unchanged here
     replaceRec(ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
   }
 }

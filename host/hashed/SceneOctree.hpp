@@ -106,9 +106,15 @@ class SceneOctree {
   struct Stream {
     const LightOctree& o;
     const LightNode* cur;
+    const std::uint32_t* end;  // per node: one past its preorder subtree
+    // After reading a branch (cur is at its first child): past its children.
+    const LightNode* branchEnd() const { return o.nodes.data() + end[(cur - o.nodes.data()) - 1]; }
   };
-  static Cover childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc);
-  static void consume(Cover k, Stream& s);
+  static inline Cover childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc);
+  static void consume(Cover k, Stream& s) {
+    if (k == Cover::Branch) s.cur = s.branchEnd();
+  }
+  std::vector<std::uint32_t> end_a_, end_b_;  // replace()'s scratch
   void replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb, Stream& sb,
                   std::uint32_t l);
 
