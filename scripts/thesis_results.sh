@@ -77,7 +77,8 @@ export MANYLIGHTS_PYTHON="$python"
 tech_args=()
 [[ -n "$techniques" ]] && tech_args=(--techniques "$techniques")
 mkdir -p "$out"
-cmdline="scripts/thesis_results.sh $suite --step $step --light-step $light_step --res-step $res_step --sizes $sizes"
+cmdline="scripts/thesis_results.sh $suite --step $step --light-step $light_step"
+((skip_res)) || cmdline+=" --res-step $res_step --sizes $sizes"
 [[ -n "$techniques" ]] && cmdline+=" --techniques $techniques"
 ((skip_res)) && cmdline+=" --skip-resolution"
 echo "== techniques: ${techniques:-every registered one}"
