@@ -46,7 +46,7 @@ struct HashedConfig {
   // dynamic update that forces a rehash rebuilds that table with
   // `rehash_slack` so that later inserts find empty slots more often.
   double table_slack = 1.0;
-  double rehash_slack = 1.25;
+  double rehash_slack = 2.0;
   // Offset entries per key of a rehashed table (the thesis's 1/6 for static
   // tables): smaller offset groups re-offset into free slots far more often,
   // so later inserts rarely need another rehash. Costs 4 bytes per 2 keys.
