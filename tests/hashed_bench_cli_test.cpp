@@ -33,5 +33,18 @@ TEST(HashedParams, BenchAnimateReportsUpdates) {
   EXPECT_NE((bad.out + bad.err).find("--animate"), std::string::npos) << bad.out << bad.err;
 }
 
+// geometry_mask=on reaches the hashed assigner with the scene's triangles
+// (without them it refuses to build), and the masked lists stay conservative.
+TEST(HashedParams, BenchGeometryMask) {
+  const std::string json = test::tempDir() + "/bench-mask.json";
+  const auto r = test::runManylights("bench --techniques hashed-deferred --lights 64 --size 48x32 --frames 0 "
+                                     "--param geometry_mask=on --no-timing --progress none --json " + json);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["records"].size(), 1u);
+  EXPECT_GE(j["records"][0]["light_evaluations"].get<double>(), j["records"][0]["lower_bound"].get<double>());
+}
+
 }  // namespace
 }  // namespace ml

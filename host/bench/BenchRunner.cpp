@@ -7,6 +7,7 @@
 
 #include "gl/FrameRenderer.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/hashed/HashedAssigner.hpp"
 #include "host/scene/LightAnimator.hpp"
 #include "host/util/ImageIO.hpp"
 
@@ -48,6 +49,7 @@ std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const 
         };
         const std::string run = v.label + " " + ls.label + " " + size_label;
         auto assigner = makeAssigner(v.technique, cl, v.params);
+        attachSceneGeometry(*assigner, scene.scene);  // hashed geometry_mask=on needs the triangles
         FrameOptions timed_opts;
         timed_opts.pipeline = v.pipeline;
         FrameOptions count_opts = timed_opts;
