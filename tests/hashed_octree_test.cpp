@@ -120,7 +120,7 @@ TEST(HashedOctree, LookupsListExactlyTheLightsReachingTheCell) {
   for (const Case& cs : {Case{"0.5r", 3, 400}, Case{"0.25r", 0, 150}, Case{"2r", 1, 400}, Case{"1.3", 20, 250},
                          Case{"0.9r", 4, 1}}) {
     SCOPED_TRACE(std::string(cs.node_size) + " start depth " + std::to_string(cs.start_depth));
-    // Radii relative to the largest: "0.5r" of a huge light would be coarse,
+    // Relative sizes scale the median radius: "0.5r" with huge lights would be coarse,
     // so the huge ones only appear with absolute sizes.
     const bool absolute = cs.node_size[std::string(cs.node_size).size() - 1] != 'r';
     const auto lights = randomLights(rng, cs.lights, 60.0, 0.5, 4.0, absolute);

@@ -35,6 +35,19 @@ TEST(HashedParams, NodeSizeMustBeAPositiveNumber) {
   EXPECT_NE(userErrorOf([&] { HashedStructure hs(cfg); }).find("--node-size"), std::string::npos);
 }
 
+// Relative node sizes scale the median radius (the typical light), not the
+// largest or the mean; absolute sizes are taken as given.
+TEST(HashedParams, RelativeNodeSizeUsesTheMedianRadius) {
+  std::vector<gpu::PointLight> lights;
+  for (const float r : {9.0f, 2.0f, 2.0f, 30.0f, 2.0f})
+    lights.push_back(makeLight({float(lights.size()) * 10.0f, 0, 0}, r, glm::vec3(1)));
+  for (const auto& [spec, want] : {std::pair<std::string, double>{"0.5r", 1.0}, {"2r", 4.0}, {"3", 3.0}}) {
+    HashedConfig cfg;
+    cfg.node_size = spec;
+    EXPECT_DOUBLE_EQ(computeBounds(lights, cfg).cell_size, want) << spec;
+  }
+}
+
 TEST(HashedParams, HugeFootprintsAreRefusedBeforeAllocating) {
   std::mt19937_64 rng(1);
   const auto lights = test_support::randomLights(rng, 20000, 100.0, 1.0, 1.0, false);

@@ -14,6 +14,7 @@
 #include "host/app/RenderCommand.hpp"
 #include "host/bench/BenchRunner.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/scene/LightAnimator.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml {
@@ -174,6 +175,12 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   cmd->add_option("--node-size", a.node_size, "shorthand for --param node_size=LIST");
   cmd->add_option("--repeat", a.repeat, "timed renders per frame (per-pass median)")->capture_default_str();
   cmd->add_option("--warmup", a.warmup, "untimed renders before each run")->capture_default_str();
+  cmd->add_option("--animate", a.animate,
+                  "move this fraction of the lights (0..1) before every render of a frame; per-pass times then "
+                  "include the structure update (hashed-update)")
+      ->capture_default_str();
+  cmd->add_option("--animate-speed", a.animate_speed, "--animate step per axis, times the light radius")
+      ->capture_default_str();
   cmd->add_flag("--no-counts", a.no_counts, "skip the counting render (times only)");
   cmd->add_flag("--no-timing", a.no_timing, "skip the timed renders (counts only)");
   cmd->add_option("--json", a.json, "write per-frame records and per-run summaries as JSON");
@@ -218,6 +225,7 @@ int runBench(const BenchArgs& a) {
   const auto variants = expandVariants(tech_names, sweep, TechniqueParams{}, "--param");
   const FrameRange range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
   const Progress::Mode progress_mode = Progress::parseMode(a.progress, "--progress");
+  (void)LightAnimator({}, a.animate, 23, a.animate_speed);  // validates --animate, --animate-speed
   if (a.no_counts && a.no_timing) throw UserError("--no-counts and --no-timing together leave nothing to measure");
   if (!a.plot.empty() && findPlotPython().empty())
     throw UserError("--plot: no python3 with matplotlib found; install python3-matplotlib (or set MANYLIGHTS_PYTHON)");
@@ -242,6 +250,8 @@ int runBench(const BenchArgs& a) {
   plan.repeat = std::max(a.repeat, 1u);
   plan.warmup = a.warmup;
   plan.image_dir = a.images;
+  plan.animate = a.animate;
+  plan.animate_speed = a.animate_speed;
 
   auto gl = createHeadlessContext();
   const GlShareHandles share = gl->shareHandles();
@@ -296,6 +306,8 @@ int runBench(const BenchArgs& a) {
   meta["timing"] = plan.timing;
   meta["repeat"] = plan.repeat;
   meta["warmup"] = plan.warmup;
+  meta["animate"] = plan.animate;
+  meta["animate_speed"] = plan.animate_speed;
 
   std::string json_path = a.json;
   if (json_path.empty() && !a.plot.empty()) json_path = (fs::path(a.plot) / "bench.json").string();

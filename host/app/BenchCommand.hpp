@@ -28,6 +28,8 @@ struct BenchArgs {
   std::string progress = "auto";
   unsigned repeat = 1;
   unsigned warmup = 1;
+  double animate = 0.0;        // fraction of lights moved before every render of a frame
+  double animate_speed = 0.25;
   bool no_counts = false;
   bool no_timing = false;
   float fovy = 0, near_plane = 0, far_plane = 0;  // 0: keep the path's

@@ -13,6 +13,7 @@
 #include "gl/GlContext.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/hashed/HashedAssigner.hpp"
+#include "host/scene/LightAnimator.hpp"
 #include "host/clustered/ClusteredAssigner.hpp"
 #include "host/util/Error.hpp"
 #include "host/util/Heatmap.hpp"
@@ -49,32 +50,11 @@ std::string g_cluster_view;
 }  // namespace
 
 namespace {
-// --animate F: before every timed frame a fraction F of the lights (chosen at
-// random, seed 23) takes a random step of a quarter of its radius, staying
-// within half a radius of where it started, so the scene's light bounds
-// barely change. Kept here so the option touches only this file.
+// --animate F: before every timed frame a fraction F of the lights (distinct,
+// chosen at random, seed 23) takes a random step (LightAnimator). Kept here so
+// the option touches only this file.
 double g_animate = 0.0;
-
-struct LightAnimator {
-  std::vector<gpu::PointLight> start, now;
-  std::mt19937_64 rng{23};
-  double uni(double a, double b) { return a + (b - a) * double(rng() >> 11) * 0x1.0p-53; }
-  const std::vector<gpu::PointLight>& step(double fraction) {
-    const std::size_t moves = std::size_t(std::llround(fraction * double(now.size())));
-    for (std::size_t k = 0; k < moves; ++k) {
-      const std::size_t i = rng() % now.size();
-      auto& p = now[i].position_radius;
-      const auto& s = start[i].position_radius;
-      auto move = [&](float& v, float origin) {
-        v = std::clamp(v + float(uni(-0.25, 0.25)) * p.w, origin - 0.5f * p.w, origin + 0.5f * p.w);
-      };
-      move(p.x, s.x);
-      move(p.y, s.y);
-      move(p.z, s.z);
-    }
-    return now;
-  }
-};
+double g_animate_speed = 0.25;
 }  // namespace
 
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
@@ -103,7 +83,11 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
       ->capture_default_str();
   cmd->add_option("--start-depth", a.params.start_depth, "hashed: octree start depth")->capture_default_str();
   cmd->add_flag("--geometry-mask", a.params.geometry_mask, "hashed: keep only nodes that contain geometry");
-  cmd->add_option("--animate", g_animate, "move this fraction of the lights (0..1) before every timed frame");
+  cmd->add_option("--animate", g_animate,
+                  "move this fraction of the lights (0..1) before every timed frame (hashed: incremental update)");
+  cmd->add_option("--animate-speed", g_animate_speed,
+                  "--animate step per axis, times the light radius (lights stay within twice that of their start)")
+      ->capture_default_str();
   return cmd;
 }
 
@@ -112,7 +96,8 @@ int runRender(const RenderArgs& a) {
   parseSize(a.size, "--size", width, height);
   const TechniqueInfo& tech = findTechnique(a.technique);
   if (a.frames == 0) throw UserError("--frames: must be at least 1");
-  if (!(g_animate >= 0.0 && g_animate <= 1.0)) throw UserError("--animate: expected a fraction in [0, 1]");
+  // Validates --animate and --animate-speed before any GL/CL work.
+  (void)LightAnimator({}, g_animate, 23, g_animate_speed);
   const DeviceChoice device = DeviceChoice::resolve(a.device);
 
   SceneInputs inputs = loadSceneInputs(a.inputs);
@@ -137,12 +122,12 @@ int runRender(const RenderArgs& a) {
 
   for (unsigned i = 0; i < a.warmup; ++i) renderer.render(camera, *assigner, opts);
   std::vector<FrameResult> timed;
-  LightAnimator animator{inputs.lights, inputs.lights};
+  LightAnimator animator(inputs.lights, g_animate, 23, g_animate_speed);
   if (g_animate > 0.0)
-    std::printf("animate: %zu lights move before each timed frame\n",
-                std::size_t(std::llround(g_animate * double(inputs.lights.size()))));
+    std::printf("animate: %zu of %zu lights move before each timed frame (step %g r)\n", animator.movesPerStep(),
+                inputs.lights.size(), g_animate_speed);
   for (unsigned i = 0; i < a.frames; ++i) {
-    if (g_animate > 0.0 && !inputs.lights.empty()) renderer.setLights(animator.step(g_animate));
+    if (animator.movesPerStep() > 0) renderer.setLights(animator.step());
     timed.push_back(renderer.render(camera, *assigner, opts));
   }
   if (!a.out.empty())
@@ -216,6 +201,8 @@ int runRender(const RenderArgs& a) {
     j["lights"] = inputs.lights.size();
     j["frame"] = a.frame;
     j["timed_frames"] = a.frames;
+    j["animate"] = g_animate;
+    j["animated_lights_per_frame"] = animator.movesPerStep();
     nlohmann::ordered_json passes = nlohmann::ordered_json::object();
     for (const auto& [name, ms] : med.entries()) passes[name] = ms;
     j["passes"] = passes;

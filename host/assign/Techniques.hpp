@@ -21,7 +21,7 @@ struct TechniqueParams {
   std::string unique_method = "pagetable";  // pagetable | sort | tile-sort
   std::string cluster_assign = "bvh";       // bvh | brute
   // Hashed shading (--node-size, --start-depth, --geometry-mask)
-  std::string node_size = "0.5r";  // absolute world units ("2.0") or relative to the largest light radius ("0.5r")
+  std::string node_size = "0.5r";  // absolute world units ("2.0") or relative to the median light radius ("0.5r")
   unsigned start_depth = 3;
   bool geometry_mask = false;
 };

@@ -7,6 +7,8 @@
 
 #include "gl/FrameRenderer.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/hashed/HashedAssigner.hpp"
+#include "host/scene/LightAnimator.hpp"
 #include "host/util/ImageIO.hpp"
 
 namespace ml {
@@ -39,10 +41,15 @@ std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const 
     FrameRenderer renderer(cl, scene.scene, width, height);
     const std::string size_label = std::to_string(width) + "x" + std::to_string(height);
     for (const LightSetInput& ls : plan.light_sets) {
-      renderer.setLights(ls.lights);
       for (const TechniqueVariant& v : plan.variants) {
+        renderer.setLights(ls.lights);
+        LightAnimator animator(ls.lights, plan.animate, 23, plan.animate_speed);
+        auto animate = [&] {
+          if (animator.movesPerStep() > 0) renderer.setLights(animator.step());
+        };
         const std::string run = v.label + " " + ls.label + " " + size_label;
         auto assigner = makeAssigner(v.technique, cl, v.params);
+        attachSceneGeometry(*assigner, scene.scene);  // hashed geometry_mask=on needs the triangles
         FrameOptions timed_opts;
         timed_opts.pipeline = v.pipeline;
         FrameOptions count_opts = timed_opts;
@@ -67,6 +74,7 @@ std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const 
           r.height = height;
           r.frame = frame;
           if (plan.counts) {
+            animate();
             const FrameResult c = renderer.render(cam, *assigner, count_opts);
             r.counted = true;
             r.light_evaluations = c.light_evaluations;
@@ -77,8 +85,10 @@ std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const 
           }
           if (plan.timing) {
             std::vector<FrameResult> reps;
-            for (unsigned i = 0; i < std::max(plan.repeat, 1u); ++i)
+            for (unsigned i = 0; i < std::max(plan.repeat, 1u); ++i) {
+              animate();
               reps.push_back(renderer.render(cam, *assigner, timed_opts));
+            }
             for (const auto& [name, ms] : reps.front().passes.entries()) {
               (void)ms;
               std::vector<double> vals;

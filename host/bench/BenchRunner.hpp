@@ -30,6 +30,11 @@ struct BenchPlan {
   bool timing = true;
   unsigned repeat = 1;
   unsigned warmup = 1;
+  // > 0: before every counted and timed render, this fraction of the lights
+  // moves (LightAnimator, seed 23, `animate_speed` radii per step). Every run
+  // starts from the light set as loaded, so runs see the same motion.
+  double animate = 0.0;
+  double animate_speed = 0.25;
   // Non-empty: the shaded image of every record goes here as
   // <run>_f<frame>.png (spaces and brackets replaced), for eyeballing.
   std::string image_dir;

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +14,25 @@ namespace {
 
 constexpr unsigned kDenseMaxDepth = 8;  // 8^8 bits = 2 MiB
 constexpr unsigned kDenseIndexMaxDepth = 7;  // 8^7 entries = 8 MiB
+// A builder thread merges its (cell, box) pairs by cell whenever its buffer
+// reaches twice what it held after the last merge, and at least this many.
+constexpr std::size_t kMergeBatch = std::size_t(1) << 16;
+
+// Sorts by cell and unites the boxes of equal cells, in place.
+template <class Box>
+void mergeByCell(std::vector<std::pair<std::uint64_t, Box>>& v) {
+  std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::size_t w = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (w > 0 && v[w - 1].first == v[i].first) {
+      v[w - 1].second.lo = glm::min(v[w - 1].second.lo, v[i].second.lo);
+      v[w - 1].second.hi = glm::max(v[w - 1].second.hi, v[i].second.hi);
+    } else {
+      v[w++] = v[i];
+    }
+  }
+  v.resize(w);
+}
 
 // Bounds of triangle v[0..2] clipped to the box [lo, hi] (Sutherland-Hodgman);
 // false when nothing is left.
@@ -79,8 +99,12 @@ bool triangleBoxOverlap(glm::dvec3 v0, glm::dvec3 v1, glm::dvec3 v2, double h) {
 
 double GeometryMask::estimateBytes(const Scene& scene, const OctreeBounds& b) {
   // Per triangle: area / cell^2 cells on its face, plus its edge cells; each
-  // cell costs a key, a box and its share of the per-depth sets (~96 bytes).
-  double cells = 0.0;
+  // (triangle, cell) pair is a key and a box (~56 bytes) until the builder's
+  // per-thread buffers merge equal cells, which they do whenever a buffer
+  // doubles past 64Ki pairs (see the constructor). So a buffer holds at most
+  // about twice the distinct cells plus 64Ki, and distinct cells are bounded
+  // by the pairs and by the grid; the final mask costs ~96 bytes per cell.
+  double pairs = 0.0;
   const double s = double(b.cell_scale);
   for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
     const glm::dvec3 a(scene.vertices[scene.indices[t]].position), c1(scene.vertices[scene.indices[t + 1]].position),
@@ -90,10 +114,13 @@ double GeometryMask::estimateBytes(const Scene& scene, const OctreeBounds& b) {
     if (hi.x < 0 || hi.y < 0 || hi.z < 0 || lo.x > n || lo.y > n || lo.z > n) continue;  // outside the octree
     const double area = 0.5 * glm::length(glm::cross(c1 - a, c2 - a)) * s * s;
     const double edges = (glm::length(c1 - a) + glm::length(c2 - c1) + glm::length(a - c2)) * s;
-    cells += 2.0 * area + 2.0 * edges + 8.0;
+    pairs += 2.0 * area + 2.0 * edges + 8.0;
   }
   const double side = double(b.cellsPerAxis());
-  return 96.0 * cells + (b.depth <= kDenseIndexMaxDepth ? 4.0 * side * side * side : 0.0);
+  const double cells = std::min(pairs, side * side * side);
+  const double threads = double(std::max(1, tbb::this_task_arena::max_concurrency()));
+  const double buffers = std::min(pairs, threads * (2.0 * cells + double(kMergeBatch)));
+  return 56.0 * 2.0 * buffers + 96.0 * cells + (b.depth <= kDenseIndexMaxDepth ? 4.0 * side * side * side : 0.0);
 }
 
 GeometryMask GeometryMask::everywhere(const OctreeBounds& b) {
@@ -128,10 +155,15 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
   const auto t0 = std::chrono::steady_clock::now();
   const double n = double(b.cellsPerAxis());
   const double margin = std::max(margin_cells, 0.0) + b.eps_cells;
-  tbb::enumerable_thread_specific<std::vector<std::pair<std::uint64_t, Box>>> local;
+  struct Local {
+    std::vector<std::pair<std::uint64_t, Box>> pairs;
+    std::size_t merge_at = kMergeBatch;
+  };
+  tbb::enumerable_thread_specific<Local> local;
   const std::size_t tris = scene.indices.size() / 3;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris, 256), [&](const auto& range) {
-    auto& out = local.local();
+    Local& loc = local.local();
+    auto& out = loc.pairs;
     for (std::size_t t = range.begin(); t != range.end(); ++t) {
       glm::dvec3 v[3];
       for (int k = 0; k < 3; ++k) v[k] = b.toCells(glm::dvec3(scene.vertices[scene.indices[3 * t + k]].position));
@@ -154,10 +186,19 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
             box.hi += margin;
             out.push_back({packCoord(glm::uvec3(x, y, z)), box});
           }
+      // Many small triangles share cells: merging keeps the buffer near the
+      // distinct cells' size instead of the (triangle, cell) pairs'.
+      if (out.size() >= loc.merge_at) {
+        mergeByCell(out);
+        loc.merge_at = std::max(kMergeBatch, 2 * out.size());
+      }
     }
   });
   std::vector<std::pair<std::uint64_t, Box>> boxes;
-  for (auto& l : local) boxes.insert(boxes.end(), l.begin(), l.end());
+  for (auto& l : local) {
+    boxes.insert(boxes.end(), l.pairs.begin(), l.pairs.end());
+    std::vector<std::pair<std::uint64_t, Box>>().swap(l.pairs);
+  }
   setBoxes(std::move(boxes));
   build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }

@@ -28,7 +28,7 @@ NodeSizeSpec parseNodeSize(const std::string& text) {
   double v = 0.0;
   const auto [p, ec] = std::from_chars(num.data(), num.data() + num.size(), v);
   if (num.empty() || ec != std::errc() || p != num.data() + num.size() || !std::isfinite(v))
-    throw UserError("--node-size: expected a size like '2.0' or '0.5r' (times the largest light radius), got '" +
+    throw UserError("--node-size: expected a size like '2.0' or '0.5r' (times the median light radius), got '" +
                     text + "'");
   if (!(v > 0.0)) throw UserError("--node-size: must be > 0, got '" + text + "'");
   s.value = v;
@@ -69,7 +69,8 @@ OctreeBounds computeBounds(const std::vector<gpu::PointLight>& lights, const Has
   const NodeSizeSpec spec = parseNodeSize(config.node_size);
   if (lights.empty()) return boundsForBox(glm::dvec3(0.0), glm::dvec3(1.0), 1.0, 0);
   glm::dvec3 lo(1e300), hi(-1e300);
-  double max_r = 0.0;
+  std::vector<double> radii;
+  radii.reserve(lights.size());
   for (const auto& l : lights) {
     const double r = l.position_radius.w;
     const glm::dvec3 p = pos(l);
@@ -77,9 +78,14 @@ OctreeBounds computeBounds(const std::vector<gpu::PointLight>& lights, const Has
       throw UserError("--lights: hashed shading needs finite positions and radii > 0");
     lo = glm::min(lo, p - r);
     hi = glm::max(hi, p + r);
-    max_r = std::max(max_r, r);
+    radii.push_back(r);
   }
-  const double node = spec.relative ? spec.value * max_r : spec.value;
+  // Relative sizes scale the median radius: the typical light's. (With the
+  // largest radius, a few big lights would coarsen every light's nodes; with
+  // uniform radii, as in the thesis, all three choices agree.)
+  const auto mid = radii.begin() + std::ptrdiff_t(radii.size() / 2);
+  std::nth_element(radii.begin(), mid, radii.end());
+  const double node = spec.relative ? spec.value * *mid : spec.value;
   const glm::dvec3 pad((hi - lo) * std::max(0.0, config.bounds_padding));
   OctreeBounds b = boundsForBox(lo - pad, hi + pad, node, config.start_depth);
   checkMemory(lights, b, config.memory_limit, config.node_size);

@@ -29,9 +29,9 @@ constexpr unsigned kMaxDepth = 15;
 
 struct NodeSizeSpec {
   double value = 0.5;
-  bool relative = true;  // value times the largest light radius
+  bool relative = true;  // value times the median light radius
 };
-// "0.5r" (relative to the largest light radius) or "2.0" (world units).
+// "0.5r" (relative to the median light radius) or "2.0" (world units).
 // Throws UserError naming --node-size for anything else or for value <= 0.
 NodeSizeSpec parseNodeSize(const std::string& text);
 
@@ -46,7 +46,7 @@ struct HashedConfig {
   // dynamic update that forces a rehash rebuilds that table with
   // `rehash_slack` so that later inserts find empty slots more often.
   double table_slack = 1.0;
-  double rehash_slack = 1.25;
+  double rehash_slack = 2.0;
   // Offset entries per key of a rehashed table (the thesis's 1/6 for static
   // tables): smaller offset groups re-offset into free slots far more often,
   // so later inserts rarely need another rehash. Costs 4 bytes per 2 keys.
@@ -93,7 +93,7 @@ struct OctreeBounds {
   }
 };
 
-// Resolves the node size (relative sizes use the largest radius in `lights`)
+// Resolves the node size (relative sizes use the median radius in `lights`)
 // and the cube around the lights' spheres (centred, widened by a small
 // rounding offset, the thesis's c, plus `padding` of the extent), then checks
 // the estimated memory against `memory_limit`. Empty light sets get a unit
