@@ -5,6 +5,7 @@
  *                         (implicit bounds), or
  *   cluster_pixel_boxes   depth + pixel -> cluster map -> view-space AABB of
  *                         each cluster's pixels (explicit bounds)
+ *   light_bounds_*        bounding cube of the light centres (the Morton frame)
  *   light_morton          30-bit Morton code of each light's quantized position
  *   (radix sort of the codes, light indices as payload)      [BVH only]
  *   pack_leaves           32 lights per leaf as structure of arrays, and the
@@ -26,6 +27,8 @@
 /* Stack of pending nodes: at most BVH_BRANCH per level plus the top level. */
 #define BVH_STACK 256
 #define DEPTH_EPS 1e-4f
+/* Per BVH node in a sibling block: box lo.xyz, hi.xyz, bounding sphere xyzr. */
+#define NODE_FLOATS 10u
 
 inline float4 mat_mul(const float* m, float4 v) {
   return (float4)(m[0] * v.x + m[4] * v.y + m[8] * v.z + m[12] * v.w,
@@ -166,7 +169,7 @@ inline uint leaf_mask(__global const float* soa, uint leaf, float4 lo, float4 hi
  * like the cluster boxes). */
 __kernel void pack_leaves(__global const float4* spheres, __global const uint* ids, uint use_ids, uint n,
                           __global float* soa, __global uint* leaf_ids, __global float4* node_lo,
-                          __global float4* node_hi, uint write_boxes) {
+                          __global float4* node_hi, __global float4* node_sph, uint write_boxes) {
   const uint leaf = get_global_id(0);
   const uint first = leaf * BVH_BRANCH;
   if (first >= n) return;
@@ -197,6 +200,22 @@ __kernel void pack_leaves(__global const float4* spheres, __global const uint* i
   if (write_boxes) {
     node_lo[leaf] = lo;
     node_hi[leaf] = hi;
+    /* Bounding sphere: centre of the centres' box, radius over the lights. */
+    float4 clo = (float4)(INFINITY), chi = (float4)(-INFINITY);
+    const uint last = min(first + BVH_BRANCH, n);
+    for (uint k = first; k < last; ++k) {
+      const float4 s = spheres[use_ids ? ids[k] : k];
+      const float4 p = (float4)(s.x, s.y, -s.z, 0.0f);
+      clo = fmin(clo, p);
+      chi = fmax(chi, p);
+    }
+    const float4 c = (clo + chi) * 0.5f;
+    float rad = 0.0f;
+    for (uint k = first; k < last; ++k) {
+      const float4 s = spheres[use_ids ? ids[k] : k];
+      rad = fmax(rad, length((float4)(s.x, s.y, -s.z, 0.0f) - c) + s.w);
+    }
+    node_sph[leaf] = (float4)(c.xyz, rad * 1.001f + 1e-6f);
   }
 }
 
@@ -211,32 +230,75 @@ inline uint spread10(uint v) {
   return v;
 }
 
-/* Quantized in the view-space cube [lo, lo + extent]; positions outside
- * clamp, which only costs tree quality, never correctness. */
-__kernel void light_morton(__global const float4* spheres, uint n, float4 lo, float inv_extent,
+/* The Morton frame: the bounding cube of the light centres, reduced in
+ * chunks of MORTON_CHUNK lights (one work-item each, private state), then by
+ * one work-item into frame = (lo.xyz, 1 / extent). */
+#define MORTON_CHUNK 1024u
+__kernel void light_bounds_partial(__global const float4* spheres, uint n, __global float4* part_lo,
+                                   __global float4* part_hi) {
+  const uint g = get_global_id(0);
+  const uint first = g * MORTON_CHUNK;
+  if (first >= n) return;
+  const uint last = min(first + MORTON_CHUNK, n);
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  for (uint i = first; i < last; ++i) {
+    const float4 s = spheres[i];
+    lo = fmin(lo, s);
+    hi = fmax(hi, s);
+  }
+  part_lo[g] = lo;
+  part_hi[g] = hi;
+}
+
+__kernel void light_bounds_final(__global const float4* part_lo, __global const float4* part_hi, uint parts,
+                                 __global float4* frame) {
+  if (get_global_id(0) != 0u) return;
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  for (uint i = 0; i < parts; ++i) {
+    lo = fmin(lo, part_lo[i]);
+    hi = fmax(hi, part_hi[i]);
+  }
+  const float extent = fmax(fmax(hi.x - lo.x, hi.y - lo.y), hi.z - lo.z);
+  frame[0] = (float4)(lo.xyz, extent > 0.0f ? 1.0f / extent : 0.0f);
+}
+
+/* Quantized in the cube [lo, lo + extent] of frame[0]; positions outside
+ * (none, with the frame above) would clamp, which only costs tree quality. */
+__kernel void light_morton(__global const float4* spheres, uint n, __global const float4* frame,
                            __global uint* codes, __global uint* ids) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float4 s = spheres[i];
-  const float3 t = clamp((s.xyz - lo.xyz) * inv_extent, 0.0f, 1.0f) * 1023.0f;
+  const float4 f = frame[0];
+  const float3 t = clamp((s.xyz - f.xyz) * f.w, 0.0f, 1.0f) * 1023.0f;
   codes[i] = spread10((uint)t.x) | (spread10((uint)t.y) << 1) | (spread10((uint)t.z) << 2);
   ids[i] = i;
 }
 
 /* Children at [child_start, child_start + n_children), parents from parent_start. */
-__kernel void bvh_level(__global float4* node_lo, __global float4* node_hi, uint child_start, uint n_children,
-                        uint parent_start) {
+__kernel void bvh_level(__global float4* node_lo, __global float4* node_hi, __global float4* node_sph,
+                        uint child_start, uint n_children, uint parent_start) {
   const uint node = get_global_id(0);
   const uint first = node * BVH_BRANCH;
   if (first >= n_children) return;
   const uint last = min(first + BVH_BRANCH, n_children);
-  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY), clo = (float4)(INFINITY), chi = (float4)(-INFINITY);
   for (uint i = first; i < last; ++i) {
     lo = fmin(lo, node_lo[child_start + i]);
     hi = fmax(hi, node_hi[child_start + i]);
+    const float4 s = node_sph[child_start + i];
+    clo = fmin(clo, (float4)(s.xyz, 0.0f));
+    chi = fmax(chi, (float4)(s.xyz, 0.0f));
+  }
+  const float4 c = (clo + chi) * 0.5f;
+  float rad = 0.0f;
+  for (uint i = first; i < last; ++i) {
+    const float4 s = node_sph[child_start + i];
+    rad = fmax(rad, length((float4)(s.xyz, 0.0f) - c) + s.w);
   }
   node_lo[parent_start + node] = lo;
   node_hi[parent_start + node] = hi;
+  node_sph[parent_start + node] = (float4)(c.xyz, rad * 1.001f + 1e-6f);
 }
 
 /* Node boxes again as structure of arrays, in blocks of 32 siblings: node i
@@ -245,30 +307,44 @@ __kernel void bvh_level(__global float4* node_lo, __global float4* node_hi, uint
  * l + 1 are exactly block i of level l, so one branch-free loop tests them
  * all against a cluster box, like the lights of a leaf. Lanes past the
  * level's end are empty boxes (lo +inf, hi -inf) and never overlap. */
-__kernel void node_blocks(__global const float4* node_lo, __global const float4* node_hi, uint start, uint count,
-                          uint block_start, __global float* nsoa) {
+__kernel void node_blocks(__global const float4* node_lo, __global const float4* node_hi,
+                          __global const float4* node_sph, uint start, uint count, uint block_start,
+                          __global float* nsoa) {
   const uint b = get_global_id(0);
   if (b * BVH_BRANCH >= count) return;
-  __global float* o = nsoa + (size_t)(block_start + b) * (6u * BVH_BRANCH);
+  __global float* o = nsoa + (size_t)(block_start + b) * (NODE_FLOATS * BVH_BRANCH);
   for (uint i = 0; i < BVH_BRANCH; ++i) {
     const uint k = b * BVH_BRANCH + i;
     const float4 lo = k < count ? node_lo[start + k] : (float4)(INFINITY);
     const float4 hi = k < count ? node_hi[start + k] : (float4)(-INFINITY);
+    const float4 s = k < count ? node_sph[start + k] : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
     o[i] = lo.x;
     o[BVH_BRANCH + i] = lo.y;
     o[2u * BVH_BRANCH + i] = lo.z;
     o[3u * BVH_BRANCH + i] = hi.x;
     o[4u * BVH_BRANCH + i] = hi.y;
     o[5u * BVH_BRANCH + i] = hi.z;
+    o[6u * BVH_BRANCH + i] = s.x;
+    o[7u * BVH_BRANCH + i] = s.y;
+    o[8u * BVH_BRANCH + i] = s.z;
+    o[9u * BVH_BRANCH + i] = s.w;
   }
 }
 
+/* A child is entered when its box overlaps the cluster box and its bounding
+ * sphere reaches it (the sphere is much tighter than the box around a group
+ * of large lights; both are padded, so every light that passes the leaf test
+ * is reached). */
 inline uint block_mask(__global const float* nsoa, uint block, float4 lo, float4 hi) {
-  __global const float* b = nsoa + (size_t)block * (6u * BVH_BRANCH);
+  __global const float* b = nsoa + (size_t)block * (NODE_FLOATS * BVH_BRANCH);
   uint mask = 0u;
   for (uint i = 0; i < BVH_BRANCH; ++i) {
+    const float cx = b[6u * BVH_BRANCH + i], cy = b[7u * BVH_BRANCH + i], cz = b[8u * BVH_BRANCH + i];
+    const float r = b[9u * BVH_BRANCH + i];
+    const float dx = cx - clamp(cx, lo.x, hi.x), dy = cy - clamp(cy, lo.y, hi.y), dz = cz - clamp(cz, lo.z, hi.z);
     const bool hit = b[i] <= hi.x && lo.x <= b[3u * BVH_BRANCH + i] && b[BVH_BRANCH + i] <= hi.y &&
-                     lo.y <= b[4u * BVH_BRANCH + i] && b[2u * BVH_BRANCH + i] <= hi.z && lo.z <= b[5u * BVH_BRANCH + i];
+                     lo.y <= b[4u * BVH_BRANCH + i] && b[2u * BVH_BRANCH + i] <= hi.z &&
+                     lo.z <= b[5u * BVH_BRANCH + i] && dx * dx + dy * dy + dz * dz <= r * r && r >= 0.0f;
     mask |= (hit ? 1u : 0u) << i;
   }
   return mask;

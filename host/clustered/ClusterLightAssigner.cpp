@@ -32,6 +32,8 @@ constexpr unsigned kMaxLevels = 7;     // BVH_STACK (256) >= 32 * levels + 32
 // hit leaves than their share are walked again by the fill pass.
 constexpr std::size_t kDefaultRecordBudget = std::size_t(1) << 22;
 constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr std::uint32_t kMortonChunk = 1024;  // MORTON_CHUNK in the kernel
+constexpr std::size_t kNodeFloats = 10;       // NODE_FLOATS in the kernel
 }  // namespace
 
 ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method)
@@ -44,6 +46,8 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
   pack_ = cl::Kernel(program_, "pack_leaves");
   level_ = cl::Kernel(program_, "bvh_level");
   blocks_ = cl::Kernel(program_, "node_blocks");
+  bounds_part_ = cl::Kernel(program_, "light_bounds_partial");
+  bounds_final_ = cl::Kernel(program_, "light_bounds_final");
   count_k_ = cl::Kernel(program_, "assign_count");
   fill_k_ = cl::Kernel(program_, "assign_fill");
   // The tiled kernel's write_grid turns (offsets, counts) into LightRanges.
@@ -51,14 +55,16 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
   ranges_ = cl::Kernel(keys_program_, "write_grid");
   const auto& ctx = rt.context();
   block_start_ = cl::Buffer(ctx, CL_MEM_READ_ONLY, kMaxLevels * 4);
+  frame_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
   for (cl::Buffer* b :
-       {&spheres_, &codes_, &ids_, &soa_, &leaf_ids_, &node_lo_, &node_hi_, &node_soa_, &rec_leaf_, &rec_mask_})
+       {&spheres_, &codes_, &ids_, &soa_, &leaf_ids_, &node_lo_, &node_hi_, &node_sph_, &node_soa_, &rec_leaf_,
+        &rec_mask_})
     *b = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
 }
 
 std::size_t ClusterLightAssigner::scratchBytes() const {
-  return light_capacity_ * (16 + 4 + 4) + leaf_capacity_ * kBranch * (16 + 4) + node_capacity_ * 32 +
-         block_capacity_ * kBranch * 24 +
+  return light_capacity_ * (16 + 4 + 4) + leaf_capacity_ * kBranch * (16 + 4) + node_capacity_ * 48 +
+         block_capacity_ * kBranch * kNodeFloats * 4 +
          cluster_capacity_ * (32 + 12) + bounds_capacity_ * 4 + record_capacity_ * 8;
 }
 
@@ -141,15 +147,30 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
     view_.setArg(3, spheres_);
     q.enqueueNDRangeKernel(view_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-light-view"));
     if (bvh_) {
-      // Morton cube: the view frustum's box.
-      const float half_y = cam.far_plane * cam.tan_half_fovy, half_x = half_y * cam.aspect;
-      const float extent = std::max({2.0f * half_x, 2.0f * half_y, cam.far_plane});
+      // Morton frame: the bounding cube of the light centres, on the device.
+      const std::uint32_t parts = (n + kMortonChunk - 1) / kMortonChunk;
+      if (parts > part_capacity_) {
+        part_capacity_ = std::size_t(parts) + parts / 2;
+        part_lo_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, part_capacity_ * 16);
+        part_hi_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, part_capacity_ * 16);
+      }
+      bounds_part_.setArg(0, spheres_);
+      bounds_part_.setArg(1, n);
+      bounds_part_.setArg(2, part_lo_);
+      bounds_part_.setArg(3, part_hi_);
+      q.enqueueNDRangeKernel(bounds_part_, cl::NullRange, cl::NDRange(parts), cl::NullRange, nullptr,
+                             ev("cluster-light-bounds"));
+      bounds_final_.setArg(0, part_lo_);
+      bounds_final_.setArg(1, part_hi_);
+      bounds_final_.setArg(2, parts);
+      bounds_final_.setArg(3, frame_);
+      q.enqueueNDRangeKernel(bounds_final_, cl::NullRange, cl::NDRange(1), cl::NullRange, nullptr,
+                             ev("cluster-light-bounds"));
       morton_.setArg(0, spheres_);
       morton_.setArg(1, n);
-      morton_.setArg(2, cl_float4{{-half_x, -half_y, -cam.far_plane, 0.0f}});
-      morton_.setArg(3, 1.0f / extent);
-      morton_.setArg(4, codes_);
-      morton_.setArg(5, ids_);
+      morton_.setArg(2, frame_);
+      morton_.setArg(3, codes_);
+      morton_.setArg(4, ids_);
       q.enqueueNDRangeKernel(morton_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-morton"));
       radix_.sort(q, codes_, &ids_, n, 30, timer);
     }
@@ -200,10 +221,11 @@ void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool
       node_capacity_ = std::size_t(total) + total / 2;
       node_lo_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
       node_hi_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
+      node_sph_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
     }
     if (blocks > block_capacity_) {
       block_capacity_ = std::size_t(blocks) + blocks / 2;
-      node_soa_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, block_capacity_ * kBranch * 24);
+      node_soa_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, block_capacity_ * kBranch * kNodeFloats * 4);
     }
     q.enqueueWriteBuffer(block_start_, CL_TRUE, 0, levels_ * 4, block_start.data());
   }
@@ -215,28 +237,40 @@ void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool
   pack_.setArg(5, leaf_ids_);
   pack_.setArg(6, node_lo_);
   pack_.setArg(7, node_hi_);
-  pack_.setArg(8, cl_uint(bvh));
+  pack_.setArg(8, node_sph_);
+  pack_.setArg(9, cl_uint(bvh));
   q.enqueueNDRangeKernel(pack_, cl::NullRange, cl::NDRange(n_leaves), cl::NullRange, nullptr,
                          ev(bvh ? "cluster-bvh-leaves" : "cluster-pack-leaves"));
   for (unsigned l = 1; l < levels_; ++l) {
     level_.setArg(0, node_lo_);
     level_.setArg(1, node_hi_);
-    level_.setArg(2, start[l - 1]);
-    level_.setArg(3, count[l - 1]);
-    level_.setArg(4, start[l]);
+    level_.setArg(2, node_sph_);
+    level_.setArg(3, start[l - 1]);
+    level_.setArg(4, count[l - 1]);
+    level_.setArg(5, start[l]);
     q.enqueueNDRangeKernel(level_, cl::NullRange, cl::NDRange(count[l]), cl::NullRange, nullptr, ev("cluster-bvh-level"));
   }
   for (unsigned l = 0; l < levels_; ++l) {
     const std::uint32_t n_blocks = (count[l] + kBranch - 1) / kBranch;
     blocks_.setArg(0, node_lo_);
     blocks_.setArg(1, node_hi_);
-    blocks_.setArg(2, start[l]);
-    blocks_.setArg(3, count[l]);
-    blocks_.setArg(4, block_start[l]);
-    blocks_.setArg(5, node_soa_);
+    blocks_.setArg(2, node_sph_);
+    blocks_.setArg(3, start[l]);
+    blocks_.setArg(4, count[l]);
+    blocks_.setArg(5, block_start[l]);
+    blocks_.setArg(6, node_soa_);
     q.enqueueNDRangeKernel(blocks_, cl::NullRange, cl::NDRange(n_blocks), cl::NullRange, nullptr,
                            ev("cluster-bvh-blocks"));
   }
+}
+
+std::uint64_t ClusterLightAssigner::hitLeaves(cl::CommandQueue& q) const {
+  if (clusters_ == 0) return 0;
+  std::vector<std::uint32_t> h(clusters_);
+  q.enqueueReadBuffer(hit_leaves_, CL_TRUE, 0, h.size() * 4, h.data());
+  std::uint64_t s = 0;
+  for (auto v : h) s += v;
+  return s;
 }
 
 void ClusterLightAssigner::setAssignArgs(cl::Kernel& k) {

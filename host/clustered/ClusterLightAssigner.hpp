@@ -9,8 +9,8 @@
 // Lights are packed 32 to a leaf (structure of arrays) and tested a leaf at a
 // time into a 32-bit hit mask. Brute: every cluster tests every leaf of the
 // lights in their given order (the reference). Bvh: Morton codes of the
-// view-space light centres (quantized in the view frustum's box; lights
-// outside it clamp to its faces, which costs tree quality only), radix sort,
+// view-space light centres (quantized in their bounding cube, reduced on the
+// device), radix sort,
 // leaves of the sorted lights and a BVH of branching 32 over them, rebuilt
 // from scratch each count() (bottom-up, one launch per level); each cluster
 // walks it. Both use the same leaf test, so their lists are the same sets
@@ -74,6 +74,9 @@ class ClusterLightAssigner {
   const cl::Buffer& boxLo() const { return box_lo_; }
   const cl::Buffer& boxHi() const { return box_hi_; }
   std::size_t scratchBytes() const;
+  // Leaves with at least one hit, summed over the last count()'s clusters
+  // (blocks; for reports: list entries / (32 x this) is the leaf occupancy).
+  std::uint64_t hitLeaves(cl::CommandQueue& q) const;
   // Hit-leaf records (8 bytes each) shared by all clusters (default 2^22);
   // clusters with more hit leaves than their share are walked again by fill().
   void setRecordBudget(std::size_t records) { record_budget_ = records; }
@@ -86,10 +89,12 @@ class ClusterLightAssigner {
   ClusterAssignMethod method_;
   cl::Program program_, keys_program_;
   cl::Kernel view_, boxes_, pixel_boxes_, morton_, pack_, level_, blocks_, count_k_, fill_k_, ranges_;
-  cl::Buffer spheres_, codes_, ids_, soa_, leaf_ids_, node_lo_, node_hi_, node_soa_, block_start_;
+  cl::Kernel bounds_part_, bounds_final_;
+  cl::Buffer part_lo_, part_hi_, frame_;
+  cl::Buffer spheres_, codes_, ids_, soa_, leaf_ids_, node_lo_, node_hi_, node_sph_, node_soa_, block_start_;
   cl::Buffer box_lo_, box_hi_, counts_, offsets_, bounds_, rec_leaf_, rec_mask_, hit_leaves_;
   std::size_t light_capacity_ = 0, leaf_capacity_ = 0, node_capacity_ = 0, cluster_capacity_ = 0;
-  std::size_t bounds_capacity_ = 0, record_capacity_ = 0, block_capacity_ = 0;
+  std::size_t bounds_capacity_ = 0, record_capacity_ = 0, block_capacity_ = 0, part_capacity_ = 0;
   std::uint32_t n_ = 0, clusters_ = 0, n_leaves_ = 0, slots_ = 0;
   unsigned levels_ = 0;
   bool bvh_ = false;
