@@ -141,8 +141,10 @@ std::vector<ClusterBox> pixelBoxes(const float* depth, const std::vector<std::ui
   for (ClusterBox& b : boxes) {
     const float ext = std::fmax(std::fmax(b.z1, std::fmax(std::fabs(b.x0), std::fabs(b.x1))),
                                 std::fmax(std::fabs(b.y0), std::fabs(b.y1)));
-    const float pad = ext * kClusterDepthEps;
-    b = {b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad, b.z0 - b.z0 * kClusterDepthEps, b.z1 + b.z1 * kClusterDepthEps};
+    const float rel_lo = kClusterDepthEps + kClusterReconEps * (b.z0 / cam.near_plane);
+    const float rel_hi = kClusterDepthEps + kClusterReconEps * (b.z1 / cam.near_plane);
+    const float pad = ext * rel_hi;
+    b = {b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad, b.z0 - b.z0 * rel_lo, b.z1 + b.z1 * rel_hi};
   }
   return boxes;
 }
