@@ -2,18 +2,19 @@
 // Lights -> unique clusters on the device (kernels/cluster_assign.cl):
 //
 //   ClusterLightAssigner a(rt, ClusterAssignMethod::Bvh);
-//   uint32_t total = a.count(q, lights, n, cam, grid, unique_keys, clusters);  // blocks for the total
+//   a.boxes(q, cam, grid, unique_keys, clusters, timer, &pixels);  // explicit bounds (null: sub-frustum)
+//   uint32_t total = a.assign(q, lights, n, cam);   // blocks for the total
 //   ... make `indices` hold >= total uints ...
 //   a.fill(q, ranges, indices);   // ranges: LightRange per cluster
+// (count() = boxes() + assign().)
 //
 // Lights are packed 32 to a leaf (structure of arrays) and tested a leaf at a
 // time into a 32-bit hit mask. Brute: every cluster tests every leaf of the
 // lights in their given order (the reference). Bvh: Morton codes of the
 // view-space light centres (quantized in their bounding cube, reduced on the
-// device), radix sort,
-// leaves of the sorted lights and a BVH of branching 32 over them, rebuilt
-// from scratch each count() (bottom-up, one launch per level); each cluster
-// walks it. Both use the same leaf test, so their lists are the same sets
+// device), radix sort, leaves of the sorted lights and a BVH of branching 32
+// over them (boxes and bounding spheres), rebuilt from scratch each assign()
+// (bottom-up, one launch per level); each cluster walks it. Both use the same leaf test, so their lists are the same sets
 // (BVH lists in Morton order, brute force ascending). Lists are count -> scan
 // -> fill and never truncate: count() records each cluster's hit leaves
 // (leaf, mask) in a bounded scratch, fill() expands them and walks again only
