@@ -1,8 +1,10 @@
 // manylights-clustered-bench: clustered shading on the CL device, per pass.
 //   1. cluster keys + unique clusters, the three methods side by side
 //      (page table, radix sort + unique, per-tile bitonic sort), per resolution;
-//   2. light assignment to the unique clusters, BVH vs brute force, per
-//      resolution and light count;
+//   2. the clusters' boxes (explicit bounds from the pixels by default, made
+//      once per frame) and light assignment to the unique clusters, BVH vs
+//      brute force (count + scan + fill, BVH build included), per resolution
+//      and light count, with the device time of each pass;
 //   3. whole frames, clustered vs tiled (forward and deferred): per-pass times,
 //      light evaluations per shaded pixel against the exact lower bound.
 // Depth buffers are the default scene's view at each resolution. Prints tables
@@ -61,21 +63,25 @@ int run(int argc, char** argv) {
   CLI::App app{"Clustered shading: unique-cluster methods, BVH vs brute-force assignment, frames vs tiled"};
   std::string json_path, sizes = "320x320,1280x720,1920x1080", light_counts = "1000,10000,100000";
   std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000";
-  unsigned tile = 32, tiled_tile = 16;
+  unsigned tile = 0, tiled_tile = 16;
   unsigned brute_max = 100000;
   int reps = 5;
-  std::string device;
+  std::string device, bounds = "pixels";
   app.add_option("--json", json_path, "write records as JSON");
+  app.add_option("--cluster-bounds", bounds, "cluster boxes: pixels (explicit) or frustum (implicit)")
+      ->capture_default_str();
   app.add_option("--sizes", sizes, "resolutions of the per-pass cases")->capture_default_str();
   app.add_option("--lights", light_counts, "light counts of the assignment cases")->capture_default_str();
   app.add_option("--frame-sizes", frame_sizes, "resolutions of the frame comparisons ('' for none)")->capture_default_str();
   app.add_option("--frame-lights", frame_lights, "light counts of the frame comparisons")->capture_default_str();
-  app.add_option("--cluster-tile", tile, "cluster tile size")->capture_default_str();
+  app.add_option("--cluster-tile", tile, "cluster tile size; 0: auto per resolution (32 from 720 lines up, 16 below)")
+      ->capture_default_str();
   app.add_option("--tile", tiled_tile, "tile size of the tiled peer in frames")->capture_default_str();
   app.add_option("--brute-max-lights", brute_max, "skip brute-force assignment above this many lights")->capture_default_str();
   app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
   app.add_option("--device", device, "OpenCL device");
   CLI11_PARSE(app, argc, argv);
+  const bool bounds_pixels = parseClusterBounds(bounds) == ClusterBounds::Pixels;
 
   auto gl = createHeadlessContext();
   const auto share = gl->shareHandles();
@@ -88,8 +94,9 @@ int run(int argc, char** argv) {
   nlohmann::ordered_json records = nlohmann::ordered_json::array();
   auto& q = rt->queue();
 
-  std::printf("\nKeys + unique clusters, cluster tile %u (ms, median of %d)\n", tile, reps);
-  std::printf("%-11s %9s %10s %10s %10s %10s\n", "resolution", "clusters", "keys", "pagetable", "sort", "tile-sort");
+  std::printf("\nKeys + unique clusters, %s bounds (ms, median of %d)\n", bounds.c_str(), reps);
+  std::printf("%-11s %5s %9s %10s %10s %10s %10s\n", "resolution", "tile", "clusters", "keys", "pagetable", "sort",
+              "tile-sort");
   for (const auto& size : splitList(sizes)) {
     unsigned w = 0, h = 0;
     parseSize(size, "--sizes", w, h);
@@ -102,7 +109,7 @@ int run(int argc, char** argv) {
       depth = r.targets().readDepth(true);
     }
     const auto cam = camera.params(w, h);
-    const ClusterGrid g = ClusterGrid::make(cam, tile);
+    const ClusterGrid g = ClusterGrid::make(cam, tile ? tile : autoClusterTile(w, h));
     cl::Buffer dbuf(rt->context(), CL_MEM_READ_ONLY, depth.size() * 4);
     q.enqueueWriteBuffer(dbuf, CL_TRUE, 0, depth.size() * 4, depth.data());
     ClusterUniquer u(*rt, UniqueMethod::PageTable);
@@ -120,18 +127,31 @@ int run(int argc, char** argv) {
         q.finish();
       });
       records.push_back({{"name", std::string("cluster_unique_") + uniqueMethodName(m)}, {"resolution", size},
-                         {"n", w * h}, {"tile", tile}, {"seconds", t_unique[mi]},
+                         {"n", w * h}, {"tile", g.tile_size}, {"seconds", t_unique[mi]},
                          {"items_per_second", w * h / t_unique[mi]}, {"clusters", counts[mi]}});
       ++mi;
     }
     if (counts[0] != counts[1] || counts[1] != counts[2]) throw std::runtime_error("unique methods disagree");
-    records.push_back({{"name", "cluster_keys"}, {"resolution", size}, {"n", w * h}, {"tile", tile},
+    records.push_back({{"name", "cluster_keys"}, {"resolution", size}, {"n", w * h}, {"tile", g.tile_size},
                        {"seconds", t_keys}, {"items_per_second", w * h / t_keys}, {"slices", g.slices}});
-    std::printf("%-11s %9u %10.3f %10.3f %10.3f %10.3f\n", size.c_str(), counts[0], t_keys * 1e3, t_unique[0] * 1e3,
-                t_unique[1] * 1e3, t_unique[2] * 1e3);
+    std::printf("%-11s %5u %9u %10.3f %10.3f %10.3f %10.3f\n", size.c_str(), g.tile_size, counts[0], t_keys * 1e3,
+                t_unique[0] * 1e3, t_unique[1] * 1e3, t_unique[2] * 1e3);
 
     u.setMethod(UniqueMethod::PageTable);
     const std::uint32_t clusters = u.unique(q, g);
+    const ClusterPixels pixels{dbuf, u.clusterOf()};
+    const ClusterPixels* px = bounds_pixels ? &pixels : nullptr;
+    {
+      // The boxes: once per frame, whatever the assignment method.
+      ClusterLightAssigner a(*rt, ClusterAssignMethod::Bvh);
+      const double t_boxes = timeMedian(reps, [&] {
+        a.boxes(q, cam, g, u.uniqueKeys(), clusters, nullptr, px);
+        q.finish();
+      });
+      std::printf("  cluster boxes (%s): %.3f ms\n", bounds.c_str(), t_boxes * 1e3);
+      records.push_back({{"name", std::string("cluster_boxes_") + bounds}, {"resolution", size}, {"n", w * h},
+                         {"clusters", clusters}, {"seconds", t_boxes}, {"items_per_second", w * h / t_boxes}});
+    }
     std::printf("  assignment %-8s %12s %12s %10s %12s %7s\n", "lights", "bvh ms", "brute ms", "speed-up", "entries",
                 "levels");
     for (const auto& ls : splitList(light_counts)) {
@@ -144,18 +164,38 @@ int run(int argc, char** argv) {
       cl::Buffer ranges(rt->context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, clusters * 8));
       cl::Buffer indices;
       std::size_t cap = 0;
+      // Lights -> clusters: count (BVH build included) + scan + fill, the boxes made beforehand.
+      auto run_assign = [&](ClusterLightAssigner& a, std::uint32_t& total, ClPassTimer* timer) {
+        total = a.assign(q, lbuf, n, cam, timer);
+        if (std::size_t(total) * 4 + 16 > cap) {
+          cap = std::size_t(total) * 6 + 16;
+          indices = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
+        }
+        a.fill(q, ranges, indices, timer);
+        q.finish();
+      };
       auto time_assign = [&](ClusterLightAssigner& a, std::uint32_t& total) {
-        return timeMedian(reps, [&] {
-          total = a.count(q, lbuf, n, cam, g, u.uniqueKeys(), clusters);
-          if (std::size_t(total) * 4 + 16 > cap) {
-            cap = std::size_t(total) * 6 + 16;
-            indices = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
-          }
-          a.fill(q, ranges, indices);
-          q.finish();
-        });
+        a.boxes(q, cam, g, u.uniqueKeys(), clusters, nullptr, px);
+        const double t = timeMedian(reps, [&] { run_assign(a, total, nullptr); });
+        // One more run for the device time of each pass.
+        ClPassTimer timer;
+        run_assign(a, total, &timer);
+        PassTimings passes;
+        timer.collect(passes);
+        std::printf("    %s passes (device ms):", clusterAssignName(a.method()));
+        for (const auto& [name, ms] : passes.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
+        const std::uint64_t hit_leaves = a.hitLeaves(q);
+        std::printf(" | hit leaves %llu (%.1f lights each)\n", static_cast<unsigned long long>(hit_leaves),
+                    hit_leaves ? double(total) / double(hit_leaves) : 0.0);
+        return t;
       };
       ClusterLightAssigner bvh(*rt, ClusterAssignMethod::Bvh), brute(*rt, ClusterAssignMethod::Brute);
+      // Record slots for every leaf of every cluster (up to 2^25, 256 MB), so
+      // that neither method walks again in the fill pass: brute force, with
+      // its unsorted leaves, has many more hit leaves than the BVH and would
+      // otherwise be the one that overflows the default budget.
+      const std::size_t all_leaves = std::size_t(clusters) * ((n + 31) / 32);
+      for (ClusterLightAssigner* a : {&bvh, &brute}) a->setRecordBudget(std::min<std::size_t>(all_leaves, 1u << 25));
       std::uint32_t total_bvh = 0, total_brute = 0;
       const double t_bvh = time_assign(bvh, total_bvh);
       double t_brute = 0;
@@ -168,7 +208,8 @@ int run(int argc, char** argv) {
                   t_brute > 0 ? (std::to_string(t_brute / t_bvh) + "x").c_str() : "-", total_bvh, bvh.bvhLevels());
       records.push_back({{"name", "cluster_assign_bvh"}, {"resolution", size}, {"n", n}, {"lights", n},
                          {"clusters", clusters}, {"seconds", t_bvh}, {"items_per_second", n / t_bvh},
-                         {"list_entries", total_bvh}, {"bvh_levels", bvh.bvhLevels()}});
+                         {"list_entries", total_bvh}, {"bvh_levels", bvh.bvhLevels()},
+                         {"cluster_bounds", bounds}});
       if (t_brute > 0)
         records.push_back({{"name", "cluster_assign_brute"}, {"resolution", size}, {"n", n}, {"lights", n},
                            {"clusters", clusters}, {"seconds", t_brute}, {"items_per_second", n / t_brute},
@@ -191,7 +232,8 @@ int run(int argc, char** argv) {
                                   std::pair{"tiled-forward", Pipeline::Forward}, std::pair{"tiled-deferred", Pipeline::Deferred}}) {
           std::unique_ptr<LightAssigner> a;
           if (std::string(tech).rfind("clustered", 0) == 0)
-            a = std::make_unique<ClusteredAssigner>(*rt, tile, UniqueMethod::PageTable, ClusterAssignMethod::Bvh);
+            a = std::make_unique<ClusteredAssigner>(*rt, tile, UniqueMethod::PageTable, ClusterAssignMethod::Bvh,
+                                                    parseClusterBounds(bounds));
           else
             a = std::make_unique<TiledAssigner>(*rt, tiled_tile, TileDepthMode::MinMax);
           const FrameResult counted = r.render(camera, *a, {pipe, true});
@@ -201,13 +243,16 @@ int run(int argc, char** argv) {
           const double ratio = double(counted.light_evaluations) / double(std::max<std::uint64_t>(1, counted.lower_bound));
           std::printf("%-11s %7s %-19s", size.c_str(), ls.c_str(), tech);
           nlohmann::ordered_json passes;
+          double pass_sum = 0.0;
           for (const auto& [name, ms] : frames.front().passes.entries()) {
             (void)ms;
             std::vector<double> v;
             for (const auto& f : frames) v.push_back(f.passes.get(name));
             passes[name] = median(v);
+            pass_sum += median(v);
             std::printf(" %s=%.2f", name.c_str(), median(v));
           }
+          std::printf(" | sum=%.2f", pass_sum);
           std::vector<double> host;
           for (const auto& f : frames) host.push_back(f.host_ms);
           std::printf(" | frame=%.2f evals/px=%.2f lb/px=%.2f ratio=%.3f\n", median(host),
@@ -215,6 +260,7 @@ int run(int argc, char** argv) {
           records.push_back({{"name", std::string("frame_") + tech}, {"resolution", size}, {"lights", std::stoul(ls)},
                              {"n", std::stoul(ls)}, {"seconds", median(host) * 1e-3},
                              {"items_per_second", double(w) * h / (median(host) * 1e-3)}, {"passes", passes},
+                             {"sum_of_passes_ms", pass_sum},
                              {"evals_per_pixel", counted.light_evaluations / px},
                              {"lower_bound_per_pixel", counted.lower_bound / px}, {"evals_over_lower_bound", ratio}});
         }

@@ -35,7 +35,7 @@ RenderTargets::RenderTargets(unsigned width, unsigned height) : width_(width), h
   checkComplete(output_fbo_, "output");
 
   albedo_ = makeTexture(GL_RGBA8, width, height);
-  normal_ = makeTexture(GL_RGBA16F, width, height);
+  normal_ = makeTexture(GL_RG16, width, height);  // octahedral normals (gl/shaders/octahedral.glsl)
   gbuffer_depth_ = makeTexture(GL_DEPTH_COMPONENT32F, width, height);
   glCreateFramebuffers(1, &gbuffer_fbo_);
   glNamedFramebufferTexture(gbuffer_fbo_, GL_COLOR_ATTACHMENT0, albedo_, 0);

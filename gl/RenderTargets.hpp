@@ -2,7 +2,7 @@
 // Framebuffers of one resolution:
 //  - output:  colour RGBA32F (linear), light counts RG32UI (evaluated, in range),
 //             depth 32F (forward depth / pre-pass)
-//  - gbuffer: albedo RGBA8, normal RGBA16F, depth 32F (deferred)
+//  - gbuffer: albedo RGBA8, normal RG16 unorm (octahedral), depth 32F (deferred)
 #include <epoxy/gl.h>
 
 #include <cstdint>

@@ -2,18 +2,21 @@
  *
  *   light_view            world lights -> view-space spheres
  *   cluster_boxes         unique keys -> view-space AABB of each sub-frustum
- *   brute_count/fill      per cluster, every light (the reference)
+ *                         (implicit bounds), or
+ *   cluster_pixel_boxes   depth + pixel -> cluster map -> view-space AABB of
+ *                         each cluster's pixels (explicit bounds)
+ *   light_bounds_*        bounding cube of the light centres (the Morton frame)
  *   light_morton          30-bit Morton code of each light's quantized position
- *   (radix sort of the codes, light indices as payload)
- *   bvh_leaves            nodes over 32 consecutive sorted lights
+ *   (radix sort of the codes, light indices as payload)      [BVH only]
+ *   pack_leaves           32 lights per leaf as structure of arrays, and the
+ *                         leaf boxes (BVH: Morton order; brute force: given order)
  *   bvh_level             nodes over 32 consecutive nodes of the level below
- *   bvh_count/fill        per cluster, walk the BVH from its top level
+ *   node_blocks           the node boxes of each level as blocks of 32 siblings
+ *   assign_count/fill     per cluster, hit masks of the leaves: every leaf
+ *                         (brute force) or those the BVH walk reaches
  *
- * Lists are built count -> scan -> fill: the fill pass redoes the tests and
- * writes the cluster's own range, so no atomics and nothing can overflow. One
- * work-item per cluster with private state (the CPU shape; see the PoCL
- * notes). The leaf test is the brute-force test, and node boxes are padded
- * beyond the sphere bounds, so BVH lists equal brute-force lists as sets.
+ * Both methods run the same leaf test, so BVH lists equal brute-force lists
+ * as sets (the BVH's are in Morton order, brute force's ascending).
  * Mirrors host/clustered/ClusterGeometry.cpp (no contraction on either side).
  */
 #include "gpu_types.h"
@@ -24,6 +27,9 @@
 /* Stack of pending nodes: at most BVH_BRANCH per level plus the top level. */
 #define BVH_STACK 256
 #define DEPTH_EPS 1e-4f
+#define RECON_EPS 1e-6f
+/* Per BVH node in a sibling block: box lo.xyz, hi.xyz, bounding sphere xyzr. */
+#define NODE_FLOATS 10u
 
 inline float4 mat_mul(const float* m, float4 v) {
   return (float4)(m[0] * v.x + m[4] * v.y + m[8] * v.z + m[12] * v.w,
@@ -71,28 +77,152 @@ __kernel void cluster_boxes(__global const uint* keys, uint count, CameraParams 
   box_hi[c] = (float4)(x1, y1, zmax, 0.0f);
 }
 
-inline bool sphere_hits_box(float4 s, float4 lo, float4 hi) {
-  const float d = -s.z;
-  const float dx = s.x - clamp(s.x, lo.x, hi.x), dy = s.y - clamp(s.y, lo.y, hi.y), dz = d - clamp(d, lo.z, hi.z);
-  return dx * dx + dy * dy + dz * dz <= s.w * s.w * (1.0f + 4.0f * DEPTH_EPS);
+inline float linear_depth(float d, const CameraParams* cam) {
+  const float ndc = 2.0f * d - 1.0f;
+  return cam->proj[14] / (ndc + cam->proj[10]);
 }
 
-/* ------------------------------------------------------------ brute force */
-
-__kernel void brute_assign(__global const float4* spheres, uint n, __global const float4* box_lo,
-                           __global const float4* box_hi, uint count, __global uint* counts,
-                           __global const uint* offsets, __global uint* indices, uint fill) {
-  const uint c = get_global_id(0);
-  if (c >= count) return;
-  const float4 lo = box_lo[c], hi = box_hi[c];
-  uint m = 0;
-  const uint base = fill ? offsets[c] : 0u;
-  for (uint i = 0; i < n; ++i)
-    if (sphere_hits_box(spheres[i], lo, hi)) {
-      if (fill) indices[base + m] = i;
-      ++m;
+/* Explicit bounds (Olsson et al.): per unique cluster the view-space AABB of
+ * the pixel centres that fall in it, reconstructed from the depth buffer.
+ * One work-item per screen tile: unique clusters are ascending keys with the
+ * tile above the slice, so the clusters of one tile form one index range that
+ * no other tile touches; the work-item owns it and needs no atomics. Runs of
+ * equal clusters along a row are reduced in registers. box_lo/box_hi start
+ * as +inf/-inf (filled by the host). The box is then widened, relative to its
+ * extent, by DEPTH_EPS + RECON_EPS z / near, so that the shader's own
+ * reconstruction (another float path, or the forward pass's interpolated
+ * position) stays inside: near the far plane a float depth pins the distance
+ * down only to ~1e-7 z / near (relative), as the float sum ndc + proj[10]
+ * cancels; RECON_EPS leaves a margin of 3x over both paths' rounding.
+ * One division per pixel (the depth); the rest are products with
+ * reciprocals computed once, mirrored by host/clustered/ClusterGeometry.cpp. */
+__kernel void cluster_pixel_boxes(__global const float* depth, __global const uint* cluster_of, CameraParams cam,
+                                  uint tile, uint tiles_x, uint n_tiles, __global float4* box_lo,
+                                  __global float4* box_hi) {
+  const uint t = get_global_id(0);
+  if (t >= n_tiles) return;
+  const uint x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
+  const uint x1 = min(x0 + tile, cam.width), y1 = min(y0 + tile, cam.height);
+  const float sx = 2.0f / (float)cam.width, sy = 2.0f / (float)cam.height;
+  const float ix = 1.0f / cam.proj[0], iy = 1.0f / cam.proj[5], ox = cam.proj[8], oy = cam.proj[9];
+  uint cmin = 0xffffffffu, cmax = 0u;
+  for (uint y = y0; y < y1; ++y) {
+    const float fy = (((float)y + 0.5f) * sy - 1.0f + oy) * iy;
+    uint cur = 0xffffffffu;
+    float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+    for (uint x = x0; x < x1; ++x) {
+      const uint p = y * cam.width + x;
+      const uint c = cluster_of[p];
+      if (c == 0xffffffffu) continue;
+      if (c != cur) {
+        if (cur != 0xffffffffu) {
+          box_lo[cur] = fmin(box_lo[cur], lo);
+          box_hi[cur] = fmax(box_hi[cur], hi);
+        }
+        cur = c;
+        cmin = min(cmin, c);
+        cmax = max(cmax, c);
+        lo = (float4)(INFINITY);
+        hi = (float4)(-INFINITY);
+      }
+      const float z = linear_depth(depth[p], &cam);
+      const float fx = (((float)x + 0.5f) * sx - 1.0f + ox) * ix;
+      const float4 v = (float4)(z * fx, z * fy, z, 0.0f);
+      lo = fmin(lo, v);
+      hi = fmax(hi, v);
     }
-  if (!fill) counts[c] = m;
+    if (cur != 0xffffffffu) {
+      box_lo[cur] = fmin(box_lo[cur], lo);
+      box_hi[cur] = fmax(box_hi[cur], hi);
+    }
+  }
+  for (uint c = cmin; c <= cmax && cmin <= cmax; ++c) {
+    const float4 lo = box_lo[c], hi = box_hi[c];
+    const float ext = fmax(fmax(hi.z, fmax(fabs(lo.x), fabs(hi.x))), fmax(fabs(lo.y), fabs(hi.y)));
+    const float rel_lo = DEPTH_EPS + RECON_EPS * (lo.z / cam.near_plane);
+    const float rel_hi = DEPTH_EPS + RECON_EPS * (hi.z / cam.near_plane);
+    const float pad = ext * rel_hi;
+    box_lo[c] = (float4)(lo.x - pad, lo.y - pad, lo.z - lo.z * rel_lo, 0.0f);
+    box_hi[c] = (float4)(hi.x + pad, hi.y + pad, hi.z + hi.z * rel_hi, 0.0f);
+  }
+}
+
+/* ---------------------------------------------------------------- leaves
+ *
+ * Lights are tested 32 at a time: a leaf holds 32 lights as structure of
+ * arrays (x, y, distance -z, r^2 (1 + 4 DEPTH_EPS)) and one loop of fixed trip
+ * count turns a cluster box into a 32-bit hit mask, branch-free, so the
+ * compiler vectorizes it. Brute force and the BVH share this routine: brute
+ * force tests every leaf of the lights in their given order, the BVH only the
+ * leaves (of Morton-sorted lights) whose node boxes overlap the cluster box.
+ * Padding lights have r^2 = -1 and never hit. */
+
+inline uint leaf_mask(__global const float* soa, uint leaf, float4 lo, float4 hi) {
+  __global const float* b = soa + (size_t)leaf * (4u * BVH_BRANCH);
+  uint mask = 0u;
+  for (uint i = 0; i < BVH_BRANCH; ++i) {
+    const float x = b[i], y = b[BVH_BRANCH + i], d = b[2u * BVH_BRANCH + i], r2 = b[3u * BVH_BRANCH + i];
+    const float dx = x - clamp(x, lo.x, hi.x), dy = y - clamp(y, lo.y, hi.y), dz = d - clamp(d, lo.z, hi.z);
+    mask |= (dx * dx + dy * dy + dz * dz <= r2 ? 1u : 0u) << i;
+  }
+  return mask;
+}
+
+/* Packs lights into leaves: leaf l holds lights ids[32 l .. 32 l + 31] (ids
+ * null: the lights in their given order), and for the BVH its box (sphere
+ * bounds padded by 1e-3 r: a sphere that passes the leaf test, which
+ * tolerates 4 DEPTH_EPS of r^2, always overlaps it; z as positive distance
+ * like the cluster boxes). */
+__kernel void pack_leaves(__global const float4* spheres, __global const uint* ids, uint use_ids, uint n,
+                          __global float* soa, __global uint* leaf_ids, __global float4* node_lo,
+                          __global float4* node_hi, __global float4* node_sph, uint write_boxes) {
+  const uint leaf = get_global_id(0);
+  const uint first = leaf * BVH_BRANCH;
+  if (first >= n) return;
+  __global float* b = soa + (size_t)leaf * (4u * BVH_BRANCH);
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  for (uint i = 0; i < BVH_BRANCH; ++i) {
+    const uint k = first + i;
+    if (k >= n) {
+      b[i] = 0.0f;
+      b[BVH_BRANCH + i] = 0.0f;
+      b[2u * BVH_BRANCH + i] = 0.0f;
+      b[3u * BVH_BRANCH + i] = -1.0f;
+      leaf_ids[k] = 0xffffffffu;
+      continue;
+    }
+    const uint id = use_ids ? ids[k] : k;
+    const float4 s = spheres[id];
+    b[i] = s.x;
+    b[BVH_BRANCH + i] = s.y;
+    b[2u * BVH_BRANCH + i] = -s.z;
+    b[3u * BVH_BRANCH + i] = s.w * s.w * (1.0f + 4.0f * DEPTH_EPS);
+    leaf_ids[k] = id;
+    const float r = s.w * 1.001f + 1e-6f;
+    const float4 p = (float4)(s.x, s.y, -s.z, 0.0f);
+    lo = fmin(lo, p - r);
+    hi = fmax(hi, p + r);
+  }
+  if (write_boxes) {
+    node_lo[leaf] = lo;
+    node_hi[leaf] = hi;
+    /* Bounding sphere: centre of the centres' box, radius over the lights. */
+    float4 clo = (float4)(INFINITY), chi = (float4)(-INFINITY);
+    const uint last = min(first + BVH_BRANCH, n);
+    for (uint k = first; k < last; ++k) {
+      const float4 s = spheres[use_ids ? ids[k] : k];
+      const float4 p = (float4)(s.x, s.y, -s.z, 0.0f);
+      clo = fmin(clo, p);
+      chi = fmax(chi, p);
+    }
+    const float4 c = (clo + chi) * 0.5f;
+    float rad = 0.0f;
+    for (uint k = first; k < last; ++k) {
+      const float4 s = spheres[use_ids ? ids[k] : k];
+      rad = fmax(rad, length((float4)(s.x, s.y, -s.z, 0.0f) - c) + s.w);
+    }
+    node_sph[leaf] = (float4)(c.xyz, rad * 1.001f + 1e-6f);
+  }
 }
 
 /* ------------------------------------------------------------------- BVH */
@@ -106,100 +236,237 @@ inline uint spread10(uint v) {
   return v;
 }
 
-/* Quantized in the view-space cube [lo, lo + extent]; positions outside
- * clamp, which only costs tree quality, never correctness. */
-__kernel void light_morton(__global const float4* spheres, uint n, float4 lo, float inv_extent,
+/* The Morton frame: the bounding cube of the light centres, reduced in
+ * chunks of MORTON_CHUNK lights (one work-item each, private state), then by
+ * one work-item into frame = (lo.xyz, 1 / extent). */
+#define MORTON_CHUNK 1024u
+__kernel void light_bounds_partial(__global const float4* spheres, uint n, __global float4* part_lo,
+                                   __global float4* part_hi) {
+  const uint g = get_global_id(0);
+  const uint first = g * MORTON_CHUNK;
+  if (first >= n) return;
+  const uint last = min(first + MORTON_CHUNK, n);
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  for (uint i = first; i < last; ++i) {
+    const float4 s = spheres[i];
+    lo = fmin(lo, s);
+    hi = fmax(hi, s);
+  }
+  part_lo[g] = lo;
+  part_hi[g] = hi;
+}
+
+__kernel void light_bounds_final(__global const float4* part_lo, __global const float4* part_hi, uint parts,
+                                 __global float4* frame) {
+  if (get_global_id(0) != 0u) return;
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  for (uint i = 0; i < parts; ++i) {
+    lo = fmin(lo, part_lo[i]);
+    hi = fmax(hi, part_hi[i]);
+  }
+  const float extent = fmax(fmax(hi.x - lo.x, hi.y - lo.y), hi.z - lo.z);
+  frame[0] = (float4)(lo.xyz, extent > 0.0f ? 1.0f / extent : 0.0f);
+}
+
+/* Quantized in the cube [lo, lo + extent] of frame[0]; positions outside
+ * (none, with the frame above) would clamp, which only costs tree quality. */
+__kernel void light_morton(__global const float4* spheres, uint n, __global const float4* frame,
                            __global uint* codes, __global uint* ids) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float4 s = spheres[i];
-  const float3 t = clamp((s.xyz - lo.xyz) * inv_extent, 0.0f, 1.0f) * 1023.0f;
+  const float4 f = frame[0];
+  const float3 t = clamp((s.xyz - f.xyz) * f.w, 0.0f, 1.0f) * 1023.0f;
   codes[i] = spread10((uint)t.x) | (spread10((uint)t.y) << 1) | (spread10((uint)t.z) << 2);
   ids[i] = i;
 }
 
-/* Sphere bounds padded by 1e-3 r: a sphere that passes the leaf test
- * (which tolerates 4 * DEPTH_EPS of r^2) always overlaps its box. The box z
- * is stored as positive distance like the cluster boxes. */
-__kernel void bvh_leaves(__global const float4* spheres, __global const uint* ids, uint n,
-                         __global float4* sorted, __global uint* sorted_ids, __global float4* node_lo,
-                         __global float4* node_hi) {
-  const uint node = get_global_id(0);
-  const uint first = node * BVH_BRANCH;
-  if (first >= n) return;
-  const uint last = min(first + BVH_BRANCH, n);
-  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
-  for (uint i = first; i < last; ++i) {
-    const uint id = ids[i];
-    const float4 s = spheres[id];
-    sorted[i] = s;
-    sorted_ids[i] = id;
-    const float r = s.w * 1.001f + 1e-6f;
-    const float4 p = (float4)(s.x, s.y, -s.z, 0.0f);
-    lo = fmin(lo, p - r);
-    hi = fmax(hi, p + r);
-  }
-  node_lo[node] = lo;
-  node_hi[node] = hi;
-}
-
 /* Children at [child_start, child_start + n_children), parents from parent_start. */
-__kernel void bvh_level(__global float4* node_lo, __global float4* node_hi, uint child_start, uint n_children,
-                        uint parent_start) {
+__kernel void bvh_level(__global float4* node_lo, __global float4* node_hi, __global float4* node_sph,
+                        uint child_start, uint n_children, uint parent_start) {
   const uint node = get_global_id(0);
   const uint first = node * BVH_BRANCH;
   if (first >= n_children) return;
   const uint last = min(first + BVH_BRANCH, n_children);
-  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY), clo = (float4)(INFINITY), chi = (float4)(-INFINITY);
   for (uint i = first; i < last; ++i) {
     lo = fmin(lo, node_lo[child_start + i]);
     hi = fmax(hi, node_hi[child_start + i]);
+    const float4 s = node_sph[child_start + i];
+    clo = fmin(clo, (float4)(s.xyz, 0.0f));
+    chi = fmax(chi, (float4)(s.xyz, 0.0f));
+  }
+  const float4 c = (clo + chi) * 0.5f;
+  float rad = 0.0f;
+  for (uint i = first; i < last; ++i) {
+    const float4 s = node_sph[child_start + i];
+    rad = fmax(rad, length((float4)(s.xyz, 0.0f) - c) + s.w);
   }
   node_lo[parent_start + node] = lo;
   node_hi[parent_start + node] = hi;
+  node_sph[parent_start + node] = (float4)(c.xyz, rad * 1.001f + 1e-6f);
 }
 
-inline bool boxes_overlap(float4 alo, float4 ahi, float4 blo, float4 bhi) {
-  return alo.x <= bhi.x && blo.x <= ahi.x && alo.y <= bhi.y && blo.y <= ahi.y && alo.z <= bhi.z && blo.z <= ahi.z;
-}
-
-/* Nodes of all levels in one array; level l starts at level_start[l] (level 0
- * = leaves) and has level_count[l] nodes; `levels` levels, the top one has at
- * most BVH_BRANCH nodes. Stack entries: level << 27 | node. */
-__kernel void bvh_assign(__global const float4* sorted, __global const uint* sorted_ids, uint n,
-                         __global const float4* node_lo, __global const float4* node_hi,
-                         __global const uint* level_start, __global const uint* level_count, uint levels,
-                         __global const float4* box_lo, __global const float4* box_hi, uint count,
-                         __global uint* counts, __global const uint* offsets, __global uint* indices, uint fill) {
-  const uint c = get_global_id(0);
-  if (c >= count || n == 0u) {
-    if (c < count && !fill) counts[c] = 0u;
-    return;
+/* Node boxes again as structure of arrays, in blocks of 32 siblings: node i
+ * of level l is lane i % 32 of block block_start[l] + i / 32 (lo.x, lo.y,
+ * lo.z, hi.x, hi.y, hi.z, 32 floats each). The children of node i of level
+ * l + 1 are exactly block i of level l, so one branch-free loop tests them
+ * all against a cluster box, like the lights of a leaf. Lanes past the
+ * level's end are empty boxes (lo +inf, hi -inf) and never overlap. */
+__kernel void node_blocks(__global const float4* node_lo, __global const float4* node_hi,
+                          __global const float4* node_sph, uint start, uint count, uint block_start,
+                          __global float* nsoa) {
+  const uint b = get_global_id(0);
+  if (b * BVH_BRANCH >= count) return;
+  __global float* o = nsoa + (size_t)(block_start + b) * (NODE_FLOATS * BVH_BRANCH);
+  for (uint i = 0; i < BVH_BRANCH; ++i) {
+    const uint k = b * BVH_BRANCH + i;
+    const float4 lo = k < count ? node_lo[start + k] : (float4)(INFINITY);
+    const float4 hi = k < count ? node_hi[start + k] : (float4)(-INFINITY);
+    const float4 s = k < count ? node_sph[start + k] : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+    o[i] = lo.x;
+    o[BVH_BRANCH + i] = lo.y;
+    o[2u * BVH_BRANCH + i] = lo.z;
+    o[3u * BVH_BRANCH + i] = hi.x;
+    o[4u * BVH_BRANCH + i] = hi.y;
+    o[5u * BVH_BRANCH + i] = hi.z;
+    o[6u * BVH_BRANCH + i] = s.x;
+    o[7u * BVH_BRANCH + i] = s.y;
+    o[8u * BVH_BRANCH + i] = s.z;
+    o[9u * BVH_BRANCH + i] = s.w;
   }
-  const float4 lo = box_lo[c], hi = box_hi[c];
+}
+
+/* A child is entered when its box overlaps the cluster box and its bounding
+ * sphere reaches it (the sphere is much tighter than the box around a group
+ * of large lights; both are padded, so every light that passes the leaf test
+ * is reached). */
+inline uint block_mask(__global const float* nsoa, uint block, float4 lo, float4 hi) {
+  __global const float* b = nsoa + (size_t)block * (NODE_FLOATS * BVH_BRANCH);
+  uint mask = 0u;
+  for (uint i = 0; i < BVH_BRANCH; ++i) {
+    const float cx = b[6u * BVH_BRANCH + i], cy = b[7u * BVH_BRANCH + i], cz = b[8u * BVH_BRANCH + i];
+    const float r = b[9u * BVH_BRANCH + i];
+    const float dx = cx - clamp(cx, lo.x, hi.x), dy = cy - clamp(cy, lo.y, hi.y), dz = cz - clamp(cz, lo.z, hi.z);
+    const bool hit = b[i] <= hi.x && lo.x <= b[3u * BVH_BRANCH + i] && b[BVH_BRANCH + i] <= hi.y &&
+                     lo.y <= b[4u * BVH_BRANCH + i] && b[2u * BVH_BRANCH + i] <= hi.z &&
+                     lo.z <= b[5u * BVH_BRANCH + i] && dx * dx + dy * dy + dz * dz <= r * r && r >= 0.0f;
+    mask |= (hit ? 1u : 0u) << i;
+  }
+  return mask;
+}
+
+/* ------------------------------------------------------------ assignment
+ *
+ * count -> scan -> fill, one work-item per cluster with private state (the
+ * CPU shape; see the PoCL notes). The count pass walks (or, brute force,
+ * sweeps) the leaves and records each hit leaf as (leaf, mask) in the
+ * cluster's own slots of a scratch buffer, up to `slots` of them; the fill
+ * pass then only expands those masks into light indices. A cluster with more
+ * hit leaves than slots is walked again by the fill pass. So nothing is
+ * truncated and nothing needs atomics.
+ *
+ * The walk keeps a stack of nodes whose boxes overlap the cluster box
+ * (level << 27 | node); popping an inner node tests its 32 children at once,
+ * popping a leaf tests its 32 lights. use_bvh = 0: brute force, every leaf
+ * in order. */
+
+inline uint emit_leaf(uint leaf, uint mask, __global const uint* leaf_ids, __global uint* out, uint m) {
+  while (mask != 0u) {
+    const uint bit = mask & (0u - mask);
+    out[m++] = leaf_ids[leaf * BVH_BRANCH + (31u - clz(bit))];
+    mask ^= bit;
+  }
+  return m;
+}
+
+/* mode 0: count, recording hit leaves into rec_leaf/rec_mask (up to slots);
+ * mode 1: count and write the lights to out. Returns the light count and, in
+ * *hit_leaves, the number of leaves with hits. */
+inline uint walk(uint mode, uint use_bvh, __global const float* soa, __global const uint* leaf_ids, uint n_leaves,
+                 __global const float* nsoa, __global const uint* block_start, uint levels, float4 lo, float4 hi,
+                 __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint* out, uint* hit_leaves) {
+  uint m = 0u, h = 0u;
   uint stack[BVH_STACK];
   uint sp = 0;
-  const uint top = levels - 1u;
-  for (uint t = level_count[top]; t > 0u; --t) stack[sp++] = (top << 27) | (t - 1u);
-  uint m = 0;
-  const uint base = fill ? offsets[c] : 0u;
-  while (sp > 0u) {
-    const uint e = stack[--sp];
-    const uint l = e >> 27, node = e & 0x7ffffffu;
-    const uint g = level_start[l] + node;
-    if (!boxes_overlap(node_lo[g], node_hi[g], lo, hi)) continue;
-    const uint first = node * BVH_BRANCH;
-    if (l == 0u) {
-      const uint last = min(first + BVH_BRANCH, n);
-      for (uint i = first; i < last; ++i)
-        if (sphere_hits_box(sorted[i], lo, hi)) {
-          if (fill) indices[base + m] = sorted_ids[i];
-          ++m;
-        }
-    } else {
-      const uint last = min(first + BVH_BRANCH, level_count[l - 1u]);
-      for (uint k = last; k > first; --k) stack[sp++] = ((l - 1u) << 27) | (k - 1u);
+  uint leaf = 0u;
+  if (use_bvh) {
+    const uint top = levels - 1u;
+    uint mask = block_mask(nsoa, block_start[top], lo, hi);
+    while (mask != 0u) {
+      const uint bit = mask & (0u - mask);
+      stack[sp++] = (top << 27) | (31u - clz(bit));
+      mask ^= bit;
     }
   }
-  if (!fill) counts[c] = m;
+  for (;;) {
+    if (use_bvh) {
+      if (sp == 0u) break;
+      const uint e = stack[--sp];
+      const uint l = e >> 27, node = e & 0x7ffffffu;
+      if (l > 0u) {
+        uint mask = block_mask(nsoa, block_start[l - 1u] + node, lo, hi);
+        while (mask != 0u) {
+          const uint bit = mask & (0u - mask);
+          stack[sp++] = ((l - 1u) << 27) | (node * BVH_BRANCH + (31u - clz(bit)));
+          mask ^= bit;
+        }
+        continue;
+      }
+      leaf = node;
+    } else if (leaf >= n_leaves) {
+      break;
+    }
+    const uint mask = leaf_mask(soa, leaf, lo, hi);
+    if (!use_bvh) ++leaf;
+    if (mask == 0u) continue;
+    const uint this_leaf = use_bvh ? leaf : leaf - 1u;
+    if (mode == 0u) {
+      if (h < slots) {
+        rec_leaf[h] = this_leaf;
+        rec_mask[h] = mask;
+      }
+      m += popcount(mask);
+    } else {
+      m = emit_leaf(this_leaf, mask, leaf_ids, out, m);
+    }
+    ++h;
+  }
+  *hit_leaves = h;
+  return m;
+}
+
+__kernel void assign_count(__global const float* soa, __global const uint* leaf_ids, uint n_leaves,
+                           __global const float* nsoa, __global const uint* block_start, uint levels, uint use_bvh,
+                           __global const float4* box_lo, __global const float4* box_hi, uint count,
+                           __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint* hit_leaves,
+                           __global uint* counts) {
+  const uint c = get_global_id(0);
+  if (c >= count) return;
+  uint h = 0u;
+  counts[c] = n_leaves == 0u ? 0u
+                             : walk(0u, use_bvh, soa, leaf_ids, n_leaves, nsoa, block_start, levels, box_lo[c],
+                                    box_hi[c], rec_leaf + (size_t)c * slots, rec_mask + (size_t)c * slots, slots, 0,
+                                    &h);
+  hit_leaves[c] = h;
+}
+
+__kernel void assign_fill(__global const float* soa, __global const uint* leaf_ids, uint n_leaves,
+                          __global const float* nsoa, __global const uint* block_start, uint levels, uint use_bvh,
+                          __global const float4* box_lo, __global const float4* box_hi, uint count,
+                          __global const uint* rec_leaf, __global const uint* rec_mask, uint slots,
+                          __global const uint* hit_leaves, __global const uint* offsets, __global uint* indices) {
+  const uint c = get_global_id(0);
+  if (c >= count) return;
+  const uint h = hit_leaves[c];
+  __global uint* out = indices + offsets[c];
+  if (h <= slots) {
+    uint m = 0u;
+    for (uint j = 0; j < h; ++j)
+      m = emit_leaf(rec_leaf[(size_t)c * slots + j], rec_mask[(size_t)c * slots + j], leaf_ids, out, m);
+    return;
+  }
+  uint unused = 0u;
+  walk(1u, use_bvh, soa, leaf_ids, n_leaves, nsoa, block_start, levels, box_lo[c], box_hi[c], 0, 0, 0u, out,
+       &unused);
 }

@@ -2,10 +2,13 @@
 // reference (exactly), the BVH against brute force (as sets), with lights
 // straddling the near plane, around the eye and huge; and conservativeness:
 // every light whose sphere contains a pixel's surface point is in the list of
-// that pixel's cluster.
+// that pixel's cluster. Both bounds: the sub-frustum boxes and the explicit
+// boxes of the clusters' pixels (device boxes bit for bit against the C++
+// reduction, fewer list entries in all than the sub-frustum boxes).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 
 #include "clustered_support.hpp"
@@ -37,16 +40,16 @@ Frame clusters(ClusterUniquer& u, const test::ClusterCase& c, cl::Buffer& depth,
   return f;
 }
 
-// Sorted list per cluster, with the range layout checked.
+// Sorted list per cluster, with the range layout checked. pixels: explicit bounds.
 std::vector<std::vector<std::uint32_t>> assign(ClusterLightAssigner& a, ClusterUniquer& u, const test::ClusterCase& c,
-                                               const Frame& f) {
+                                               const Frame& f, const ClusterPixels* pixels) {
   ClRuntime& rt = test::runtime();
   auto& q = rt.queue();
   const auto n = std::uint32_t(c.lights.size());
   cl::Buffer lights(rt.context(), CL_MEM_READ_ONLY, std::max<std::size_t>(32, n * 32));
   if (n) q.enqueueWriteBuffer(lights, CL_TRUE, 0, n * 32, c.lights.data());
   const auto clusters = std::uint32_t(f.unique.size());
-  const std::uint32_t total = a.count(q, lights, n, c.cam(), f.grid, u.uniqueKeys(), clusters);
+  const std::uint32_t total = a.count(q, lights, n, c.cam(), f.grid, u.uniqueKeys(), clusters, nullptr, pixels);
   cl::Buffer ranges(rt.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, clusters * 8));
   cl::Buffer indices(rt.context(), CL_MEM_READ_WRITE, total * 4 + 64);
   q.enqueueFillBuffer(ranges, kPoison, 0, std::max<std::size_t>(16, clusters * 8));
@@ -73,6 +76,29 @@ std::vector<std::vector<std::uint32_t>> assign(ClusterLightAssigner& a, ClusterU
   return lists;
 }
 
+// The device's explicit boxes, read back after a count().
+std::vector<ClusterBox> deviceBoxes(ClusterLightAssigner& a, std::size_t clusters) {
+  std::vector<cl_float4> lo(clusters), hi(clusters);
+  auto& q = test::runtime().queue();
+  if (clusters) {
+    q.enqueueReadBuffer(a.boxLo(), CL_TRUE, 0, clusters * 16, lo.data());
+    q.enqueueReadBuffer(a.boxHi(), CL_TRUE, 0, clusters * 16, hi.data());
+  }
+  std::vector<ClusterBox> out;
+  for (std::size_t k = 0; k < clusters; ++k)
+    out.push_back({lo[k].s[0], hi[k].s[0], lo[k].s[1], hi[k].s[1], lo[k].s[2], hi[k].s[2]});
+  return out;
+}
+
+void poisonBoxes(ClusterLightAssigner& a, std::size_t clusters) {
+  auto& q = test::runtime().queue();
+  const cl_float4 nan{{std::numeric_limits<float>::quiet_NaN(), 1.0f, -1.0f, 0.0f}};
+  if (clusters) {
+    q.enqueueFillBuffer(a.boxLo(), nan, 0, clusters * 16);
+    q.enqueueFillBuffer(a.boxHi(), nan, 0, clusters * 16);
+  }
+}
+
 TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
@@ -80,6 +106,10 @@ TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
   ClRuntime& rt = test::runtime();
   ClusterUniquer u(rt, UniqueMethod::PageTable);
   ClusterLightAssigner brute(rt, ClusterAssignMethod::Brute), bvh(rt, ClusterAssignMethod::Bvh);
+  // One hit-leaf record per cluster: the fill pass walks again for most clusters.
+  ClusterLightAssigner brute_rewalk(rt, ClusterAssignMethod::Brute), bvh_rewalk(rt, ClusterAssignMethod::Bvh);
+  brute_rewalk.setRecordBudget(1);
+  bvh_rewalk.setRecordBudget(1);
   // Light counts give BVHs of 1 (< 32 lights), 2 and 3 levels, and none at all.
   for (auto [w, h, tile, n] : {std::tuple{160u, 96u, 32u, 20u}, std::tuple{203u, 117u, 16u, 3000u},
                                std::tuple{64u, 48u, 32u, 40000u}, std::tuple{50u, 30u, 8u, 0u}}) {
@@ -89,40 +119,85 @@ TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
     cl::Buffer depth(rt.context(), CL_MEM_READ_ONLY, c.depth.size() * 4);
     const Frame f = clusters(u, c, depth, tile);
     ASSERT_GT(f.unique.size(), 0u);
-    const auto ref = referenceAssign(f.unique, c.lights, c.cam(), f.grid);
-    const auto b = assign(brute, u, c, f);
-    const auto t = assign(bvh, u, c, f);
-    std::size_t pairs = 0;
-    for (std::size_t k = 0; k < ref.size(); ++k) {
-      ASSERT_EQ(b[k], ref[k]) << "brute, cluster " << k;
-      ASSERT_EQ(t[k], ref[k]) << "bvh, cluster " << k;
-      pairs += ref[k].size();
-    }
-    if (n > 0) {
-      EXPECT_GT(pairs, 0u);
-    }
-    if (n == 40000) {
-      EXPECT_EQ(bvh.bvhLevels(), 3u);
-    }
-
-    // Conservative: a light containing a pixel's surface point is in its cluster's list.
-    const glm::mat4 inv = glm::inverse(c.camera.projection(float(w) / float(h)) * c.camera.view());
-    for (unsigned y = 0; y < h; y += 3)
-      for (unsigned x = 0; x < w; x += 3) {
-        const std::size_t p = std::size_t(y) * w + x;
-        if (c.depth[p] >= 1.0f) continue;
-        const glm::vec4 ndc{(x + 0.5f) / w * 2 - 1, (y + 0.5f) / h * 2 - 1, c.depth[p] * 2 - 1, 1};
-        glm::vec4 wp = inv * ndc;
-        wp /= wp.w;
-        const auto& list = t[f.cluster_of[p]];
-        for (std::uint32_t i = 0; i < n; ++i) {
-          const auto& l = c.lights[i].position_radius;
-          const glm::vec3 d = glm::vec3(wp) - glm::vec3(l.x, l.y, l.z);
-          if (glm::dot(d, d) < l.w * l.w * 0.999f) {
-            ASSERT_TRUE(std::binary_search(list.begin(), list.end(), i)) << "pixel " << x << "," << y << " light " << i;
-          }
+    const ClusterPixels pixels{depth, u.clusterOf()};
+    std::vector<std::vector<std::uint32_t>> frustum_lists;
+    for (ClusterBounds bounds : {ClusterBounds::Frustum, ClusterBounds::Pixels}) {
+      SCOPED_TRACE(clusterBoundsName(bounds));
+      const bool explicit_bounds = bounds == ClusterBounds::Pixels;
+      const auto ref_boxes = explicit_bounds ? pixelBoxes(c.depth.data(), f.cluster_of, std::uint32_t(f.unique.size()), c.cam())
+                                             : std::vector<ClusterBox>{};
+      const auto ref = explicit_bounds ? referenceAssign(ref_boxes, c.lights, c.cam())
+                                       : referenceAssign(f.unique, c.lights, c.cam(), f.grid);
+      if (explicit_bounds) {
+        // Sizes the box buffers; then poison them so that a box the kernel misses shows.
+        assign(brute, u, c, f, &pixels);
+        poisonBoxes(brute, f.unique.size());
+      }
+      const auto b = assign(brute, u, c, f, explicit_bounds ? &pixels : nullptr);
+      if (explicit_bounds) {
+        // Bit for bit: the reduction is min/max only, the per-pixel math has no contraction.
+        const auto got = deviceBoxes(brute, f.unique.size());
+        for (std::size_t k = 0; k < got.size(); ++k) {
+          const ClusterBox& e = ref_boxes[k];
+          const ClusterBox& g = got[k];
+          ASSERT_TRUE(g.x0 == e.x0 && g.x1 == e.x1 && g.y0 == e.y0 && g.y1 == e.y1 && g.z0 == e.z0 && g.z1 == e.z1)
+              << "cluster " << k << ": got x " << g.x0 << ".." << g.x1 << " y " << g.y0 << ".." << g.y1 << " z "
+              << g.z0 << ".." << g.z1 << ", expected x " << e.x0 << ".." << e.x1 << " y " << e.y0 << ".." << e.y1
+              << " z " << e.z0 << ".." << e.z1;
         }
       }
+      const auto t = assign(bvh, u, c, f, explicit_bounds ? &pixels : nullptr);
+      // The walk-again path once, with the explicit bounds (the default).
+      const auto br = explicit_bounds ? assign(brute_rewalk, u, c, f, &pixels) : ref;
+      const auto tr = explicit_bounds ? assign(bvh_rewalk, u, c, f, &pixels) : ref;
+      std::size_t pairs = 0;
+      for (std::size_t k = 0; k < ref.size(); ++k) {
+        ASSERT_EQ(b[k], ref[k]) << "brute, cluster " << k;
+        ASSERT_EQ(t[k], ref[k]) << "bvh, cluster " << k;
+        ASSERT_EQ(br[k], ref[k]) << "brute walking again, cluster " << k;
+        ASSERT_EQ(tr[k], ref[k]) << "bvh walking again, cluster " << k;
+        pairs += ref[k].size();
+      }
+      // (20 lights may all miss the tight boxes of the pixels.)
+      if (n > 0 && (n >= 1000 || !explicit_bounds)) {
+        EXPECT_GT(pairs, 0u);
+      }
+      // Explicit bounds tighten the lists overall (a box may reach past its
+      // slice by its padding, so not cluster by cluster).
+      if (explicit_bounds) {
+        std::size_t frustum_pairs = 0;
+        for (const auto& l : frustum_lists) frustum_pairs += l.size();
+        EXPECT_LE(pairs, frustum_pairs);
+      }
+      if (n == 40000) {
+        EXPECT_EQ(bvh.bvhLevels(), 3u);
+      }
+
+      // Conservative: a light containing a pixel's surface point is in its cluster's list.
+      // The point is reconstructed in double: in float, inverting proj * view
+      // loses ~1e-4 of the distance at far/near = 1000, as much as the boxes'
+      // padding, and the reference itself would be wrong.
+      const glm::dmat4 inv = glm::inverse(glm::dmat4(c.camera.projection(float(w) / float(h))) *
+                                          glm::dmat4(c.camera.view()));
+      for (unsigned y = 0; y < h; y += 3)
+        for (unsigned x = 0; x < w; x += 3) {
+          const std::size_t p = std::size_t(y) * w + x;
+          if (c.depth[p] >= 1.0f) continue;
+          const glm::dvec4 ndc{(x + 0.5) / w * 2 - 1, (y + 0.5) / h * 2 - 1, double(c.depth[p]) * 2 - 1, 1};
+          glm::dvec4 wp = inv * ndc;
+          wp /= wp.w;
+          const auto& list = t[f.cluster_of[p]];
+          for (std::uint32_t i = 0; i < n; ++i) {
+            const auto& l = c.lights[i].position_radius;
+            const glm::dvec3 d = glm::dvec3(wp) - glm::dvec3(l.x, l.y, l.z);
+            if (glm::dot(d, d) < double(l.w) * l.w * 0.999) {
+              ASSERT_TRUE(std::binary_search(list.begin(), list.end(), i))
+                  << "pixel " << x << "," << y << " light " << i;
+            }
+          }
+        }
+      if (!explicit_bounds) frustum_lists = t;
+    }
   }
 }
 

@@ -49,16 +49,17 @@ struct Param {
   unsigned tile;
   UniqueMethod unique;
   ClusterAssignMethod assign;
+  ClusterBounds bounds = ClusterBounds::Pixels;
 };
 class RenderClustered : public ::testing::TestWithParam<Param> {};
 
 TEST_P(RenderClustered, MatchesBruteForce) {
   test::glContext();
-  const auto [pipeline, tile, unique, assign] = GetParam();
+  const auto [pipeline, tile, unique, assign, bounds] = GetParam();
   const Reference& ref = bruteReference(pipeline);
   FrameRenderer r(test::runtime(), scene().scene, kW, kH);
   r.setLights(scene().lights);
-  ClusteredAssigner clustered(test::runtime(), tile, unique, assign);
+  ClusteredAssigner clustered(test::runtime(), tile, unique, assign, bounds);
   FrameResult res = r.render(scene().cameras.frames.front(), clustered, {pipeline, true});
   const auto img = r.targets().readColor();
   // Lights left out contribute exactly zero, so only the summation order differs.
@@ -86,12 +87,16 @@ INSTANTIATE_TEST_SUITE_P(
                       Param{Pipeline::Deferred, 16, UniqueMethod::Sort, ClusterAssignMethod::Brute},
                       Param{Pipeline::Deferred, 32, UniqueMethod::TileSort, ClusterAssignMethod::Bvh},
                       Param{Pipeline::Forward, 32, UniqueMethod::PageTable, ClusterAssignMethod::Bvh},
-                      Param{Pipeline::Forward, 64, UniqueMethod::Sort, ClusterAssignMethod::Bvh}),
+                      Param{Pipeline::Forward, 64, UniqueMethod::Sort, ClusterAssignMethod::Bvh},
+                      Param{Pipeline::Deferred, 32, UniqueMethod::PageTable, ClusterAssignMethod::Bvh,
+                            ClusterBounds::Frustum},
+                      Param{Pipeline::Forward, 16, UniqueMethod::TileSort, ClusterAssignMethod::Bvh,
+                            ClusterBounds::Frustum}),
     [](const auto& info) {
       return std::string(info.param.pipeline == Pipeline::Forward ? "forward" : "deferred") + "_" +
              std::to_string(info.param.tile) + "_" +
              (info.param.unique == UniqueMethod::TileSort ? std::string("tilesort") : uniqueMethodName(info.param.unique)) +
-             "_" + clusterAssignName(info.param.assign);
+             "_" + clusterAssignName(info.param.assign) + "_" + clusterBoundsName(info.param.bounds);
     });
 
 TEST(RenderClusteredEdges, OddScreenSizeAndNoLights) {

@@ -71,7 +71,7 @@ TEST(RenderBrute, ForwardAndDeferredAgreeAndCountsAreExact) {
   const auto img_deferred = r.targets().readColor();
 
   // Same picture. Deferred reconstructs position from 32-bit depth and stores
-  // normals in 16-bit floats; the stated tolerance: mean |diff| < 0.002 and no
+  // normals octahedral in RG16 unorm; the stated tolerance: mean |diff| < 0.002 and no
   // more than 0.5% of pixels off by more than 2/255 in any channel.
   const auto diff = test::compareImages(img_forward, img_deferred, 2.0 / 255.0);
   EXPECT_LT(diff.mean_abs, 0.002) << "max " << diff.max_abs;

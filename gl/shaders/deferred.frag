@@ -1,6 +1,7 @@
 #include "common.glsl"
 #include "lookup.glsl"
 #include "shading.glsl"
+#include "octahedral.glsl"
 layout(binding = 1) uniform sampler2D u_gbuffer_albedo;
 layout(binding = 2) uniform sampler2D u_gbuffer_normal;
 layout(binding = 3) uniform sampler2D u_gbuffer_depth;
@@ -14,7 +15,7 @@ void main() {
   vec4 v = u_inv_proj * vec4(ndc, 1.0);
   vec3 view_pos = v.xyz / v.w;
   vec3 P = (u_inv_view * vec4(view_pos, 1.0)).xyz;
-  vec3 N = normalize(texelFetch(u_gbuffer_normal, px, 0).xyz);
+  vec3 N = octDecode(texelFetch(u_gbuffer_normal, px, 0).xy);
   uvec2 counts;
   vec3 c = shadePoint(P, N, view_pos, gl_FragCoord.xy, texelFetch(u_gbuffer_albedo, px, 0).rgb, counts);
   o_color = vec4(c, 1.0);

@@ -151,7 +151,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       "  manylights bench --techniques forward,deferred --lights 256,1024 --sizes 320x180,640x360 --frames ::4\n"
       "Parameter keys (--param KEY=V1,V2,..., repeatable; each technique sweeps only the keys it reads):\n"
       "  tile, tile_depth (none|minmax|mask)              tiled techniques\n"
-      "  cluster_tile, unique (pagetable|sort|tile-sort), cluster_assign (bvh|brute)   clustered\n"
+      "  cluster_tile (pixels | auto), unique (pagetable|sort|tile-sort), cluster_assign (bvh|brute),\n"
+      "  cluster_bounds (pixels|frustum)                                               clustered\n"
       "  node_size (2.0 | 0.5r), start_depth, geometry_mask (on|off)                  hashed\n"
       "Light sets (--lights, comma list): JSON files; names under the suite's lights/; 'thesis' (the thesis's set\n"
       "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).");

@@ -73,10 +73,15 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--stats-json", a.stats_json, "write times and counts as JSON (implies --counts)");
   cmd->add_option("--tile", a.params.tile_size, "tile size in pixels (tiled techniques)")->capture_default_str();
   cmd->add_option("--tile-depth", a.params.tile_depth, "tiled depth culling: none|minmax|mask")->capture_default_str();
-  cmd->add_option("--cluster-tile", a.params.cluster_tile, "cluster tile size in pixels")->capture_default_str();
+  cmd->add_option("--cluster-tile", a.params.cluster_tile,
+                  "cluster tile size in pixels; 0: auto (32 from 720 lines up, as in the thesis; 16 below)")
+      ->capture_default_str();
   cmd->add_option("--unique", a.params.unique_method, "unique clusters: pagetable|sort|tile-sort")
       ->capture_default_str();
   cmd->add_option("--cluster-assign", a.params.cluster_assign, "cluster light assignment: bvh|brute")
+      ->capture_default_str();
+  cmd->add_option("--cluster-bounds", a.params.cluster_bounds,
+                  "clustered: cull against the AABB of each cluster's pixels or of its sub-frustum: pixels|frustum")
       ->capture_default_str();
   cmd->add_option("--cluster-view", g_cluster_view, "clustered: write each unique cluster as a colour to this PNG");
   cmd->add_option("--node-size", a.params.node_size, "hashed: minimal node size, absolute or relative (0.5r)")

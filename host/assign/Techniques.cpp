@@ -43,7 +43,8 @@ std::unique_ptr<LightAssigner> makeAssigner(const std::string& technique, ClRunt
     return std::make_unique<TiledAssigner>(cl, params.tile_size, parseTileDepthMode(params.tile_depth));
   if (t.name == "clustered-forward" || t.name == "clustered-deferred")
     return std::make_unique<ClusteredAssigner>(cl, params.cluster_tile, parseUniqueMethod(params.unique_method),
-                                               parseClusterAssign(params.cluster_assign));
+                                               parseClusterAssign(params.cluster_assign),
+                                               parseClusterBounds(params.cluster_bounds));
   throw UserError("--technique: '" + technique + "' is registered but has no assigner");
 }
 

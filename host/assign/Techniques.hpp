@@ -16,10 +16,11 @@ struct TechniqueParams {
   // Tiled shading (--tile, --tile-depth-bounds)
   unsigned tile_size = 16;
   std::string tile_depth = "minmax";  // none | minmax | mask (2.5D)
-  // Clustered shading (--cluster-tile, --unique, --cluster-assign)
-  unsigned cluster_tile = 32;
+  // Clustered shading (--cluster-tile, --unique, --cluster-assign, --cluster-bounds)
+  unsigned cluster_tile = 0;  // 0: auto, the thesis's 32 px from 720 lines up, 16 px below
   std::string unique_method = "pagetable";  // pagetable | sort | tile-sort
   std::string cluster_assign = "bvh";       // bvh | brute
+  std::string cluster_bounds = "pixels";    // pixels (explicit, AABB of the cluster's pixels) | frustum (implicit)
   // Hashed shading (--node-size, --start-depth, --geometry-mask)
   std::string node_size = "0.5r";  // absolute world units ("2.0") or relative to the median light radius ("0.5r")
   unsigned start_depth = 3;

@@ -123,7 +123,8 @@ nlohmann::ordered_json toJson(const Summary& s) {
 
 const std::vector<std::string>& techniqueParamKeys() {
   static const std::vector<std::string> keys = {"tile",           "tile_depth",  "cluster_tile", "unique",
-                                                "cluster_assign", "node_size",   "start_depth",  "geometry_mask"};
+                                                "cluster_assign", "cluster_bounds", "node_size", "start_depth",
+                                                "geometry_mask"};
   return keys;
 }
 
@@ -131,7 +132,7 @@ std::vector<std::string> paramKeysUsedBy(const std::string& technique) {
   std::vector<std::string> keys;
   auto has = [&](const char* s) { return technique.find(s) != std::string::npos; };
   if (has("tiled")) keys.insert(keys.end(), {"tile", "tile_depth"});
-  if (has("clustered")) keys.insert(keys.end(), {"cluster_tile", "unique", "cluster_assign"});
+  if (has("clustered")) keys.insert(keys.end(), {"cluster_tile", "unique", "cluster_assign", "cluster_bounds"});
   if (has("hashed")) keys.insert(keys.end(), {"node_size", "start_depth", "geometry_mask"});
   return keys;
 }
@@ -157,7 +158,9 @@ void setTechniqueParam(TechniqueParams& p, const std::string& key, const std::st
     if (!parseUnsigned(value, u) || u == 0 || u > 4096) throw bad("expected a tile size in pixels, 1..4096");
     p.tile_size = u;
   } else if (key == "cluster_tile") {
-    if (!parseUnsigned(value, u) || u == 0 || u > 4096) throw bad("expected a tile size in pixels, 1..4096");
+    if (value == "auto") u = 0;
+    else if (!parseUnsigned(value, u) || u == 0 || u > 4096)
+      throw bad("expected a tile size in pixels, 1..4096, or auto");
     p.cluster_tile = u;
   } else if (key == "tile_depth") {
     oneOf({"none", "minmax", "mask"}, p.tile_depth);
@@ -165,6 +168,8 @@ void setTechniqueParam(TechniqueParams& p, const std::string& key, const std::st
     oneOf({"pagetable", "sort", "tile-sort"}, p.unique_method);
   } else if (key == "cluster_assign") {
     oneOf({"bvh", "brute"}, p.cluster_assign);
+  } else if (key == "cluster_bounds") {
+    oneOf({"pixels", "frustum"}, p.cluster_bounds);
   } else if (key == "node_size") {
     const std::string number = !value.empty() && value.back() == 'r' ? value.substr(0, value.size() - 1) : value;
     double d = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "host/tiled/TileGeometry.hpp"
@@ -16,6 +17,11 @@ unsigned bitsFor(unsigned count) {
   unsigned b = 0;
   while (b < 32 && (1ull << b) < count) ++b;
   return b;
+}
+
+unsigned autoClusterTile(unsigned width, unsigned height) {
+  (void)width;
+  return height >= 720 ? 32u : 16u;
 }
 
 ClusterGrid ClusterGrid::make(const gpu::CameraParams& cam, unsigned tile_size) {
@@ -108,6 +114,41 @@ ClusterBox clusterBox(std::uint32_t key, const gpu::CameraParams& cam, const Clu
   return b;
 }
 
+std::vector<ClusterBox> pixelBoxes(const float* depth, const std::vector<std::uint32_t>& cluster_of,
+                                   std::uint32_t clusters, const gpu::CameraParams& cam) {
+  constexpr float inf = std::numeric_limits<float>::infinity();
+  std::vector<ClusterBox> boxes(clusters, ClusterBox{inf, -inf, inf, -inf, inf, -inf});
+  const float sx = 2.0f / float(cam.width), sy = 2.0f / float(cam.height);
+  const float ix = 1.0f / cam.proj[0], iy = 1.0f / cam.proj[5], ox = cam.proj[8], oy = cam.proj[9];
+  for (unsigned y = 0; y < cam.height; ++y) {
+    const float fy = ((float(y) + 0.5f) * sy - 1.0f + oy) * iy;
+    for (unsigned x = 0; x < cam.width; ++x) {
+      const std::size_t p = std::size_t(y) * cam.width + x;
+      const std::uint32_t c = cluster_of[p];
+      if (c == kClusterInvalid) continue;
+      const float z = linearDepth(depth[p], cam);
+      const float fx = ((float(x) + 0.5f) * sx - 1.0f + ox) * ix;
+      const float vx = z * fx, vy = z * fy;
+      ClusterBox& b = boxes.at(c);
+      b.x0 = std::fmin(b.x0, vx);
+      b.x1 = std::fmax(b.x1, vx);
+      b.y0 = std::fmin(b.y0, vy);
+      b.y1 = std::fmax(b.y1, vy);
+      b.z0 = std::fmin(b.z0, z);
+      b.z1 = std::fmax(b.z1, z);
+    }
+  }
+  for (ClusterBox& b : boxes) {
+    const float ext = std::fmax(std::fmax(b.z1, std::fmax(std::fabs(b.x0), std::fabs(b.x1))),
+                                std::fmax(std::fabs(b.y0), std::fabs(b.y1)));
+    const float rel_lo = kClusterDepthEps + kClusterReconEps * (b.z0 / cam.near_plane);
+    const float rel_hi = kClusterDepthEps + kClusterReconEps * (b.z1 / cam.near_plane);
+    const float pad = ext * rel_hi;
+    b = {b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad, b.z0 - b.z0 * rel_lo, b.z1 + b.z1 * rel_hi};
+  }
+  return boxes;
+}
+
 ViewSphere viewSphere(const gpu::PointLight& l, const gpu::CameraParams& cam) {
   const float* m = cam.view;
   const float px = l.position_radius.x, py = l.position_radius.y, pz = l.position_radius.z;
@@ -122,19 +163,26 @@ bool sphereHitsCluster(const ViewSphere& s, const ClusterBox& b) {
   return dx * dx + dy * dy + dz * dz <= s.r * s.r * (1.0f + 4.0f * kClusterDepthEps);
 }
 
-std::vector<std::vector<std::uint32_t>> referenceAssign(const std::vector<std::uint32_t>& unique_keys,
+std::vector<std::vector<std::uint32_t>> referenceAssign(const std::vector<ClusterBox>& boxes,
                                                         const std::vector<gpu::PointLight>& lights,
-                                                        const gpu::CameraParams& cam, const ClusterGrid& g) {
+                                                        const gpu::CameraParams& cam) {
   std::vector<ViewSphere> spheres;
   spheres.reserve(lights.size());
   for (const auto& l : lights) spheres.push_back(viewSphere(l, cam));
-  std::vector<std::vector<std::uint32_t>> out(unique_keys.size());
-  for (std::size_t c = 0; c < unique_keys.size(); ++c) {
-    const ClusterBox b = clusterBox(unique_keys[c], cam, g);
+  std::vector<std::vector<std::uint32_t>> out(boxes.size());
+  for (std::size_t c = 0; c < boxes.size(); ++c)
     for (std::uint32_t i = 0; i < spheres.size(); ++i)
-      if (sphereHitsCluster(spheres[i], b)) out[c].push_back(i);
-  }
+      if (sphereHitsCluster(spheres[i], boxes[c])) out[c].push_back(i);
   return out;
+}
+
+std::vector<std::vector<std::uint32_t>> referenceAssign(const std::vector<std::uint32_t>& unique_keys,
+                                                        const std::vector<gpu::PointLight>& lights,
+                                                        const gpu::CameraParams& cam, const ClusterGrid& g) {
+  std::vector<ClusterBox> boxes;
+  boxes.reserve(unique_keys.size());
+  for (std::uint32_t key : unique_keys) boxes.push_back(clusterBox(key, cam, g));
+  return referenceAssign(boxes, lights, cam);
 }
 
 }  // namespace ml

@@ -21,6 +21,9 @@ constexpr std::uint32_t kClusterInvalid = 0xffffffffu;
 // Relative widening of the slice depth range in the cluster boxes: the shader
 // reconstructs depth along another float path than the key kernel.
 constexpr float kClusterDepthEps = 1e-4f;
+// Explicit (pixel) bounds widen by kClusterDepthEps + kClusterReconEps z / near
+// (relative): float depth fixes the distance only to ~1e-7 z / near near far.
+constexpr float kClusterReconEps = 1e-6f;
 
 struct ClusterGrid {
   unsigned tile_size = 32;
@@ -42,6 +45,10 @@ struct ClusterGrid {
 };
 
 unsigned bitsFor(unsigned count);  // bits to hold 0 .. count - 1
+// The automatic cluster tile (--cluster-tile 0): the thesis's 32 px from 720
+// lines up, 16 px below, where 32 px tiles are a tenth of the screen and the
+// clusters too coarse for tight light lists.
+unsigned autoClusterTile(unsigned width, unsigned height);
 unsigned sliceOfDepth(float z, const ClusterGrid& g);
 // depth: window-space floats, row 0 at the bottom.
 std::vector<std::uint32_t> referenceKeys(const float* depth, const gpu::CameraParams& cam, const ClusterGrid& g);
@@ -51,6 +58,12 @@ struct ClusterBox {
   float x0, x1, y0, y1, z0, z1;
 };
 ClusterBox clusterBox(std::uint32_t key, const gpu::CameraParams& cam, const ClusterGrid& g);
+// Explicit bounds: per unique cluster the view-space AABB of the centres of
+// the pixels mapped to it (cluster_of: pixel -> cluster index or
+// kClusterInvalid), widened relative to its extent (see kClusterReconEps). Mirrors
+// cluster_pixel_boxes in kernels/cluster_assign.cl exactly.
+std::vector<ClusterBox> pixelBoxes(const float* depth, const std::vector<std::uint32_t>& cluster_of,
+                                   std::uint32_t clusters, const gpu::CameraParams& cam);
 // View-space sphere (z negative in front of the camera).
 struct ViewSphere {
   float x, y, z, r;
@@ -58,6 +71,10 @@ struct ViewSphere {
 ViewSphere viewSphere(const gpu::PointLight& l, const gpu::CameraParams& cam);
 bool sphereHitsCluster(const ViewSphere& s, const ClusterBox& b);
 // Per unique cluster, ascending indices of the lights whose sphere reaches its box.
+std::vector<std::vector<std::uint32_t>> referenceAssign(const std::vector<ClusterBox>& boxes,
+                                                        const std::vector<gpu::PointLight>& lights,
+                                                        const gpu::CameraParams& cam);
+// The same over the clusters' sub-frustum boxes (implicit bounds).
 std::vector<std::vector<std::uint32_t>> referenceAssign(const std::vector<std::uint32_t>& unique_keys,
                                                         const std::vector<gpu::PointLight>& lights,
                                                         const gpu::CameraParams& cam, const ClusterGrid& g);

@@ -1,6 +1,7 @@
 #include "host/clustered/ClusterLightAssigner.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "host/cl/ProgramBuilder.hpp"
@@ -16,176 +17,286 @@ ClusterAssignMethod parseClusterAssign(const std::string& s) {
 
 const char* clusterAssignName(ClusterAssignMethod m) { return m == ClusterAssignMethod::Bvh ? "bvh" : "brute"; }
 
+ClusterBounds parseClusterBounds(const std::string& s) {
+  if (s == "pixels") return ClusterBounds::Pixels;
+  if (s == "frustum") return ClusterBounds::Frustum;
+  throw UserError("--cluster-bounds: expected pixels or frustum, got '" + s + "'");
+}
+
+const char* clusterBoundsName(ClusterBounds b) { return b == ClusterBounds::Pixels ? "pixels" : "frustum"; }
+
 namespace {
 constexpr std::uint32_t kBranch = 32;  // BVH_BRANCH in the kernel
 constexpr unsigned kMaxLevels = 7;     // BVH_STACK (256) >= 32 * levels + 32
+// Hit-leaf records of all clusters together (8 bytes each): clusters with more
+// hit leaves than their share are walked again by the fill pass.
+constexpr std::size_t kDefaultRecordBudget = std::size_t(1) << 22;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr std::uint32_t kMortonChunk = 1024;  // MORTON_CHUNK in the kernel
+constexpr std::size_t kNodeFloats = 10;       // NODE_FLOATS in the kernel
 }  // namespace
 
 ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method)
-    : rt_(rt), method_(method), scan_(rt), radix_(rt) {
+    : rt_(rt), method_(method), record_budget_(kDefaultRecordBudget), scan_(rt), radix_(rt) {
   program_ = rt.programs().build("cluster_assign.cl");
   view_ = cl::Kernel(program_, "light_view");
   boxes_ = cl::Kernel(program_, "cluster_boxes");
-  brute_ = cl::Kernel(program_, "brute_assign");
+  pixel_boxes_ = cl::Kernel(program_, "cluster_pixel_boxes");
   morton_ = cl::Kernel(program_, "light_morton");
-  leaves_ = cl::Kernel(program_, "bvh_leaves");
+  pack_ = cl::Kernel(program_, "pack_leaves");
   level_ = cl::Kernel(program_, "bvh_level");
-  bvh_ = cl::Kernel(program_, "bvh_assign");
+  blocks_ = cl::Kernel(program_, "node_blocks");
+  bounds_part_ = cl::Kernel(program_, "light_bounds_partial");
+  bounds_final_ = cl::Kernel(program_, "light_bounds_final");
+  count_k_ = cl::Kernel(program_, "assign_count");
+  fill_k_ = cl::Kernel(program_, "assign_fill");
   // The tiled kernel's write_grid turns (offsets, counts) into LightRanges.
   keys_program_ = rt.programs().build("tiled_light_culling.cl", {{"TILE_SIZE", "16"}, {"DEPTH_MODE", "0"}});
   ranges_ = cl::Kernel(keys_program_, "write_grid");
   const auto& ctx = rt.context();
-  level_start_ = cl::Buffer(ctx, CL_MEM_READ_ONLY, kMaxLevels * 4);
-  level_count_ = cl::Buffer(ctx, CL_MEM_READ_ONLY, kMaxLevels * 4);
-  for (cl::Buffer* b : {&spheres_, &codes_, &ids_, &sorted_, &sorted_ids_, &node_lo_, &node_hi_})
+  block_start_ = cl::Buffer(ctx, CL_MEM_READ_ONLY, kMaxLevels * 4);
+  frame_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
+  for (cl::Buffer* b :
+       {&spheres_, &codes_, &ids_, &soa_, &leaf_ids_, &node_lo_, &node_hi_, &node_sph_, &node_soa_, &rec_leaf_,
+        &rec_mask_})
     *b = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
 }
 
 std::size_t ClusterLightAssigner::scratchBytes() const {
-  return light_capacity_ * (16 + 4 + 4 + 16 + 4) + node_capacity_ * 32 + cluster_capacity_ * (32 + 8) +
-         bounds_capacity_ * 4;
+  return light_capacity_ * (16 + 4 + 4) + leaf_capacity_ * kBranch * (16 + 4) + node_capacity_ * 48 +
+         block_capacity_ * kBranch * kNodeFloats * 4 +
+         cluster_capacity_ * (32 + 12) + bounds_capacity_ * 4 + record_capacity_ * 8;
 }
 
 std::uint32_t ClusterLightAssigner::count(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n,
                                           const gpu::CameraParams& cam, const ClusterGrid& g,
                                           const cl::Buffer& unique_keys, std::uint32_t clusters,
-                                          ClPassTimer* timer) {
+                                          ClPassTimer* timer, const ClusterPixels* pixels) {
+  boxes(q, cam, g, unique_keys, clusters, timer, pixels);
+  return assign(q, lights, n, cam, timer);
+}
+
+void ClusterLightAssigner::boxes(cl::CommandQueue& q, const gpu::CameraParams& cam, const ClusterGrid& g,
+                                 const cl::Buffer& unique_keys, std::uint32_t clusters, ClPassTimer* timer,
+                                 const ClusterPixels* pixels) {
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
   const auto& ctx = rt_.context();
-  n_ = n;
   clusters_ = clusters;
-  if (n > light_capacity_) {
-    light_capacity_ = std::size_t(n) + n / 2;
-    spheres_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 16);
-    codes_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
-    ids_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
-    sorted_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 16);
-    sorted_ids_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
-  }
   if (clusters + 1 > cluster_capacity_) {
     cluster_capacity_ = std::size_t(clusters) + clusters / 2 + 1;
     box_lo_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 16);
     box_hi_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 16);
     counts_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 4);
     offsets_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 4);
+    hit_leaves_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 4);
   }
   if (g.slice_bounds.size() > bounds_capacity_) {
     bounds_capacity_ = g.slice_bounds.size();
     bounds_ = cl::Buffer(ctx, CL_MEM_READ_ONLY, bounds_capacity_ * 4);
   }
   q.enqueueWriteBuffer(bounds_, CL_FALSE, 0, g.slice_bounds.size() * 4, g.slice_bounds.data());
+  if (clusters == 0) return;
+  if (pixels) {
+    const cl_uint n_tiles = g.tiles_x * g.tiles_y;
+    q.enqueueFillBuffer(box_lo_, cl_float4{{kInf, kInf, kInf, kInf}}, 0, std::size_t(clusters) * 16);
+    q.enqueueFillBuffer(box_hi_, cl_float4{{-kInf, -kInf, -kInf, -kInf}}, 0, std::size_t(clusters) * 16);
+    pixel_boxes_.setArg(0, pixels->depth);
+    pixel_boxes_.setArg(1, pixels->cluster_of);
+    pixel_boxes_.setArg(2, cam);
+    pixel_boxes_.setArg(3, cl_uint(g.tile_size));
+    pixel_boxes_.setArg(4, cl_uint(g.tiles_x));
+    pixel_boxes_.setArg(5, n_tiles);
+    pixel_boxes_.setArg(6, box_lo_);
+    pixel_boxes_.setArg(7, box_hi_);
+    q.enqueueNDRangeKernel(pixel_boxes_, cl::NullRange, cl::NDRange(n_tiles), cl::NullRange, nullptr,
+                           ev("cluster-boxes"));
+  } else {
+    boxes_.setArg(0, unique_keys);
+    boxes_.setArg(1, cl_uint(clusters));
+    boxes_.setArg(2, cam);
+    boxes_.setArg(3, bounds_);
+    boxes_.setArg(4, cl_uint(g.tile_size));
+    boxes_.setArg(5, cl_uint(g.x_bits));
+    boxes_.setArg(6, cl_uint(g.k_bits));
+    boxes_.setArg(7, box_lo_);
+    boxes_.setArg(8, box_hi_);
+    q.enqueueNDRangeKernel(boxes_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr, ev("cluster-boxes"));
+  }
+}
+
+std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n,
+                                           const gpu::CameraParams& cam, ClPassTimer* timer) {
+  auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
+  const auto& ctx = rt_.context();
+  const std::uint32_t clusters = clusters_;
+  n_ = n;
+  bvh_ = method_ == ClusterAssignMethod::Bvh;
   if (clusters == 0) return 0;
-  boxes_.setArg(0, unique_keys);
-  boxes_.setArg(1, cl_uint(clusters));
-  boxes_.setArg(2, cam);
-  boxes_.setArg(3, bounds_);
-  boxes_.setArg(4, cl_uint(g.tile_size));
-  boxes_.setArg(5, cl_uint(g.x_bits));
-  boxes_.setArg(6, cl_uint(g.k_bits));
-  boxes_.setArg(7, box_lo_);
-  boxes_.setArg(8, box_hi_);
-  q.enqueueNDRangeKernel(boxes_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr, ev("cluster-boxes"));
+  if (n > light_capacity_) {
+    light_capacity_ = std::size_t(n) + n / 2;
+    spheres_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 16);
+    codes_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
+    ids_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
+  }
+  n_leaves_ = (n + kBranch - 1) / kBranch;
+  levels_ = 0;
   if (n > 0) {
     view_.setArg(0, lights);
     view_.setArg(1, n);
     view_.setArg(2, cam);
     view_.setArg(3, spheres_);
     q.enqueueNDRangeKernel(view_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-light-view"));
-    if (method_ == ClusterAssignMethod::Bvh) {
-      // Morton cube: the view frustum's box.
-      const float half_y = cam.far_plane * cam.tan_half_fovy, half_x = half_y * cam.aspect;
-      const float extent = std::max({2.0f * half_x, 2.0f * half_y, cam.far_plane});
+    if (bvh_) {
+      // Morton frame: the bounding cube of the light centres, on the device.
+      const std::uint32_t parts = (n + kMortonChunk - 1) / kMortonChunk;
+      if (parts > part_capacity_) {
+        part_capacity_ = std::size_t(parts) + parts / 2;
+        part_lo_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, part_capacity_ * 16);
+        part_hi_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, part_capacity_ * 16);
+      }
+      bounds_part_.setArg(0, spheres_);
+      bounds_part_.setArg(1, n);
+      bounds_part_.setArg(2, part_lo_);
+      bounds_part_.setArg(3, part_hi_);
+      q.enqueueNDRangeKernel(bounds_part_, cl::NullRange, cl::NDRange(parts), cl::NullRange, nullptr,
+                             ev("cluster-light-bounds"));
+      bounds_final_.setArg(0, part_lo_);
+      bounds_final_.setArg(1, part_hi_);
+      bounds_final_.setArg(2, parts);
+      bounds_final_.setArg(3, frame_);
+      q.enqueueNDRangeKernel(bounds_final_, cl::NullRange, cl::NDRange(1), cl::NullRange, nullptr,
+                             ev("cluster-light-bounds"));
       morton_.setArg(0, spheres_);
       morton_.setArg(1, n);
-      morton_.setArg(2, cl_float4{{-half_x, -half_y, -cam.far_plane, 0.0f}});
-      morton_.setArg(3, 1.0f / extent);
-      morton_.setArg(4, codes_);
-      morton_.setArg(5, ids_);
+      morton_.setArg(2, frame_);
+      morton_.setArg(3, codes_);
+      morton_.setArg(4, ids_);
       q.enqueueNDRangeKernel(morton_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-morton"));
       radix_.sort(q, codes_, &ids_, n, 30, timer);
-      buildBvh(q, n, timer);
     }
+    packLeaves(q, n, bvh_, timer);
   }
-  runAssign(q, false, nullptr, timer);
+  // Record slots per cluster: an equal share of the budget, at most every leaf.
+  slots_ = std::uint32_t(std::min<std::size_t>(n_leaves_, std::max<std::size_t>(1, record_budget_ / clusters)));
+  if (std::size_t(clusters) * slots_ > record_capacity_) {
+    record_capacity_ = std::size_t(clusters) * slots_;
+    rec_leaf_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, record_capacity_ * 4);
+    rec_mask_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, record_capacity_ * 4);
+  }
+  setAssignArgs(count_k_);
+  count_k_.setArg(10, rec_leaf_);
+  count_k_.setArg(11, rec_mask_);
+  count_k_.setArg(12, slots_);
+  count_k_.setArg(13, hit_leaves_);
+  count_k_.setArg(14, counts_);
+  q.enqueueNDRangeKernel(count_k_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr,
+                         ev("cluster-assign-count"));
   return scan_.exclusiveTotal(q, counts_, offsets_, clusters, timer);
 }
 
-void ClusterLightAssigner::buildBvh(cl::CommandQueue& q, std::uint32_t n, ClPassTimer* timer) {
+void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer) {
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
-  std::vector<cl_uint> start, count;
-  std::uint32_t c = (n + kBranch - 1) / kBranch, total = 0;
-  for (;;) {
-    start.push_back(total);
-    count.push_back(c);
-    total += c;
-    if (c <= kBranch) break;
-    c = (c + kBranch - 1) / kBranch;
+  const std::uint32_t n_leaves = (n + kBranch - 1) / kBranch;
+  if (n_leaves > leaf_capacity_) {
+    leaf_capacity_ = std::size_t(n_leaves) + n_leaves / 2;
+    soa_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, leaf_capacity_ * kBranch * 16);
+    leaf_ids_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, leaf_capacity_ * kBranch * 4);
   }
-  levels_ = unsigned(start.size());
-  if (levels_ > kMaxLevels) throw UserError("clustered: too many lights for the BVH stack");
-  if (total > node_capacity_) {
-    node_capacity_ = std::size_t(total) + total / 2;
-    node_lo_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
-    node_hi_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
+  std::vector<cl_uint> start, count, block_start;
+  std::uint32_t total = 0, blocks = 0;
+  if (bvh) {
+    std::uint32_t c = n_leaves;
+    for (;;) {
+      start.push_back(total);
+      count.push_back(c);
+      block_start.push_back(blocks);
+      total += c;
+      blocks += (c + kBranch - 1) / kBranch;
+      if (c <= kBranch) break;
+      c = (c + kBranch - 1) / kBranch;
+    }
+    levels_ = unsigned(start.size());
+    if (levels_ > kMaxLevels) throw UserError("clustered: too many lights for the BVH stack");
+    if (total > node_capacity_) {
+      node_capacity_ = std::size_t(total) + total / 2;
+      node_lo_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
+      node_hi_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
+      node_sph_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
+    }
+    if (blocks > block_capacity_) {
+      block_capacity_ = std::size_t(blocks) + blocks / 2;
+      node_soa_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, block_capacity_ * kBranch * kNodeFloats * 4);
+    }
+    q.enqueueWriteBuffer(block_start_, CL_TRUE, 0, levels_ * 4, block_start.data());
   }
-  q.enqueueWriteBuffer(level_start_, CL_FALSE, 0, levels_ * 4, start.data());
-  q.enqueueWriteBuffer(level_count_, CL_TRUE, 0, levels_ * 4, count.data());
-  leaves_.setArg(0, spheres_);
-  leaves_.setArg(1, ids_);
-  leaves_.setArg(2, n);
-  leaves_.setArg(3, sorted_);
-  leaves_.setArg(4, sorted_ids_);
-  leaves_.setArg(5, node_lo_);
-  leaves_.setArg(6, node_hi_);
-  q.enqueueNDRangeKernel(leaves_, cl::NullRange, cl::NDRange(count[0]), cl::NullRange, nullptr, ev("cluster-bvh-leaves"));
+  pack_.setArg(0, spheres_);
+  pack_.setArg(1, ids_);
+  pack_.setArg(2, cl_uint(bvh));
+  pack_.setArg(3, n);
+  pack_.setArg(4, soa_);
+  pack_.setArg(5, leaf_ids_);
+  pack_.setArg(6, node_lo_);
+  pack_.setArg(7, node_hi_);
+  pack_.setArg(8, node_sph_);
+  pack_.setArg(9, cl_uint(bvh));
+  q.enqueueNDRangeKernel(pack_, cl::NullRange, cl::NDRange(n_leaves), cl::NullRange, nullptr,
+                         ev(bvh ? "cluster-bvh-leaves" : "cluster-pack-leaves"));
   for (unsigned l = 1; l < levels_; ++l) {
     level_.setArg(0, node_lo_);
     level_.setArg(1, node_hi_);
-    level_.setArg(2, start[l - 1]);
-    level_.setArg(3, count[l - 1]);
-    level_.setArg(4, start[l]);
+    level_.setArg(2, node_sph_);
+    level_.setArg(3, start[l - 1]);
+    level_.setArg(4, count[l - 1]);
+    level_.setArg(5, start[l]);
     q.enqueueNDRangeKernel(level_, cl::NullRange, cl::NDRange(count[l]), cl::NullRange, nullptr, ev("cluster-bvh-level"));
+  }
+  for (unsigned l = 0; l < levels_; ++l) {
+    const std::uint32_t n_blocks = (count[l] + kBranch - 1) / kBranch;
+    blocks_.setArg(0, node_lo_);
+    blocks_.setArg(1, node_hi_);
+    blocks_.setArg(2, node_sph_);
+    blocks_.setArg(3, start[l]);
+    blocks_.setArg(4, count[l]);
+    blocks_.setArg(5, block_start[l]);
+    blocks_.setArg(6, node_soa_);
+    q.enqueueNDRangeKernel(blocks_, cl::NullRange, cl::NDRange(n_blocks), cl::NullRange, nullptr,
+                           ev("cluster-bvh-blocks"));
   }
 }
 
-void ClusterLightAssigner::runAssign(cl::CommandQueue& q, bool fill, cl::Buffer* indices, ClPassTimer* timer) {
-  const char* name = fill ? "cluster-assign-fill" : "cluster-assign-count";
-  cl::Event* e = timer ? timer->next(name) : nullptr;
-  cl::Buffer& out = indices ? *indices : counts_;
-  if (n_ == 0 || method_ == ClusterAssignMethod::Brute) {
-    brute_.setArg(0, spheres_);
-    brute_.setArg(1, n_);
-    brute_.setArg(2, box_lo_);
-    brute_.setArg(3, box_hi_);
-    brute_.setArg(4, clusters_);
-    brute_.setArg(5, counts_);
-    brute_.setArg(6, offsets_);
-    brute_.setArg(7, out);
-    brute_.setArg(8, cl_uint(fill));
-    q.enqueueNDRangeKernel(brute_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr, e);
-    return;
-  }
-  bvh_.setArg(0, sorted_);
-  bvh_.setArg(1, sorted_ids_);
-  bvh_.setArg(2, n_);
-  bvh_.setArg(3, node_lo_);
-  bvh_.setArg(4, node_hi_);
-  bvh_.setArg(5, level_start_);
-  bvh_.setArg(6, level_count_);
-  bvh_.setArg(7, cl_uint(levels_));
-  bvh_.setArg(8, box_lo_);
-  bvh_.setArg(9, box_hi_);
-  bvh_.setArg(10, clusters_);
-  bvh_.setArg(11, counts_);
-  bvh_.setArg(12, offsets_);
-  bvh_.setArg(13, out);
-  bvh_.setArg(14, cl_uint(fill));
-  q.enqueueNDRangeKernel(bvh_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr, e);
+std::uint64_t ClusterLightAssigner::hitLeaves(cl::CommandQueue& q) const {
+  if (clusters_ == 0) return 0;
+  std::vector<std::uint32_t> h(clusters_);
+  q.enqueueReadBuffer(hit_leaves_, CL_TRUE, 0, h.size() * 4, h.data());
+  std::uint64_t s = 0;
+  for (auto v : h) s += v;
+  return s;
+}
+
+void ClusterLightAssigner::setAssignArgs(cl::Kernel& k) {
+  k.setArg(0, soa_);
+  k.setArg(1, leaf_ids_);
+  k.setArg(2, n_leaves_);
+  k.setArg(3, node_soa_);
+  k.setArg(4, block_start_);
+  k.setArg(5, cl_uint(levels_));
+  k.setArg(6, cl_uint(bvh_ && levels_ > 0));
+  k.setArg(7, box_lo_);
+  k.setArg(8, box_hi_);
+  k.setArg(9, clusters_);
 }
 
 void ClusterLightAssigner::fill(cl::CommandQueue& q, cl::Buffer& ranges, cl::Buffer& indices, ClPassTimer* timer) {
   if (clusters_ == 0) return;
-  runAssign(q, true, &indices, timer);
+  setAssignArgs(fill_k_);
+  fill_k_.setArg(10, rec_leaf_);
+  fill_k_.setArg(11, rec_mask_);
+  fill_k_.setArg(12, slots_);
+  fill_k_.setArg(13, hit_leaves_);
+  fill_k_.setArg(14, offsets_);
+  fill_k_.setArg(15, indices);
+  q.enqueueNDRangeKernel(fill_k_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr,
+                         timer ? timer->next("cluster-assign-fill") : nullptr);
   ranges_.setArg(0, offsets_);
   ranges_.setArg(1, counts_);
   ranges_.setArg(2, clusters_);

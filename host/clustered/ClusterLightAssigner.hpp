@@ -2,17 +2,23 @@
 // Lights -> unique clusters on the device (kernels/cluster_assign.cl):
 //
 //   ClusterLightAssigner a(rt, ClusterAssignMethod::Bvh);
-//   uint32_t total = a.count(q, lights, n, cam, grid, unique_keys, clusters);  // blocks for the total
+//   a.boxes(q, cam, grid, unique_keys, clusters, timer, &pixels);  // explicit bounds (null: sub-frustum)
+//   uint32_t total = a.assign(q, lights, n, cam);   // blocks for the total
 //   ... make `indices` hold >= total uints ...
 //   a.fill(q, ranges, indices);   // ranges: LightRange per cluster
+// (count() = boxes() + assign().)
 //
-// Brute: every cluster tests every light (the reference). Bvh: Morton codes of
-// the view-space light centres (quantized in the view frustum's box; lights
-// outside it clamp to its faces, which costs tree quality only), radix sort, a BVH of branching 32 rebuilt from
-// scratch each count() (bottom-up, one launch per level), each cluster walks
-// it. Both use the same sphere-vs-cluster-AABB test, so their lists are the
-// same sets (the BVH lists are in Morton order, brute force ascending).
-// Lists are count -> scan -> fill and never truncate. Not thread-safe.
+// Lights are packed 32 to a leaf (structure of arrays) and tested a leaf at a
+// time into a 32-bit hit mask. Brute: every cluster tests every leaf of the
+// lights in their given order (the reference). Bvh: Morton codes of the
+// view-space light centres (quantized in their bounding cube, reduced on the
+// device), radix sort, leaves of the sorted lights and a BVH of branching 32
+// over them (boxes and bounding spheres), rebuilt from scratch each assign()
+// (bottom-up, one launch per level); each cluster walks it. Both use the same leaf test, so their lists are the same sets
+// (BVH lists in Morton order, brute force ascending). Lists are count -> scan
+// -> fill and never truncate: count() records each cluster's hit leaves
+// (leaf, mask) in a bounded scratch, fill() expands them and walks again only
+// for clusters whose hits did not fit. Not thread-safe.
 #include <CL/opencl.hpp>
 
 #include <cstdint>
@@ -31,34 +37,69 @@ enum class ClusterAssignMethod { Bvh, Brute };
 ClusterAssignMethod parseClusterAssign(const std::string& s);  // "bvh" | "brute"; UserError
 const char* clusterAssignName(ClusterAssignMethod m);
 
+// The box each cluster is culled against: Pixels, the view-space AABB of the
+// pixels that fall in it (explicit bounds, from the depth buffer and the
+// pixel -> cluster map); Frustum, the AABB of its whole sub-frustum (implicit
+// bounds, from the key alone).
+enum class ClusterBounds { Pixels, Frustum };
+ClusterBounds parseClusterBounds(const std::string& s);  // "pixels" | "frustum"; UserError
+const char* clusterBoundsName(ClusterBounds b);
+
+// Inputs of the explicit bounds: window depth and the map from unique().
+struct ClusterPixels {
+  const cl::Buffer& depth;
+  const cl::Buffer& cluster_of;
+};
+
 class ClusterLightAssigner {
  public:
   ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method);
 
+  // boxes() then assign(). pixels: explicit bounds from these pixels; null: sub-frustum bounds.
   std::uint32_t count(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n, const gpu::CameraParams& cam,
                       const ClusterGrid& g, const cl::Buffer& unique_keys, std::uint32_t clusters,
-                      ClPassTimer* timer = nullptr);
+                      ClPassTimer* timer = nullptr, const ClusterPixels* pixels = nullptr);
+  // The clusters' boxes, once per frame whatever the assignment method.
+  void boxes(cl::CommandQueue& q, const gpu::CameraParams& cam, const ClusterGrid& g, const cl::Buffer& unique_keys,
+             std::uint32_t clusters, ClPassTimer* timer = nullptr, const ClusterPixels* pixels = nullptr);
+  // Lights -> the clusters of the last boxes(); returns the list total (blocks).
+  std::uint32_t assign(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n, const gpu::CameraParams& cam,
+                       ClPassTimer* timer = nullptr);
   // Same frame as the preceding count(); writes `clusters` LightRanges.
   void fill(cl::CommandQueue& q, cl::Buffer& ranges, cl::Buffer& indices, ClPassTimer* timer = nullptr);
 
   ClusterAssignMethod method() const { return method_; }
   void setMethod(ClusterAssignMethod m) { method_ = m; }
   unsigned bvhLevels() const { return levels_; }
+  // The last count()'s boxes (lo, hi as x, y, z(distance), 0), for tests.
+  const cl::Buffer& boxLo() const { return box_lo_; }
+  const cl::Buffer& boxHi() const { return box_hi_; }
   std::size_t scratchBytes() const;
+  // Leaves with at least one hit, summed over the last count()'s clusters
+  // (blocks; for reports: list entries / (32 x this) is the leaf occupancy).
+  std::uint64_t hitLeaves(cl::CommandQueue& q) const;
+  // Hit-leaf records (8 bytes each) shared by all clusters (default 2^22);
+  // clusters with more hit leaves than their share are walked again by fill().
+  void setRecordBudget(std::size_t records) { record_budget_ = records; }
 
  private:
-  void buildBvh(cl::CommandQueue& q, std::uint32_t n, ClPassTimer* timer);
-  void runAssign(cl::CommandQueue& q, bool fill, cl::Buffer* indices, ClPassTimer* timer);
+  void packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer);
+  void setAssignArgs(cl::Kernel& k);
 
   ClRuntime& rt_;
   ClusterAssignMethod method_;
   cl::Program program_, keys_program_;
-  cl::Kernel view_, boxes_, brute_, morton_, leaves_, level_, bvh_, ranges_;
-  cl::Buffer spheres_, codes_, ids_, sorted_, sorted_ids_, node_lo_, node_hi_, level_start_, level_count_;
-  cl::Buffer box_lo_, box_hi_, counts_, offsets_, bounds_;
-  std::size_t light_capacity_ = 0, node_capacity_ = 0, cluster_capacity_ = 0, bounds_capacity_ = 0;
-  std::uint32_t n_ = 0, clusters_ = 0;
+  cl::Kernel view_, boxes_, pixel_boxes_, morton_, pack_, level_, blocks_, count_k_, fill_k_, ranges_;
+  cl::Kernel bounds_part_, bounds_final_;
+  cl::Buffer part_lo_, part_hi_, frame_;
+  cl::Buffer spheres_, codes_, ids_, soa_, leaf_ids_, node_lo_, node_hi_, node_sph_, node_soa_, block_start_;
+  cl::Buffer box_lo_, box_hi_, counts_, offsets_, bounds_, rec_leaf_, rec_mask_, hit_leaves_;
+  std::size_t light_capacity_ = 0, leaf_capacity_ = 0, node_capacity_ = 0, cluster_capacity_ = 0;
+  std::size_t bounds_capacity_ = 0, record_capacity_ = 0, block_capacity_ = 0, part_capacity_ = 0;
+  std::uint32_t n_ = 0, clusters_ = 0, n_leaves_ = 0, slots_ = 0;
   unsigned levels_ = 0;
+  bool bvh_ = false;
+  std::size_t record_budget_;
   compute::Scanner scan_;
   compute::RadixSorter radix_;
 };

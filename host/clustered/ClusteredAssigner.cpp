@@ -6,8 +6,8 @@
 namespace ml {
 
 ClusteredAssigner::ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMethod unique,
-                                     ClusterAssignMethod assign)
-    : rt_(rt), tile_size_(tile_size), uniquer_(rt, unique), lights_(rt, assign) {
+                                     ClusterAssignMethod assign, ClusterBounds bounds)
+    : rt_(rt), tile_size_(tile_size), bounds_(bounds), uniquer_(rt, unique), lights_(rt, assign) {
   ranges_ = std::make_unique<SharedBuffer>(rt, 4096 * sizeof(gpu::LightRange), "cluster light ranges");
   indices_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(std::uint32_t), "cluster light indices");
   map_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(std::uint32_t), "pixel cluster map");
@@ -16,17 +16,20 @@ ClusteredAssigner::ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMe
 void ClusteredAssigner::assign(const FrameInputs& in) {
   cl::CommandQueue& q = rt_.queue();
   // Rebuilt per frame: it depends on the camera's near/far/fov and viewport.
-  grid_ = ClusterGrid::make(in.camera_params, tile_size_);
+  grid_ = ClusterGrid::make(in.camera_params, tile_size_ ? tile_size_ : autoClusterTile(in.width, in.height));
   map_->reserve(std::size_t(in.width) * in.height * sizeof(std::uint32_t));
   in.lights.acquireForCl(q, ClAccess::Read);
   in.depth->acquireForCl(q, ClAccess::Read);
   map_->acquireForCl(q, ClAccess::Write);
   uniquer_.keys(q, in.depth->cl(), in.camera_params, grid_, &in.cl_timer);
   clusters_ = uniquer_.unique(q, grid_, &in.cl_timer, &map_->cl());
+  // The explicit bounds read the depth and the map, so CL keeps them until the boxes are done.
+  const ClusterPixels pixels{in.depth->cl(), map_->cl()};
+  lights_.boxes(q, in.camera_params, grid_, uniquer_.uniqueKeys(), clusters_, &in.cl_timer,
+                bounds_ == ClusterBounds::Pixels ? &pixels : nullptr);
   map_->releaseToGl(q);
   in.depth->releaseToGl(q);
-  const std::uint32_t total = lights_.count(q, in.lights.cl(), in.light_count, in.camera_params, grid_,
-                                            uniquer_.uniqueKeys(), clusters_, &in.cl_timer);
+  const std::uint32_t total = lights_.assign(q, in.lights.cl(), in.light_count, in.camera_params, &in.cl_timer);
   last_total_ = total;
   // GL owns the output buffers while they grow; CL takes them for the fill.
   ranges_->reserve(std::size_t(clusters_) * sizeof(gpu::LightRange));
@@ -62,12 +65,16 @@ std::vector<float> ClusteredAssigner::clusterViewRgba(const std::vector<std::uin
   for (std::size_t p = 0; p < cluster_map.size(); ++p) {
     rgba[p * 4 + 3] = 1.0f;
     if (cluster_map[p] == kClusterInvalid) continue;
-    // Hashed, not sequential: neighbouring clusters have neighbouring indices.
-    std::uint32_t h = cluster_map[p] * 0x9E3779B1u;
-    h ^= h >> 15;
-    h *= 0x85EBCA77u;
-    h ^= h >> 13;
-    for (int c = 0; c < 3; ++c) rgba[p * 4 + c] = 0.2f + 0.8f * float((h >> (8 * c)) & 0xffu) / 255.0f;
+    // Neighbouring clusters have neighbouring indices, so the index is mixed
+    // first, by a bijection of 18 bits (odd multiply, xor-shift); the 18 bits
+    // then give 6 per channel at levels 64 + 3v, distinct in an 8-bit PNG. So
+    // up to 2^18 clusters get distinct colours, none of them black (sky).
+    std::uint32_t h = cluster_map[p] & 0x3ffffu;
+    h = (h * 0x2c9e5u) & 0x3ffffu;
+    h ^= h >> 9;
+    h = (h * 0x1b873u) & 0x3ffffu;
+    h ^= h >> 7;
+    for (int c = 0; c < 3; ++c) rgba[p * 4 + c] = float(64u + 3u * ((h >> (6 * c)) & 0x3fu)) / 255.0f;
   }
   return rgba;
 }
@@ -81,7 +88,8 @@ std::size_t ClusteredAssigner::memoryBytes() const {
 std::vector<std::pair<std::string, double>> ClusteredAssigner::stats() const {
   return {{"unique clusters", double(clusters_)},
           {"cluster index entries", double(last_total_)},
-          {"cluster tile", double(tile_size_)},
+          {"cluster tile", double(grid_.tile_size)},
+          {"pixel bounds", bounds_ == ClusterBounds::Pixels ? 1.0 : 0.0},
           {"depth slices", double(grid_.slices)},
           {"bvh levels", double(lights_.method() == ClusterAssignMethod::Bvh ? lights_.bvhLevels() : 0)}};
 }

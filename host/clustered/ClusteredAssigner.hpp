@@ -4,7 +4,8 @@
 // CL device: cluster keys from the depth, unique clusters (ClusterUniquer, the
 // --unique method) with the pixel -> cluster map written straight into a
 // shared buffer, per-cluster light lists (ClusterLightAssigner, --cluster-assign)
-// into shared buffers. lookup_clustered.glsl reads the fragment's cluster from
+// into shared buffers. Clusters are culled against the AABB of their pixels
+// (explicit bounds, the default) or of their sub-frustum (--cluster-bounds). lookup_clustered.glsl reads the fragment's cluster from
 // the map, then its (offset, count) range and the index list.
 // SSBOs: 1 light indices, 2 cluster ranges (LightRange per unique cluster),
 // 3 pixel -> cluster map (uint per pixel, 0xffffffff = sky).
@@ -19,7 +20,9 @@ namespace ml {
 
 class ClusteredAssigner final : public LightAssigner {
  public:
-  ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMethod unique, ClusterAssignMethod assign);
+  // tile_size 0: autoClusterTile() of each frame's viewport.
+  ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMethod unique, ClusterAssignMethod assign,
+                    ClusterBounds bounds = ClusterBounds::Pixels);
   std::string name() const override { return "clustered"; }
   bool needsDepth() const override { return true; }
   void assign(const FrameInputs& in) override;
@@ -31,14 +34,16 @@ class ClusteredAssigner final : public LightAssigner {
   // Last frame's outputs, for views and tests (host copies, blocking).
   std::vector<std::uint32_t> readClusterMap();
   std::uint32_t uniqueClusters() const { return clusters_; }
-  // The cluster view: each unique cluster a colour (hashed from its index),
-  // sky black; RGBA floats, row 0 bottom, for writeImage.
+  // The cluster view: each unique cluster a colour (mixed from its index,
+  // distinct for up to 2^18 clusters in an 8-bit image), sky black; RGBA
+  // floats, row 0 bottom, for writeImage.
   static std::vector<float> clusterViewRgba(const std::vector<std::uint32_t>& cluster_map);
   const ClusterGrid& grid() const { return grid_; }
 
  private:
   ClRuntime& rt_;
   unsigned tile_size_;
+  ClusterBounds bounds_;
   ClusterUniquer uniquer_;
   ClusterLightAssigner lights_;
   ClusterGrid grid_;
