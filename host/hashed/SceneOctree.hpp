@@ -48,7 +48,13 @@ class SceneOctree {
   // octrees together and touches only the nodes whose coverage differs
   // (seed 003's additions and removals per node), which for small moves is
   // a thin shell instead of two whole spheres.
-  void replace(const LightOctree& old_version, const LightOctree& new_version);
+  // `old_ends`/`new_ends`: subtreeEnds() of the two versions when the caller
+  // has them (e.g. computed in parallel for a batch), else null.
+  void replace(const LightOctree& old_version, const LightOctree& new_version,
+               const std::vector<std::uint32_t>* old_ends = nullptr,
+               const std::vector<std::uint32_t>* new_ends = nullptr);
+  // Per node of `light`: one past its preorder subtree (what replace() walks by).
+  static void subtreeEnds(const LightOctree& light, std::vector<std::uint32_t>& end);
   // Removes `light` from every leaf (e.g. a light whose old octree is unknown).
   void removeEverywhere(std::uint32_t light);
   void normalize();
