@@ -119,7 +119,7 @@ TEST(HashedDynamic, LargeRandomBatchesEqualAFreshBuild) {
   HashedStructure hs(cfg);
   hs.build(lights, boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, cfg.start_depth));
   std::size_t max_keys = 0, max_moved = 0, compactions = 0;
-  for (int round = 0; round < 6; ++round) {
+  for (int round = 0; round < 8; ++round) {
     randomEdits(rng, lights, round % 2 ? 0.3 : 0.1, 3.0);
     const UpdateStats& st = hs.update(lights);
     EXPECT_FALSE(st.full_rebuild) << st.reason;
@@ -160,7 +160,7 @@ TEST(HashedDynamic, RandomEditsWithGeometryMaskEqualAFreshBuild) {
     surface.push_back(glm::vec3(a + u * (b - a) + v * (c - a)));
   }
   int incremental = 0;
-  for (int round = 0; round < 6; ++round) {
+  for (int round = 0; round < 8; ++round) {
     for (int e = 0; e < 30; ++e) {
       auto& l = lights[rng() % lights.size()];
       l.position_radius.x += float(uni(rng, -0.8, 0.8));

@@ -170,6 +170,11 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   }
 
   auto t = Clock::now();
+  // The previous update's garbage in the light index list is repacked while
+  // this one edits the tree (on another thread when one is free).
+  tbb::task_group compaction;
+  bool compacted = false;
+  if (s.linkless_->pool().wantsCompaction()) compaction.run([&] { compacted = s.linkless_->compactIfWanted(); });
   Batch batch(to_insert, replaced, s.bounds_, s.lightGeometry());
   auto& new_octrees = batch.octrees;
   SceneOctree& tree = *s.tree_;
@@ -198,6 +203,8 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   for (std::size_t k = 0; k < to_insert.size(); ++k) cache[to_insert[k].first] = std::move(new_octrees[k]);
 
   t = Clock::now();
+  compaction.wait();
+  st.sync.compacted = compacted;
   s.linkless_->applyTouched(tree, touched, st.sync);
   st.sync_ms = msSince(t);
 

@@ -84,11 +84,14 @@ const std::vector<std::uint32_t>& LightSetPool::compact() {
   remap.resize(list_.size());
   std::vector<std::uint32_t>& list = spare_list_;
   list.clear();
-  // Room for the list to grow back to the compaction threshold without reallocating.
-  list.reserve(2 * list_.size());
+  // Room for the list to grow back to the compaction threshold without
+  // reallocating, with a margin so that the two buffers settle at one size
+  // (a fresh allocation's pages fault in on first touch, in the update's
+  // sequential part).
+  if (list.capacity() < 2 * list_.size()) list.reserve(3 * list_.size());
   std::vector<std::uint32_t>& rec_at = spare_rec_at_;
   rec_at.clear();
-  rec_at.reserve(2 * list_.size());
+  if (rec_at.capacity() < 2 * list_.size()) rec_at.reserve(3 * list_.size());
   // Walk the ranges in list order (rec_at_ is valid at range starts only, so
   // step from start to start).
   for (std::size_t off = 0; off < list_.size();) {

@@ -309,22 +309,24 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std
     st.rehashed_tables += ts.rehashed_tables;
     layout_changed |= task_layout[task] != 0;
   }
-  if (pool_.wantsCompaction()) {
-    const auto& remap = pool_.compact();
-    auto remapLayer = [&](unsigned i) {
-      data_[i].remapPayloads([&](const DataTraits::Payload& p) { return DataTraits::Payload{remap[p.offset], p.count}; });
-    };
-    if (pool_.list().size() < 16384) {
-      for (unsigned i = 0; i < layers; ++i) remapLayer(i);
-    } else {
-      tbb::parallel_for(0u, layers, remapLayer);
-    }
-    st.compacted = true;
-  }
   if (layout_changed) {
     computeBases();
     ++layout_version_;
   }
+}
+
+bool LinklessOctree::compactIfWanted() {
+  if (!pool_.wantsCompaction()) return false;
+  const auto& remap = pool_.compact();
+  auto remapLayer = [&](unsigned i) {
+    data_[i].remapPayloads([&](const DataTraits::Payload& p) { return DataTraits::Payload{remap[p.offset], p.count}; });
+  };
+  if (pool_.list().size() < 16384) {
+    for (unsigned i = 0; i < layerCount(); ++i) remapLayer(i);
+  } else {
+    tbb::parallel_for(0u, layerCount(), remapLayer);
+  }
+  return true;
 }
 
 std::vector<LayerStats> LinklessOctree::layerStats() const {

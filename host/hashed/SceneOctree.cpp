@@ -26,19 +26,20 @@ void SceneOctree::record(unsigned t, const glm::uvec3& c) {
   if (!recording_) return;
   touched_.push_back(nodeKey(t, c));
   // The parent's description (its children's leaf/filled bits) may change too.
-  if (t > 0) touched_.push_back(nodeKey(t - 1, c >> 1u));
+  if (t > 0) recordParent(nodeKey(t - 1, c >> 1u));
 }
 
 void SceneOctree::recordChildren(unsigned t, const glm::uvec3& c) {
   if (!recording_) return;
   touched_.push_back(nodeKey(t, c));
-  if (t > 0) touched_.push_back(nodeKey(t - 1, c >> 1u));
+  if (t > 0) recordParent(nodeKey(t - 1, c >> 1u));
   for (unsigned k = 0; k < 8; ++k) touched_.push_back(nodeKey(t + 1, childCoord(c, k)));
 }
 
 std::vector<std::uint64_t> SceneOctree::takeTouched() {
   std::vector<std::uint64_t> out;
   out.swap(touched_);
+  last_parent_ = ~std::uint64_t(0);
   if (out.size() < 16384) std::sort(out.begin(), out.end());
   else tbb::parallel_sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());

@@ -97,6 +97,13 @@ class SceneOctree {
   NodeView view(std::int32_t n) const;
   void record(unsigned t, const glm::uvec3& c);
   void recordChildren(unsigned t, const glm::uvec3& c);
+  // Siblings change together: a parent just recorded is not pushed again
+  // (takeTouched() would drop the duplicate anyway, after sorting it).
+  void recordParent(std::uint64_t key) {
+    if (key == last_parent_) return;
+    touched_.push_back(key);
+    last_parent_ = key;
+  }
   std::int32_t allocBlock();
   void split(std::int32_t n, unsigned t, const glm::uvec3& c);
   void insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
@@ -138,6 +145,7 @@ class SceneOctree {
   std::vector<std::int32_t> free_blocks_;
   bool recording_ = false;
   std::vector<std::uint64_t> touched_;
+  std::uint64_t last_parent_ = ~std::uint64_t(0);
 };
 
 }  // namespace ml::hashed
