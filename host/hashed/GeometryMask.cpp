@@ -27,6 +27,7 @@ void mergeByCell(std::vector<std::pair<std::uint64_t, Box>>& v) {
     if (w > 0 && v[w - 1].first == v[i].first) {
       v[w - 1].second.lo = glm::min(v[w - 1].second.lo, v[i].second.lo);
       v[w - 1].second.hi = glm::max(v[w - 1].second.hi, v[i].second.hi);
+      v[w - 1].second.octants |= v[i].second.octants;
     } else {
       v[w++] = v[i];
     }
@@ -151,10 +152,20 @@ bool GeometryMask::geometryBox(const glm::uvec3& c, Box& box) const {
   return true;
 }
 
+bool GeometryMask::octantBox(const glm::uvec3& c, const Box& box, unsigned k, Box& out) const {
+  if (!((box.octants >> k) & 1u)) return false;
+  const glm::dvec3 lo = glm::dvec3(c) + glm::dvec3((k & 1) ? 0.5 : 0.0, (k & 2) ? 0.5 : 0.0, (k & 4) ? 0.5 : 0.0);
+  out.lo = glm::max(box.lo, lo - margin_);
+  out.hi = glm::min(box.hi, lo + 0.5 + margin_);
+  out.octants = 0xFF;
+  return out.lo.x <= out.hi.x && out.lo.y <= out.hi.y && out.lo.z <= out.hi.z;
+}
+
 GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double margin_cells) : depth_(b.depth) {
   const auto t0 = std::chrono::steady_clock::now();
   const double n = double(b.cellsPerAxis());
   const double margin = std::max(margin_cells, 0.0) + b.eps_cells;
+  margin_ = margin;
   struct Local {
     std::vector<std::pair<std::uint64_t, Box>> pairs;
     std::size_t merge_at = kMergeBatch;
@@ -184,6 +195,12 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
               box = {glm::max(lo, centre - (0.5 + margin)), glm::min(hi, centre + (0.5 + margin))};
             box.lo -= margin;
             box.hi += margin;
+            box.octants = 0;
+            for (unsigned k = 0; k < 8; ++k) {
+              const glm::dvec3 oc = centre + glm::dvec3((k & 1) ? 0.25 : -0.25, (k & 2) ? 0.25 : -0.25, (k & 4) ? 0.25 : -0.25);
+              if (triangleBoxOverlap(v[0] - oc, v[1] - oc, v[2] - oc, 0.25 + margin)) box.octants |= std::uint8_t(1u << k);
+            }
+            if (box.octants == 0) box.octants = 0xFF;  // rounding at the margin: keep the cell whole
             out.push_back({packCoord(glm::uvec3(x, y, z)), box});
           }
       // Many small triangles share cells: merging keeps the buffer near the
@@ -211,6 +228,7 @@ void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, Box>> boxes) {
     if (!cell_keys_.empty() && cell_keys_.back() == k) {
       cell_boxes_.back().lo = glm::min(cell_boxes_.back().lo, b.lo);
       cell_boxes_.back().hi = glm::max(cell_boxes_.back().hi, b.hi);
+      cell_boxes_.back().octants |= b.octants;
     } else {
       cell_keys_.push_back(k);
       cell_boxes_.push_back(b);

@@ -12,6 +12,12 @@
 //    to the widened cell, the clipped polygons' bounds united), in cell
 //    units: a floor cell's box is a thin slab. Lights that miss it cannot
 //    light any surface point in the cell (see LightOctreeBuilder).
+//  - Box::octants: which of the cell's 8 octants (bit k = x + 2y + 4z, each
+//    octant widened by the margin) a triangle touches. A surface point in
+//    the cell lies in the box and in a marked octant, so a light that misses
+//    the box's part in every marked octant (octantBox) cannot reach it:
+//    geometry finer than the cell (an L-shaped corner, a floor and a wall)
+//    keeps lights off cells whose box alone they would reach.
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -34,7 +40,10 @@ class GeometryMask {
   bool has(unsigned depth, const glm::uvec3& c) const;
   struct Box {
     glm::dvec3 lo, hi;
+    std::uint8_t octants = 0xFF;
   };
+  // The part of `box` (of cell c) in octant k widened by the margin; false when empty.
+  bool octantBox(const glm::uvec3& c, const Box& box, unsigned k, Box& out) const;
   // False when the cell holds no geometry.
   bool geometryBox(const glm::uvec3& cell, Box& box) const;
   std::size_t cellCount() const { return cell_count_; }
@@ -58,6 +67,7 @@ class GeometryMask {
   std::size_t cell_count_ = 0;
   double build_ms_ = 0.0;
   bool everywhere_ = false;
+  double margin_ = 0.0;  // cells, as in the constructor (with the bounds' epsilon)
 };
 
 inline std::uint64_t packCoord(const glm::uvec3& c) {

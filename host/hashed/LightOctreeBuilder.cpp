@@ -179,7 +179,15 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
           if (!geometry->geometryBox(glm::uvec3(p), gb)) continue;  // stays kAssumedIn: no geometry
           gb.lo -= eps;
           gb.hi += eps;
-          v = sphereOverlapsBox(c, r, gb) ? kTestedIn : kOutside;
+          bool in = sphereOverlapsBox(c, r, gb);
+          if (in && gb.octants != 0xFF) {
+            // Finer than the cell: the box's parts in the octants with geometry.
+            in = false;
+            GeometryMask::Box ob;
+            for (unsigned k = 0; k < 8 && !in; ++k)
+              if (geometry->octantBox(glm::uvec3(p), gb, k, ob)) in = sphereOverlapsBox(c, r, ob);
+          }
+          v = in ? kTestedIn : kOutside;
           lit += v == kTestedIn;
         }
     lo.filled_cells = lit;
