@@ -180,12 +180,14 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
           gb.lo -= eps;
           gb.hi += eps;
           bool in = sphereOverlapsBox(c, r, gb);
-          if (in && gb.octants != 0xFF) {
-            // Finer than the cell: the box's parts in the octants with geometry.
-            in = false;
-            GeometryMask::Box ob;
-            for (unsigned k = 0; k < 8 && !in; ++k)
-              if (geometry->octantBox(glm::uvec3(p), gb, k, ob)) in = sphereOverlapsBox(c, r, ob);
+          if (in) {
+            if (const auto* oct = geometry->octantBoxes(glm::uvec3(p))) {
+              // Finer than the cell: the octants' geometry boxes.
+              in = false;
+              for (unsigned k = 0; k < 8 && !in; ++k)
+                if (!oct->empty(k))
+                  in = sphereOverlapsBox(c, r, {glm::dvec3(oct->lo[k]) - eps, glm::dvec3(oct->hi[k]) + eps});
+            }
           }
           v = in ? kTestedIn : kOutside;
           lit += v == kTestedIn;
