@@ -28,7 +28,8 @@ class LightSetPool {
   std::size_t garbageEntries() const { return garbage_; }
   std::size_t rangeCount() const { return recs_.size() - free_recs_.size(); }
   // Compaction pays when garbage outweighs the live ranges (the list may
-  // reach twice its live size between compactions).
+  // reach twice its live size between compactions, plus one update's
+  // appends: DynamicLightUpdater compacts at the start of the next update).
   bool wantsCompaction() const { return garbage_ > 4096 && garbage_ > list_.size() / 2; }
   // new_offset[old_offset] for every live range start (other entries
   // unspecified); valid until the next compact(). The buffers are kept
