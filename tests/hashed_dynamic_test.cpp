@@ -105,6 +105,36 @@ TEST(HashedDynamic, RandomEditsEqualAFreshBuild) {
   }
 }
 
+// Batches large enough for the parallel paths: octrees built while the
+// edits consume them, the per-key derivation and the per-table writes in
+// parallel, and compactions of a light index list past 16K entries.
+TEST(HashedDynamic, LargeRandomBatchesEqualAFreshBuild) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  auto lights = randomLights(rng, 2000, kBox, 1.0, 3.0, false);
+  HashedConfig cfg;
+  cfg.node_size = "0.5";
+  cfg.max_incremental_fraction = 1.0;
+  HashedStructure hs(cfg);
+  hs.build(lights, boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, cfg.start_depth));
+  std::size_t max_keys = 0, max_moved = 0, compactions = 0;
+  for (int round = 0; round < 8; ++round) {
+    randomEdits(rng, lights, round % 2 ? 0.3 : 0.1, 3.0);
+    const UpdateStats& st = hs.update(lights);
+    EXPECT_FALSE(st.full_rebuild) << st.reason;
+    max_keys = std::max(max_keys, st.sync.keys);
+    max_moved = std::max(max_moved, st.moved);
+    compactions += st.sync.compacted;
+    expectSameAsFreshBuild(hs, nullptr, rng, {});
+    if (HasFailure()) return;
+  }
+  EXPECT_GE(max_moved, 64u);
+  EXPECT_GE(max_keys, 2048u);
+  EXPECT_GT(compactions, 0u);
+  EXPECT_GT(hs.linkless().pool().list().size(), 16384u);
+}
+
 TEST(HashedDynamic, RandomEditsWithGeometryMaskEqualAFreshBuild) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
@@ -130,7 +160,7 @@ TEST(HashedDynamic, RandomEditsWithGeometryMaskEqualAFreshBuild) {
     surface.push_back(glm::vec3(a + u * (b - a) + v * (c - a)));
   }
   int incremental = 0;
-  for (int round = 0; round < 6; ++round) {
+  for (int round = 0; round < 8; ++round) {
     for (int e = 0; e < 30; ++e) {
       auto& l = lights[rng() % lights.size()];
       l.position_radius.x += float(uni(rng, -0.8, 0.8));

@@ -76,5 +76,53 @@ TEST(HashedMask, MergingBuffersMatchesBatchedUnion) {
   EXPECT_EQ(whole.cellCount(), occupied);
 }
 
+// Every point on a triangle lies in its cell's geometry box and in the box
+// of the octant that holds it (what keeps octant-tight light sets conservative).
+TEST(HashedMask, SurfacePointsLieInTheirOctantBox) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const double side = 8.0;
+  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
+  Scene s;
+  std::uniform_real_distribution<double> pos(0.2, side - 0.2), d(-1.5, 1.5), u01(0.0, 1.0);
+  for (int t = 0; t < 300; ++t) {
+    const glm::dvec3 c(pos(rng), pos(rng), pos(rng));
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 v = glm::clamp(c + glm::dvec3(d(rng), d(rng), d(rng)), glm::dvec3(0.05), glm::dvec3(side - 0.05));
+      s.vertices.push_back({glm::vec3(v), glm::vec3(0, 1, 0), glm::vec2(0)});
+      s.indices.push_back(std::uint32_t(s.vertices.size() - 1));
+    }
+  }
+  const GeometryMask mask(s, b, 0.01);
+  std::size_t empty_octants = 0, cells = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const std::size_t t = rng() % 300;
+    double u = u01(rng), v = u01(rng);
+    if (u + v > 1) u = 1 - u, v = 1 - v;
+    const glm::dvec3 a(s.vertices[3 * t].position), p1(s.vertices[3 * t + 1].position), p2(s.vertices[3 * t + 2].position);
+    const glm::dvec3 p = b.toCells(a + u * (p1 - a) + v * (p2 - a));
+    const glm::uvec3 cell(glm::floor(p));
+    GeometryMask::Box box;
+    ASSERT_TRUE(mask.geometryBox(cell, box));
+    const auto* oct = mask.octantBoxes(cell);
+    ASSERT_NE(oct, nullptr);
+    const glm::dvec3 f = p - glm::dvec3(cell);
+    const unsigned k = (f.x >= 0.5 ? 1u : 0u) + (f.y >= 0.5 ? 2u : 0u) + (f.z >= 0.5 ? 4u : 0u);
+    ASSERT_FALSE(oct->empty(k));
+    for (int ax = 0; ax < 3; ++ax) {
+      ASSERT_LE(box.lo[ax], p[ax]);
+      ASSERT_GE(box.hi[ax], p[ax]);
+      ASSERT_LE(double(oct->lo[k][ax]), p[ax]) << "octant " << k;
+      ASSERT_GE(double(oct->hi[k][ax]), p[ax]) << "octant " << k;
+    }
+    if (i < 2000) {
+      ++cells;
+      for (unsigned j = 0; j < 8; ++j) empty_octants += oct->empty(j);
+    }
+  }
+  EXPECT_GT(empty_octants, 0u) << "octants refine some cells (of " << cells << ")";
+}
+
 }  // namespace
 }  // namespace ml::hashed

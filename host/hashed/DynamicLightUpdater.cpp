@@ -3,9 +3,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <thread>
 
 #include "host/hashed/LightOctreeBuilder.hpp"
 
@@ -22,23 +26,85 @@ bool sameVolume(const gpu::PointLight& a, const gpu::PointLight& b) {
 
 using Indexed = std::vector<std::pair<std::uint32_t, gpu::PointLight>>;
 
-std::vector<LightOctree> octreesOf(const Indexed& lights, const OctreeBounds& b, const GeometryMask* geometry) {
-  std::vector<LightOctree> out(lights.size());
-  if (lights.size() < 64) {
+// The new versions' octrees, and for moved lights (the first `replaced` of
+// them) both versions' subtree ends, which replace() walks by. Built in
+// chunks that the tree edits consume in order while later chunks are still
+// being built (the edits are sequential; building runs on the other threads
+// and on this one whenever it would otherwise wait).
+class Batch {
+ public:
+  static constexpr std::size_t kChunk = 16;
+  Batch(const Indexed& lights, const std::vector<LightOctree>& replaced, const OctreeBounds& b,
+        const GeometryMask* geometry)
+      : lights_(lights), replaced_(replaced), b_(b), geometry_(geometry), octrees(lights.size()),
+        old_ends(replaced.size()), new_ends(replaced.size()), chunks_((lights.size() + kChunk - 1) / kChunk),
+        ready_(chunks_) {
+    for (auto& r : ready_) r.store(0, std::memory_order_relaxed);
     // A few lights: waking the worker threads costs more than it saves
     // (and on a busy machine a late worker stalls the whole frame).
-    LightGridScratch s;
-    for (std::size_t i = 0; i < lights.size(); ++i) out[i] = buildLightOctree(lights[i].second, lights[i].first, b, s, geometry);
-    return out;
+    if (lights.size() >= 64) {
+      helpers_ = true;
+      group_.run([this] {
+        tbb::parallel_for(0, int(tbb::this_task_arena::max_concurrency()) - 1, [this](int) { work(); });
+      });
+    }
   }
-  tbb::enumerable_thread_specific<LightGridScratch> scratch;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lights.size(), 16), [&](const auto& r) {
-    auto& s = scratch.local();
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
-      out[i] = buildLightOctree(lights[i].second, lights[i].first, b, s, geometry);
-  });
-  return out;
-}
+  ~Batch() { finish(); }
+  // Blocks until octree k is built (building others meanwhile).
+  void waitFor(std::size_t k) {
+    const std::size_t c = k / kChunk;
+    while (!ready_[c].load(std::memory_order_acquire)) {
+      if (!claimOne()) std::this_thread::yield();
+    }
+  }
+  void finish() {
+    if (helpers_) {
+      work();
+      group_.wait();
+      helpers_ = false;
+    }
+    while (claimOne()) {
+    }
+  }
+
+ private:
+  const Indexed& lights_;
+  const std::vector<LightOctree>& replaced_;
+  const OctreeBounds& b_;
+  const GeometryMask* geometry_;
+
+ public:
+  std::vector<LightOctree> octrees;
+  std::vector<std::vector<std::uint32_t>> old_ends, new_ends;
+
+ private:
+  std::size_t chunks_;
+  std::vector<std::atomic<std::uint8_t>> ready_;
+  std::atomic<std::size_t> next_{0};
+  tbb::enumerable_thread_specific<LightGridScratch> scratch_;
+  tbb::task_group group_;
+  bool helpers_ = false;
+
+  void work() {
+    while (claimOne()) {
+    }
+  }
+  bool claimOne() {
+    const std::size_t c = next_.fetch_add(1, std::memory_order_relaxed);
+    if (c >= chunks_) return false;
+    auto& s = scratch_.local();
+    const std::size_t end = std::min(lights_.size(), (c + 1) * kChunk);
+    for (std::size_t i = c * kChunk; i < end; ++i) {
+      octrees[i] = buildLightOctree(lights_[i].second, lights_[i].first, b_, s, geometry_);
+      if (i < replaced_.size()) {
+        SceneOctree::subtreeEnds(replaced_[i], old_ends[i]);
+        SceneOctree::subtreeEnds(octrees[i], new_ends[i]);
+      }
+    }
+    ready_[c].store(1, std::memory_order_release);
+    return true;
+  }
+};
 
 }  // namespace
 
@@ -104,28 +170,41 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   }
 
   auto t = Clock::now();
-  auto new_octrees = octreesOf(to_insert, s.bounds_, s.lightGeometry());
-  st.light_octrees_ms = msSince(t);
-
-  t = Clock::now();
+  // The previous update's garbage in the light index list is repacked while
+  // this one edits the tree (on another thread when one is free).
+  tbb::task_group compaction;
+  bool compacted = false;
+  if (s.linkless_->pool().wantsCompaction()) compaction.run([&] { compacted = s.linkless_->compactIfWanted(); });
+  Batch batch(to_insert, replaced, s.bounds_, s.lightGeometry());
+  auto& new_octrees = batch.octrees;
   SceneOctree& tree = *s.tree_;
   tree.setRecording(true);
   for (const auto& o : to_remove) tree.remove(o);
   for (const auto i : reinsert) tree.remove(cache[i]);
   // Moved lights come first in to_insert: replace their old versions in one
   // walk; the rest (added lights, lazy mode) are plain inserts.
+  double waited_ms = 0.0;
   for (std::size_t k = 0; k < new_octrees.size(); ++k) {
-    if (k < replaced.size()) tree.replace(replaced[k], new_octrees[k]);
+    const auto w = Clock::now();
+    batch.waitFor(k);
+    waited_ms += msSince(w);
+    if (k < replaced.size()) tree.replace(replaced[k], new_octrees[k], &batch.old_ends[k], &batch.new_ends[k]);
     else tree.insert(new_octrees[k]);
   }
+  batch.finish();
   for (const auto i : reinsert) tree.insert(cache[i]);
   tree.normalize();
   const std::vector<std::uint64_t> touched = tree.takeTouched();
   tree.setRecording(false);
-  st.tree_ms = msSince(t);
+  // Building the octrees overlaps the edits: what the edits waited for it
+  // (or built it themselves) counts as octree time, the rest as tree time.
+  st.light_octrees_ms = waited_ms;
+  st.tree_ms = msSince(t) - waited_ms;
   for (std::size_t k = 0; k < to_insert.size(); ++k) cache[to_insert[k].first] = std::move(new_octrees[k]);
 
   t = Clock::now();
+  compaction.wait();
+  st.sync.compacted = compacted;
   s.linkless_->applyTouched(tree, touched, st.sync);
   st.sync_ms = msSince(t);
 

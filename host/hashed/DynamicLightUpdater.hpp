@@ -14,6 +14,12 @@
 //  3. Re-derive the hash entries of the touched nodes and edit the tables in
 //     place; a table is rehashed only when an insert cannot be placed even by
 //     re-offsetting its group (see PerfectSpatialHash).
+//  Threads: the tree edits (step 2) are sequential; the new octrees are built
+//  on the other threads while the edits consume them in order, and the
+//  previous update's light index list garbage is compacted meanwhile. Step 3
+//  derives the touched keys in parallel, interns the light sets in key order,
+//  then edits each table in its own task. The result does not depend on the
+//  thread count.
 //  Lazy removal (HashedConfig::lazy_removal) skips step 2's removals for moved
 //  lights, leaving harmless extra indices, until the stale fraction calls for
 //  an exact clean-up; lookups are then a superset of a fresh build's until

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace ml::hashed {
 namespace {
@@ -18,15 +19,39 @@ constexpr unsigned kDenseIndexMaxDepth = 7;  // 8^7 entries = 8 MiB
 // reaches twice what it held after the last merge, and at least this many.
 constexpr std::size_t kMergeBatch = std::size_t(1) << 16;
 
+float floatDown(double x) {
+  float f = float(x);
+  if (double(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::max());
+  return f;
+}
+float floatUp(double x) {
+  float f = float(x);
+  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::max());
+  return f;
+}
+
+void unite(GeometryMask::Box& a, const GeometryMask::Box& b) {
+  a.lo = glm::min(a.lo, b.lo);
+  a.hi = glm::max(a.hi, b.hi);
+}
+
+template <class CellGeometry>
+void unite(CellGeometry& a, const CellGeometry& b) {
+  unite(a.box, b.box);
+  for (unsigned k = 0; k < 8; ++k) {
+    a.oct.lo[k] = glm::min(a.oct.lo[k], b.oct.lo[k]);
+    a.oct.hi[k] = glm::max(a.oct.hi[k], b.oct.hi[k]);
+  }
+}
+
 // Sorts by cell and unites the boxes of equal cells, in place.
-template <class Box>
-void mergeByCell(std::vector<std::pair<std::uint64_t, Box>>& v) {
+template <class CellGeometry>
+void mergeByCell(std::vector<std::pair<std::uint64_t, CellGeometry>>& v) {
   std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::size_t w = 0;
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (w > 0 && v[w - 1].first == v[i].first) {
-      v[w - 1].second.lo = glm::min(v[w - 1].second.lo, v[i].second.lo);
-      v[w - 1].second.hi = glm::max(v[w - 1].second.hi, v[i].second.hi);
+      unite(v[w - 1].second, v[i].second);
     } else {
       v[w++] = v[i];
     }
@@ -99,11 +124,11 @@ bool triangleBoxOverlap(glm::dvec3 v0, glm::dvec3 v1, glm::dvec3 v2, double h) {
 
 double GeometryMask::estimateBytes(const Scene& scene, const OctreeBounds& b) {
   // Per triangle: area / cell^2 cells on its face, plus its edge cells; each
-  // (triangle, cell) pair is a key and a box (~56 bytes) until the builder's
+  // (triangle, cell) pair is a key, a box and 8 octant boxes (~250 bytes) until the builder's
   // per-thread buffers merge equal cells, which they do whenever a buffer
   // doubles past 64Ki pairs (see the constructor). So a buffer holds at most
   // about twice the distinct cells plus 64Ki, and distinct cells are bounded
-  // by the pairs and by the grid; the final mask costs ~96 bytes per cell.
+  // by the pairs and by the grid; the final mask costs ~290 bytes per cell.
   double pairs = 0.0;
   const double s = double(b.cell_scale);
   for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
@@ -120,7 +145,7 @@ double GeometryMask::estimateBytes(const Scene& scene, const OctreeBounds& b) {
   const double cells = std::min(pairs, side * side * side);
   const double threads = double(std::max(1, tbb::this_task_arena::max_concurrency()));
   const double buffers = std::min(pairs, threads * (2.0 * cells + double(kMergeBatch)));
-  return 56.0 * 2.0 * buffers + 96.0 * cells + (b.depth <= kDenseIndexMaxDepth ? 4.0 * side * side * side : 0.0);
+  return 250.0 * 2.0 * buffers + 290.0 * cells + (b.depth <= kDenseIndexMaxDepth ? 4.0 * side * side * side : 0.0);
 }
 
 GeometryMask GeometryMask::everywhere(const OctreeBounds& b) {
@@ -130,25 +155,36 @@ GeometryMask GeometryMask::everywhere(const OctreeBounds& b) {
   return m;
 }
 
+bool GeometryMask::indexOf(const glm::uvec3& c, std::size_t& at) const {
+  const std::uint64_t side = std::uint64_t(1) << depth_;
+  if (c.x >= side || c.y >= side || c.z >= side) return false;
+  if (!dense_index_.empty()) {
+    const std::uint32_t i = dense_index_[c.x + side * (c.y + side * c.z)];
+    if (i == 0) return false;
+    at = i - 1;
+    return true;
+  }
+  const auto it = std::lower_bound(cell_keys_.begin(), cell_keys_.end(), packCoord(c));
+  if (it == cell_keys_.end() || *it != packCoord(c)) return false;
+  at = std::size_t(it - cell_keys_.begin());
+  return true;
+}
+
 bool GeometryMask::geometryBox(const glm::uvec3& c, Box& box) const {
   if (everywhere_) {
     box = {glm::dvec3(c), glm::dvec3(c) + 1.0};
     return true;
   }
-  const std::uint64_t side = std::uint64_t(1) << depth_;
-  if (c.x >= side || c.y >= side || c.z >= side) return false;
   std::size_t at;
-  if (!dense_index_.empty()) {
-    const std::uint32_t i = dense_index_[c.x + side * (c.y + side * c.z)];
-    if (i == 0) return false;
-    at = i - 1;
-  } else {
-    const auto it = std::lower_bound(cell_keys_.begin(), cell_keys_.end(), packCoord(c));
-    if (it == cell_keys_.end() || *it != packCoord(c)) return false;
-    at = std::size_t(it - cell_keys_.begin());
-  }
+  if (!indexOf(c, at)) return false;
   box = cell_boxes_[at];
   return true;
+}
+
+const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c) const {
+  std::size_t at;
+  if (everywhere_ || !indexOf(c, at)) return nullptr;
+  return &cell_octants_[at];
 }
 
 GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double margin_cells) : depth_(b.depth) {
@@ -156,7 +192,7 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
   const double n = double(b.cellsPerAxis());
   const double margin = std::max(margin_cells, 0.0) + b.eps_cells;
   struct Local {
-    std::vector<std::pair<std::uint64_t, Box>> pairs;
+    std::vector<std::pair<std::uint64_t, CellGeometry>> pairs;
     std::size_t merge_at = kMergeBatch;
   };
   tbb::enumerable_thread_specific<Local> local;
@@ -179,12 +215,24 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
             if (!triangleBoxOverlap(v[0] - centre, v[1] - centre, v[2] - centre, 0.5 + margin)) continue;
             // The part of the triangle in the widened cell, widened again so
             // points off the surface by rounding stay inside.
-            Box box;
-            if (!clippedBounds(v, centre - (0.5 + margin), centre + (0.5 + margin), box))
-              box = {glm::max(lo, centre - (0.5 + margin)), glm::min(hi, centre + (0.5 + margin))};
-            box.lo -= margin;
-            box.hi += margin;
-            out.push_back({packCoord(glm::uvec3(x, y, z)), box});
+            CellGeometry g;
+            if (!clippedBounds(v, centre - (0.5 + margin), centre + (0.5 + margin), g.box))
+              g.box = {glm::max(lo, centre - (0.5 + margin)), glm::min(hi, centre + (0.5 + margin))};
+            g.box.lo -= margin;
+            g.box.hi += margin;
+            // The same per octant (each widened by the margin).
+            for (unsigned k = 0; k < 8; ++k) {
+              const glm::dvec3 oc = centre + glm::dvec3((k & 1) ? 0.25 : -0.25, (k & 2) ? 0.25 : -0.25, (k & 4) ? 0.25 : -0.25);
+              const double h = 0.25 + margin;
+              if (!triangleBoxOverlap(v[0] - oc, v[1] - oc, v[2] - oc, h)) continue;
+              Box ob;
+              if (!clippedBounds(v, oc - h, oc + h, ob)) ob = {glm::max(lo, oc - h), glm::min(hi, oc + h)};
+              for (int a = 0; a < 3; ++a) {
+                g.oct.lo[k][a] = floatDown(ob.lo[a] - margin);
+                g.oct.hi[k][a] = floatUp(ob.hi[a] + margin);
+              }
+            }
+            out.push_back({packCoord(glm::uvec3(x, y, z)), g});
           }
       // Many small triangles share cells: merging keeps the buffer near the
       // distinct cells' size instead of the (triangle, cell) pairs'.
@@ -194,27 +242,24 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
       }
     }
   });
-  std::vector<std::pair<std::uint64_t, Box>> boxes;
+  std::vector<std::pair<std::uint64_t, CellGeometry>> boxes;
   for (auto& l : local) {
     boxes.insert(boxes.end(), l.pairs.begin(), l.pairs.end());
-    std::vector<std::pair<std::uint64_t, Box>>().swap(l.pairs);
+    std::vector<std::pair<std::uint64_t, CellGeometry>>().swap(l.pairs);
   }
   setBoxes(std::move(boxes));
   build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, Box>> boxes) {
-  std::sort(boxes.begin(), boxes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> boxes) {
+  mergeByCell(boxes);
   cell_keys_.clear();
   cell_boxes_.clear();
-  for (const auto& [k, b] : boxes) {
-    if (!cell_keys_.empty() && cell_keys_.back() == k) {
-      cell_boxes_.back().lo = glm::min(cell_boxes_.back().lo, b.lo);
-      cell_boxes_.back().hi = glm::max(cell_boxes_.back().hi, b.hi);
-    } else {
-      cell_keys_.push_back(k);
-      cell_boxes_.push_back(b);
-    }
+  cell_octants_.clear();
+  for (const auto& [k, g] : boxes) {
+    cell_keys_.push_back(k);
+    cell_boxes_.push_back(g.box);
+    cell_octants_.push_back(g.oct);
   }
   if (depth_ <= kDenseIndexMaxDepth) {
     const std::uint64_t side = std::uint64_t(1) << depth_;
@@ -273,7 +318,7 @@ std::size_t GeometryMask::memoryBytes() const {
   std::size_t s = 0;
   for (const auto& d : dense_) s += d.size() * 8;
   for (const auto& d : sparse_) s += d.size() * 8;
-  return s + cell_keys_.size() * (8 + sizeof(Box)) + dense_index_.size() * 4;
+  return s + cell_keys_.size() * (8 + sizeof(Box) + sizeof(OctantBoxes)) + dense_index_.size() * 4;
 }
 
 }  // namespace ml::hashed

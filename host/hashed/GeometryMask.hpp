@@ -12,9 +12,17 @@
 //    to the widened cell, the clipped polygons' bounds united), in cell
 //    units: a floor cell's box is a thin slab. Lights that miss it cannot
 //    light any surface point in the cell (see LightOctreeBuilder).
+//  - octantBoxes(c): the same per octant of the cell (k = x + 2y + 4z; each
+//    triangle clipped to the octant widened by the margin): a surface point
+//    in the cell lies in its octant's box, so a light that misses every
+//    octant's box cannot reach one. Geometry finer than the cell (a floor
+//    meeting a wall, a slanted panel) so keeps lights off cells whose whole
+//    box they would reach.
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "host/hashed/OctreeBounds.hpp"
@@ -35,6 +43,17 @@ class GeometryMask {
   struct Box {
     glm::dvec3 lo, hi;
   };
+  // Per octant, in floats rounded outwards; an octant without geometry has lo > hi.
+  struct OctantBoxes {
+    std::array<glm::vec3, 8> lo, hi;
+    OctantBoxes() {
+      lo.fill(glm::vec3(std::numeric_limits<float>::max()));
+      hi.fill(glm::vec3(-std::numeric_limits<float>::max()));
+    }
+    bool empty(unsigned k) const { return lo[k].x > hi[k].x; }
+  };
+  // Null when the cell holds no geometry (or for everywhere(): no octant data).
+  const OctantBoxes* octantBoxes(const glm::uvec3& cell) const;
   // False when the cell holds no geometry.
   bool geometryBox(const glm::uvec3& cell, Box& box) const;
   std::size_t cellCount() const { return cell_count_; }
@@ -44,7 +63,12 @@ class GeometryMask {
  private:
   explicit GeometryMask(const OctreeBounds& b) : depth_(b.depth) {}
   void setCells(std::vector<std::uint64_t> keys);
-  void setBoxes(std::vector<std::pair<std::uint64_t, Box>> boxes);
+  struct CellGeometry {
+    Box box;
+    OctantBoxes oct;
+  };
+  void setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> boxes);
+  bool indexOf(const glm::uvec3& c, std::size_t& at) const;
   unsigned depth_;
   // Per depth: a bitset when the depth's full grid is small, else the sorted
   // packed coordinates of the occupied nodes.
@@ -54,6 +78,7 @@ class GeometryMask {
   // index (key -> position + 1) when the level is small enough.
   std::vector<std::uint64_t> cell_keys_;
   std::vector<Box> cell_boxes_;
+  std::vector<OctantBoxes> cell_octants_;
   std::vector<std::uint32_t> dense_index_;
   std::size_t cell_count_ = 0;
   double build_ms_ = 0.0;

@@ -179,7 +179,17 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
           if (!geometry->geometryBox(glm::uvec3(p), gb)) continue;  // stays kAssumedIn: no geometry
           gb.lo -= eps;
           gb.hi += eps;
-          v = sphereOverlapsBox(c, r, gb) ? kTestedIn : kOutside;
+          bool in = sphereOverlapsBox(c, r, gb);
+          if (in) {
+            if (const auto* oct = geometry->octantBoxes(glm::uvec3(p))) {
+              // Finer than the cell: the octants' geometry boxes.
+              in = false;
+              for (unsigned k = 0; k < 8 && !in; ++k)
+                if (!oct->empty(k))
+                  in = sphereOverlapsBox(c, r, {glm::dvec3(oct->lo[k]) - eps, glm::dvec3(oct->hi[k]) + eps});
+            }
+          }
+          v = in ? kTestedIn : kOutside;
           lit += v == kTestedIn;
         }
     lo.filled_cells = lit;

@@ -31,9 +31,8 @@ void LightSetPool::indexInsert(std::uint32_t rec) {
     }
 }
 
-std::uint32_t LightSetPool::acquire(const std::vector<std::uint32_t>& set) {
+std::uint32_t LightSetPool::acquire(const std::vector<std::uint32_t>& set, std::uint64_t h) {
   if (set.empty()) throw std::logic_error("light set pool: empty sets have no range");
-  const std::uint64_t h = hashOf(set.data(), set.size());
   if (!index_.empty()) {
     const std::size_t mask = index_.size() - 1;
     for (std::size_t i = h & mask; index_[i] != 0; i = (i + 1) & mask) {
@@ -80,11 +79,19 @@ void LightSetPool::clear() {
   all_dirty_ = true;
 }
 
-std::vector<std::uint32_t> LightSetPool::compact() {
-  std::vector<std::uint32_t> remap(list_.size(), 0);
-  std::vector<std::uint32_t> list;
-  list.reserve(list_.size() - garbage_);
-  std::vector<std::uint32_t> rec_at;
+const std::vector<std::uint32_t>& LightSetPool::compact() {
+  std::vector<std::uint32_t>& remap = remap_;
+  remap.resize(list_.size());
+  std::vector<std::uint32_t>& list = spare_list_;
+  list.clear();
+  // Room for the list to grow back to the compaction threshold without
+  // reallocating, with a margin so that the two buffers settle at one size
+  // (a fresh allocation's pages fault in on first touch, in the update's
+  // sequential part).
+  if (list.capacity() < 2 * list_.size()) list.reserve(3 * list_.size());
+  std::vector<std::uint32_t>& rec_at = spare_rec_at_;
+  rec_at.clear();
+  if (rec_at.capacity() < 2 * list_.size()) rec_at.reserve(3 * list_.size());
   // Walk the ranges in list order (rec_at_ is valid at range starts only, so
   // step from start to start).
   for (std::size_t off = 0; off < list_.size();) {
@@ -96,7 +103,7 @@ std::vector<std::uint32_t> LightSetPool::compact() {
       list.insert(list.end(), list_.begin() + std::ptrdiff_t(off), list_.begin() + std::ptrdiff_t(next));
       remap[off] = n;
       r.offset = n;
-      rec_at.resize(list.size());
+      rec_at.resize(list.size());  // within the reserve
       rec_at[n] = id;
     } else {
       r = Rec{};

@@ -16,7 +16,10 @@ namespace ml::hashed {
 
 class LightSetPool {
  public:
-  std::uint32_t acquire(const std::vector<std::uint32_t>& set);
+  std::uint32_t acquire(const std::vector<std::uint32_t>& set) { return acquire(set, hashOf(set.data(), set.size())); }
+  // The same with the set's hashOf() computed by the caller (e.g. in parallel).
+  std::uint32_t acquire(const std::vector<std::uint32_t>& set, std::uint64_t hash);
+  static std::uint64_t hashOf(const std::uint32_t* p, std::size_t n);
   void release(std::uint32_t offset);
   void clear();
 
@@ -25,10 +28,13 @@ class LightSetPool {
   std::size_t garbageEntries() const { return garbage_; }
   std::size_t rangeCount() const { return recs_.size() - free_recs_.size(); }
   // Compaction pays when garbage outweighs the live ranges (the list may
-  // reach twice its live size between compactions).
+  // reach twice its live size between compactions, plus one update's
+  // appends: DynamicLightUpdater compacts at the start of the next update).
   bool wantsCompaction() const { return garbage_ > 4096 && garbage_ > list_.size() / 2; }
-  // new_offset[old_offset] for every live range start (other entries unspecified).
-  std::vector<std::uint32_t> compact();
+  // new_offset[old_offset] for every live range start (other entries
+  // unspecified); valid until the next compact(). The buffers are kept
+  // between compactions (no fresh pages to fault in on every call).
+  const std::vector<std::uint32_t>& compact();
 
   // First list index written since the last take (list size if none);
   // `all` after clear() or compact().
@@ -43,11 +49,11 @@ class LightSetPool {
     std::uint32_t offset = 0, count = 0, refs = 0;
     std::uint64_t hash = 0;
   };
-  static std::uint64_t hashOf(const std::uint32_t* p, std::size_t n);
   void indexInsert(std::uint32_t rec);
   void rebuildIndex(std::size_t capacity);
 
   std::vector<std::uint32_t> list_;
+  std::vector<std::uint32_t> spare_list_, spare_rec_at_, remap_;  // compact()'s buffers
   std::vector<Rec> recs_;
   std::vector<std::uint32_t> free_recs_;
   std::vector<std::uint32_t> rec_at_;  // list index -> rec id (valid at range starts)

@@ -1,6 +1,9 @@
 #include "host/hashed/LinklessOctree.hpp"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#include <optional>
 
 #include <bit>
 #include <cstring>
@@ -147,6 +150,55 @@ std::vector<std::uint32_t> LinklessOctree::lightsAt(const glm::vec3& world) cons
 void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std::uint64_t>& touched,
                                   SyncStats& st) {
   const unsigned ds = b_.start_depth, layers = layerCount();
+  // 1. Per touched key, read-only (in parallel for many keys): what the
+  //    tables hold against what the tree wants, and the hash of a wanted set.
+  struct Derived {
+    bool desc_op = false, desc_present = false;
+    DescTraits::Payload dp{};
+    bool has_data = false, data_want = false;
+    std::optional<DataTraits::Payload> data_have;
+    const std::vector<std::uint32_t>* set = nullptr;
+    std::uint64_t set_hash = 0;
+  };
+  std::vector<Derived> derived(touched.size());
+  auto derive = [&](std::size_t j) {
+    const std::uint64_t key = touched[j];
+    const unsigned t = keyDepth(key);
+    const glm::uvec3 c = keyCoord(key);
+    const bool has_desc = t >= ds && t < b_.depth;
+    const bool has_data = t > ds && t <= b_.depth;
+    if (!has_desc && !has_data) return;
+    Derived& d = derived[j];
+    const SceneOctree::NodeView v = tree.find(t, c);
+    if (has_desc) {
+      const auto have = desc_[t - ds].lookup(c);
+      const bool want = v.exists && !v.leaf;
+      const DescTraits::Payload p{v.leaf_mask, v.filled_mask};
+      if (want != bool(have) || (want && !(*have == p))) {
+        d.desc_op = true;
+        d.desc_present = want;
+        d.dp = p;
+      }
+    }
+    if (has_data) {
+      d.has_data = true;
+      d.data_have = data_[t - ds - 1].lookup(c);
+      d.data_want = v.exists && v.leaf && !v.lights->empty();
+      if (d.data_want) {
+        d.set = v.lights;
+        d.set_hash = LightSetPool::hashOf(v.lights->data(), v.lights->size());
+      }
+    }
+  };
+  if (touched.size() < 2048) {
+    for (std::size_t j = 0; j < touched.size(); ++j) derive(j);
+  } else {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched.size(), 512), [&](const auto& r) {
+      for (std::size_t j = r.begin(); j != r.end(); ++j) derive(j);
+    });
+  }
+
+  // 2. Sequentially, in key order: interning the wanted sets, the edit lists.
   struct DescOp {
     glm::uvec3 key;
     bool present;
@@ -161,67 +213,66 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std
   std::vector<std::vector<DataOp>> data_ops(layers);
   std::vector<std::uint32_t> release;
   st.keys += touched.size();
-  for (const std::uint64_t key : touched) {
-    const unsigned t = keyDepth(key);
-    const glm::uvec3 c = keyCoord(key);
-    const bool has_desc = t >= ds && t < b_.depth;
-    const bool has_data = t > ds && t <= b_.depth;
-    if (!has_desc && !has_data) continue;
-    const SceneOctree::NodeView v = tree.find(t, c);
-    if (has_desc) {
-      const auto have = desc_[t - ds].lookup(c);
-      const bool want = v.exists && !v.leaf;
-      const DescTraits::Payload p{v.leaf_mask, v.filled_mask};
-      if (want != bool(have) || (want && !(*have == p))) desc_ops[t - ds].push_back({c, want, p});
-    }
-    if (has_data) {
-      const unsigned i = t - ds - 1;
-      const auto have = data_[i].lookup(c);
-      const bool want = v.exists && v.leaf && !v.lights->empty();
-      if (want) {
-        const DataTraits::Payload p{pool_.acquire(*v.lights), std::uint32_t(v.lights->size())};
-        if (have && *have == p) {
-          pool_.release(p.offset);
-        } else {
-          data_ops[i].push_back({c, true, p});
-          if (have) release.push_back(have->offset);
-        }
-      } else if (have) {
-        data_ops[i].push_back({c, false, {}});
-        release.push_back(have->offset);
+  for (std::size_t j = 0; j < touched.size(); ++j) {
+    const Derived& d = derived[j];
+    const unsigned t = keyDepth(touched[j]);
+    const glm::uvec3 c = keyCoord(touched[j]);
+    if (d.desc_op) desc_ops[t - ds].push_back({c, d.desc_present, d.dp});
+    if (!d.has_data) continue;
+    const unsigned i = t - ds - 1;
+    const auto& have = d.data_have;
+    if (d.data_want) {
+      const DataTraits::Payload p{pool_.acquire(*d.set, d.set_hash), std::uint32_t(d.set->size())};
+      if (have && *have == p) {
+        pool_.release(p.offset);
+      } else {
+        data_ops[i].push_back({c, true, p});
+        if (have) release.push_back(have->offset);
       }
+    } else if (have) {
+      data_ops[i].push_back({c, false, {}});
+      release.push_back(have->offset);
     }
   }
   for (const auto off : release) pool_.release(off);
 
-  bool layout_changed = false;
+  // 3. The table writes: tables are independent, so each is edited by its own
+  //    task with its own random stream (drawn here, in table order).
   PshBuildParams rehash;
   rehash.slack = cfg_.rehash_slack;
   rehash.sigma = cfg_.rehash_sigma;
-  auto apply = [&](auto& table, auto& ops, unsigned layer, bool data) {
+  std::vector<SyncStats> task_stats(2 * layers);
+  std::vector<std::uint8_t> task_layout(2 * layers, 0);
+  std::vector<std::uint64_t> task_seed(2 * layers);
+  std::size_t ops_total = 0;
+  for (unsigned i = 0; i < layers; ++i) ops_total += desc_ops[i].size() + data_ops[i].size();
+  for (auto& sd : task_seed) sd = rng_.next();
+  auto apply = [&](auto& table, auto& ops, unsigned task) {
     using Hash = std::decay_t<decltype(table)>;
     if (ops.empty()) return;
+    SyncStats& ts = task_stats[task];
+    SplitMix64 rng{task_seed[task]};
     // Erases first: their slots may take the inserts.
     for (const auto& op : ops)
       if (!op.present) {
         table.erase(op.key);
-        ++st.erases;
+        ++ts.erases;
       }
     std::vector<typename Hash::Entry> failed;
     for (const auto& op : ops) {
       if (!op.present) continue;
       if (table.update(op.key, op.p)) {
-        ++st.updates;
+        ++ts.updates;
         continue;
       }
-      ++st.inserts;
+      ++ts.inserts;
       if (!failed.empty()) {
         failed.push_back({op.key, op.p});
         continue;
       }
-      switch (table.insert(op.key, op.p, rng_)) {
-        case Hash::InsertResult::InPlace: ++st.in_place; break;
-        case Hash::InsertResult::Reoffset: ++st.reoffsets; break;
+      switch (table.insert(op.key, op.p, rng)) {
+        case Hash::InsertResult::InPlace: ++ts.in_place; break;
+        case Hash::InsertResult::Reoffset: ++ts.reoffsets; break;
         case Hash::InsertResult::Failed: failed.push_back({op.key, op.p}); break;
       }
     }
@@ -229,27 +280,53 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std
       // The thesis's criterion: a new key collides -> rebuild this table.
       auto all = table.entries();
       all.insert(all.end(), failed.begin(), failed.end());
-      rehash.seed = tableSeed(cfg_.seed, layer, data) ^ rng_.next();
+      PshBuildParams p = rehash;
+      p.seed = tableSeed(cfg_.seed, task / 2, task & 1) ^ rng.next();
       const std::size_t old_slots = table.slots(), old_offsets = table.offsetCount();
-      table = Hash::build(all, rehash);
-      ++st.rehashed_tables;
-      if (table.slots() != old_slots || table.offsetCount() != old_offsets) layout_changed = true;
+      table = Hash::build(all, p);
+      ++ts.rehashed_tables;
+      if (table.slots() != old_slots || table.offsetCount() != old_offsets) task_layout[task] = 1;
     }
   };
-  for (unsigned i = 0; i < layers; ++i) {
-    apply(desc_[i], desc_ops[i], i, false);
-    apply(data_[i], data_ops[i], i, true);
+  auto applyTask = [&](unsigned task) {
+    const unsigned i = task / 2;
+    if (task & 1) apply(data_[i], data_ops[i], task);
+    else apply(desc_[i], desc_ops[i], task);
+  };
+  if (ops_total < 512) {
+    for (unsigned task = 0; task < 2 * layers; ++task) applyTask(task);
+  } else {
+    tbb::parallel_for(0u, 2 * layers, applyTask);
   }
-  if (pool_.wantsCompaction()) {
-    const auto remap = pool_.compact();
-    for (auto& d : data_)
-      d.remapPayloads([&](const DataTraits::Payload& p) { return DataTraits::Payload{remap.at(p.offset), p.count}; });
-    st.compacted = true;
+  bool layout_changed = false;
+  for (unsigned task = 0; task < 2 * layers; ++task) {
+    const SyncStats& ts = task_stats[task];
+    st.inserts += ts.inserts;
+    st.updates += ts.updates;
+    st.erases += ts.erases;
+    st.in_place += ts.in_place;
+    st.reoffsets += ts.reoffsets;
+    st.rehashed_tables += ts.rehashed_tables;
+    layout_changed |= task_layout[task] != 0;
   }
   if (layout_changed) {
     computeBases();
     ++layout_version_;
   }
+}
+
+bool LinklessOctree::compactIfWanted() {
+  if (!pool_.wantsCompaction()) return false;
+  const auto& remap = pool_.compact();
+  auto remapLayer = [&](unsigned i) {
+    data_[i].remapPayloads([&](const DataTraits::Payload& p) { return DataTraits::Payload{remap[p.offset], p.count}; });
+  };
+  if (pool_.list().size() < 16384) {
+    for (unsigned i = 0; i < layerCount(); ++i) remapLayer(i);
+  } else {
+    tbb::parallel_for(0u, layerCount(), remapLayer);
+  }
+  return true;
 }
 
 std::vector<LayerStats> LinklessOctree::layerStats() const {

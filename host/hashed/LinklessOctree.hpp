@@ -58,6 +58,11 @@ class LinklessOctree {
 
   void buildFrom(const SceneOctree& tree);
   void applyTouched(const SceneOctree& tree, const std::vector<std::uint64_t>& touched, SyncStats& stats);
+  // Repacks the light index list when its garbage calls for it (and remaps
+  // the data tables); lookups are unchanged. applyTouched() leaves this to
+  // the caller, which may run it while it edits the scene octree for the
+  // next update (neither touches the other's state). True if it compacted.
+  bool compactIfWanted();
 
   struct Range {
     std::uint32_t offset = 0, count = 0;

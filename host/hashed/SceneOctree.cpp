@@ -1,5 +1,7 @@
 #include "host/hashed/SceneOctree.hpp"
 
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 
 namespace ml::hashed {
@@ -24,20 +26,22 @@ void SceneOctree::record(unsigned t, const glm::uvec3& c) {
   if (!recording_) return;
   touched_.push_back(nodeKey(t, c));
   // The parent's description (its children's leaf/filled bits) may change too.
-  if (t > 0) touched_.push_back(nodeKey(t - 1, c >> 1u));
+  if (t > 0) recordParent(nodeKey(t - 1, c >> 1u));
 }
 
 void SceneOctree::recordChildren(unsigned t, const glm::uvec3& c) {
   if (!recording_) return;
   touched_.push_back(nodeKey(t, c));
-  if (t > 0) touched_.push_back(nodeKey(t - 1, c >> 1u));
+  if (t > 0) recordParent(nodeKey(t - 1, c >> 1u));
   for (unsigned k = 0; k < 8; ++k) touched_.push_back(nodeKey(t + 1, childCoord(c, k)));
 }
 
 std::vector<std::uint64_t> SceneOctree::takeTouched() {
   std::vector<std::uint64_t> out;
   out.swap(touched_);
-  std::sort(out.begin(), out.end());
+  last_parent_ = ~std::uint64_t(0);
+  if (out.size() < 16384) std::sort(out.begin(), out.end());
+  else tbb::parallel_sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
@@ -220,7 +224,7 @@ void SceneOctree::removeAll(std::int32_t n, unsigned t, const glm::uvec3& c, std
 }
 
 // end[i] = one past node i's preorder subtree, for every root's subtree.
-void subtreeEnds(const LightOctree& o, std::vector<std::uint32_t>& end) {
+void SceneOctree::subtreeEnds(const LightOctree& o, std::vector<std::uint32_t>& end) {
   end.resize(o.nodes.size());
   std::uint32_t stack[kMaxDepth + 1], pending[kMaxDepth + 1];  // open branches, children left to close
   for (unsigned r = 0; r < o.root_count; ++r) {
@@ -260,10 +264,17 @@ inline SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, unsig
   return Cover::Empty;
 }
 
-void SceneOctree::replace(const LightOctree& a, const LightOctree& b) {
-  subtreeEnds(a, end_a_);
-  subtreeEnds(b, end_b_);
-  Stream sa{a, a.nodes.data(), end_a_.data()}, sb{b, b.nodes.data(), end_b_.data()};
+void SceneOctree::replace(const LightOctree& a, const LightOctree& b, const std::vector<std::uint32_t>* ends_a,
+                          const std::vector<std::uint32_t>* ends_b) {
+  if (!ends_a) {
+    subtreeEnds(a, end_a_);
+    ends_a = &end_a_;
+  }
+  if (!ends_b) {
+    subtreeEnds(b, end_b_);
+    ends_b = &end_b_;
+  }
+  Stream sa{a, a.nodes.data(), ends_a->data()}, sb{b, b.nodes.data(), ends_b->data()};
   auto top = [](const LightOctree& o, Stream& s) {
     if (o.empty()) return Cover::Empty;
     return o.root_depth == 0 ? Cover(*s.cur++) : Cover::Above;  // depth 0: the one root is the scene root

@@ -48,7 +48,13 @@ class SceneOctree {
   // octrees together and touches only the nodes whose coverage differs
   // (seed 003's additions and removals per node), which for small moves is
   // a thin shell instead of two whole spheres.
-  void replace(const LightOctree& old_version, const LightOctree& new_version);
+  // `old_ends`/`new_ends`: subtreeEnds() of the two versions when the caller
+  // has them (e.g. computed in parallel for a batch), else null.
+  void replace(const LightOctree& old_version, const LightOctree& new_version,
+               const std::vector<std::uint32_t>* old_ends = nullptr,
+               const std::vector<std::uint32_t>* new_ends = nullptr);
+  // Per node of `light`: one past its preorder subtree (what replace() walks by).
+  static void subtreeEnds(const LightOctree& light, std::vector<std::uint32_t>& end);
   // Removes `light` from every leaf (e.g. a light whose old octree is unknown).
   void removeEverywhere(std::uint32_t light);
   void normalize();
@@ -91,6 +97,13 @@ class SceneOctree {
   NodeView view(std::int32_t n) const;
   void record(unsigned t, const glm::uvec3& c);
   void recordChildren(unsigned t, const glm::uvec3& c);
+  // Siblings change together: a parent just recorded is not pushed again
+  // (takeTouched() would drop the duplicate anyway, after sorting it).
+  void recordParent(std::uint64_t key) {
+    if (key == last_parent_) return;
+    touched_.push_back(key);
+    last_parent_ = key;
+  }
   std::int32_t allocBlock();
   void split(std::int32_t n, unsigned t, const glm::uvec3& c);
   void insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
@@ -132,6 +145,7 @@ class SceneOctree {
   std::vector<std::int32_t> free_blocks_;
   bool recording_ = false;
   std::vector<std::uint64_t> touched_;
+  std::uint64_t last_parent_ = ~std::uint64_t(0);
 };
 
 }  // namespace ml::hashed
