@@ -27,28 +27,14 @@
 #include "host/hashed/HashedStructure.hpp"
 #include "host/scene/LightAnimator.hpp"
 #include "host/util/Error.hpp"
+#include "host/bench/BenchInputs.hpp"
+#include "BenchCommon.hpp"
 
 namespace {
 using namespace ml;
-using Clock = std::chrono::steady_clock;
+using benchutil::Clock;
+using benchutil::median;
 using json = nlohmann::ordered_json;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-std::vector<std::string> splitList(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t p = 0;
-  while (p <= s.size()) {
-    auto q = s.find(',', p);
-    if (q == std::string::npos) q = s.size();
-    if (q > p) out.push_back(s.substr(p, q - p));
-    p = q + 1;
-  }
-  return out;
-}
 
 // Process CPU time (all threads), ms: less sensitive than wall time to other
 // processes on a shared machine.
@@ -348,22 +334,12 @@ int run(int argc, char** argv) {
     out["light_evaluations"] = evals;
   }
 
-  if (!json_path.empty()) {
-    std::ofstream f(json_path);
-    if (!f) throw UserError("--json: cannot write '" + json_path + "'");
-    f << out.dump(2) << "\n";
-    std::printf("\nwrote %s\n", json_path.c_str());
-  }
+  benchutil::writeJson(json_path, out);
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const UserError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
-  }
+  return ml::benchutil::benchMain("manylights-hashed-bench", [&] { return run(argc, argv); });
 }

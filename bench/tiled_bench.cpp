@@ -19,39 +19,14 @@
 #include "host/tiled/TileCullerReference.hpp"
 #include "host/tiled/TiledAssigner.hpp"
 #include "host/util/Error.hpp"
+#include "host/bench/BenchInputs.hpp"
+#include "BenchCommon.hpp"
 
 namespace {
 using namespace ml;
-using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-template <class F>
-double timeMedian(int reps, F&& f) {
-  f();  // warm-up (kernel compile, caches)
-  std::vector<double> t;
-  for (int i = 0; i < reps; ++i) {
-    const auto t0 = Clock::now();
-    f();
-    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  return median(t);
-}
-
-std::vector<std::string> splitList(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t p = 0;
-  while (p <= s.size()) {
-    auto q = s.find(',', p);
-    if (q == std::string::npos) q = s.size();
-    if (q > p) out.push_back(s.substr(p, q - p));
-    p = q + 1;
-  }
-  return out;
-}
+using benchutil::Clock;
+using benchutil::median;
+using benchutil::timeMedian;
 
 int run(int argc, char** argv) {
   CLI::App app{"Tile light culling: OpenCL kernel vs multi-threaded C++, and tiled frame breakdowns"};
@@ -173,22 +148,12 @@ int run(int argc, char** argv) {
       }
     }
   }
-  if (!json_path.empty()) {
-    std::ofstream out(json_path);
-    if (!out) throw UserError("--json: cannot write '" + json_path + "'");
-    out << records.dump(2) << "\n";
-    std::printf("\nwrote %s\n", json_path.c_str());
-  }
+  benchutil::writeJson(json_path, records);
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const ml::UserError& e) {
-    std::fprintf(stderr, "manylights-tiled-bench: error: %s\n", e.what());
-    return 2;
-  }
+  return ml::benchutil::benchMain("manylights-tiled-bench", [&] { return run(argc, argv); });
 }

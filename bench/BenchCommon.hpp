@@ -1,0 +1,64 @@
+// Helpers shared by the technique benchmarks (tiled, clustered, hashed):
+// medians, repeated timing, JSON output and the error-reporting main().
+// Comma lists use ml::splitList (host/bench/BenchInputs.hpp), as the CLI does.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "host/util/Error.hpp"
+
+namespace ml::benchutil {
+
+using Clock = std::chrono::steady_clock;
+
+// Upper median (the middle element of the sorted copy); 0 for no samples.
+inline double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// One untimed warm-up call (kernel compile, buffer growth), then the median
+// wall time of `reps` calls, in seconds.
+template <class F>
+double timeMedian(int reps, F&& f) {
+  f();
+  std::vector<double> t;
+  for (int i = 0; i < reps; ++i) {
+    const auto t0 = Clock::now();
+    f();
+    t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return median(t);
+}
+
+// Writes `doc` to `path` (no-op when empty); UserError naming --json on failure.
+template <class Json>
+void writeJson(const std::string& path, const Json& doc) {
+  if (path.empty()) return;
+  std::ofstream out(path);
+  if (!out) throw UserError("--json: cannot write '" + path + "'");
+  out << doc.dump(2) << "\n";
+  if (!out) throw UserError("--json: write to '" + path + "' failed");
+  std::printf("\nwrote %s\n", path.c_str());
+}
+
+// Runs `run`, turning a UserError into one line on stderr and exit code 2.
+template <class Run>
+int benchMain(const char* program, Run&& run) {
+  try {
+    return run();
+  } catch (const UserError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+    return 2;
+  }
+}
+
+}  // namespace ml::benchutil
