@@ -3,12 +3,10 @@
 // that matters (exact lower bound equality).
 #include <gtest/gtest.h>
 
-#include <map>
-
 #include "gl/FrameRenderer.hpp"
 #include "host/app/SceneInputs.hpp"
-#include "host/assign/BruteForceAssigner.hpp"
 #include "host/clustered/ClusteredAssigner.hpp"
+#include "support/BruteReference.hpp"
 #include "support/ImageCompare.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
@@ -16,33 +14,9 @@
 namespace ml {
 namespace {
 
-constexpr unsigned kW = 320, kH = 180;
-
-const SceneInputs& scene() {
-  static SceneInputs s = [] {
-    SceneInputArgs a;
-    a.lights = "1024";
-    return loadSceneInputs(a);
-  }();
-  return s;
-}
-
-struct Reference {
-  std::vector<float> image;
-  FrameResult result;
-};
-
-const Reference& bruteReference(Pipeline p) {
-  static std::map<Pipeline, Reference> cache;
-  if (auto it = cache.find(p); it != cache.end()) return it->second;
-  FrameRenderer r(test::runtime(), scene().scene, kW, kH);
-  r.setLights(scene().lights);
-  BruteForceAssigner brute;
-  Reference ref;
-  ref.result = r.render(scene().cameras.frames.front(), brute, {p, true});
-  ref.image = r.targets().readColor();
-  return cache.emplace(p, std::move(ref)).first->second;
-}
+constexpr unsigned kW = test::kReferenceWidth, kH = test::kReferenceHeight;
+using test::bruteReference;
+const SceneInputs& scene() { return test::referenceScene(); }
 
 struct Param {
   Pipeline pipeline;
@@ -56,7 +30,7 @@ class RenderClustered : public ::testing::TestWithParam<Param> {};
 TEST_P(RenderClustered, MatchesBruteForce) {
   test::glContext();
   const auto [pipeline, tile, unique, assign, bounds] = GetParam();
-  const Reference& ref = bruteReference(pipeline);
+  const test::BruteReference& ref = bruteReference(pipeline);
   FrameRenderer r(test::runtime(), scene().scene, kW, kH);
   r.setLights(scene().lights);
   ClusteredAssigner clustered(test::runtime(), tile, unique, assign, bounds);

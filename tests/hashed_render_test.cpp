@@ -12,22 +12,15 @@
 #include "host/assign/BruteForceAssigner.hpp"
 #include "host/hashed/HashedAssigner.hpp"
 #include "support/ImageCompare.hpp"
+#include "support/BruteReference.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
 namespace ml {
 namespace {
 
-constexpr unsigned kW = 320, kH = 180;
-
-const SceneInputs& inputs() {
-  static SceneInputs s = [] {
-    SceneInputArgs a;
-    a.lights = "1024";
-    return loadSceneInputs(a);
-  }();
-  return s;
-}
+constexpr unsigned kW = test::kReferenceWidth, kH = test::kReferenceHeight;
+const SceneInputs& inputs() { return test::referenceScene(); }
 
 struct Rendered {
   FrameResult result;
