@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <sys/resource.h>
 
 #include "host/util/Error.hpp"
 
@@ -37,6 +38,34 @@ double timeMedian(int reps, F&& f) {
     t.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
   }
   return median(t);
+}
+
+// Process CPU time (user + system, all threads: the OpenCL runtime's workers
+// included), in seconds. On a shared machine it counts the work done rather
+// than the time other processes took.
+inline double cpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+struct WallCpu {
+  double wall = 0, cpu = 0;  // medians, seconds
+};
+
+// timeMedian, also reporting the median process CPU time of the calls.
+template <class F>
+WallCpu timeMedianWallCpu(int reps, F&& f) {
+  f();
+  std::vector<double> w, c;
+  for (int i = 0; i < reps; ++i) {
+    const double c0 = cpuSeconds();
+    const auto t0 = Clock::now();
+    f();
+    w.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+    c.push_back(cpuSeconds() - c0);
+  }
+  return {median(w), median(c)};
 }
 
 // Writes `doc` to `path` (no-op when empty); UserError naming --json on failure.

@@ -34,12 +34,21 @@ using benchutil::Clock;
 using benchutil::median;
 using benchutil::timeMedian;
 
+// Levels of a BVH of branching 32 over ceil(n / leaf) leaves (leaves included).
+unsigned levelsFor(std::uint32_t n, unsigned leaf) {
+  if (n == 0) return 0;
+  unsigned levels = 1;
+  for (std::uint32_t c = (n + leaf - 1) / leaf; c > 32; c = (c + 31) / 32) ++levels;
+  return levels;
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"Clustered shading: unique-cluster methods, BVH vs brute-force assignment, frames vs tiled"};
   std::string json_path, sizes = "320x320,1280x720,1920x1080", light_counts = "1000,10000,100000";
-  std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000";
+  std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000", leaf_sizes = "8,32";
   unsigned tile = 0, tiled_tile = 16;
   unsigned brute_max = 100000;
+  float light_radius = 0.0f;
   int reps = 5;
   std::string device, bounds = "pixels";
   app.add_option("--json", json_path, "write records as JSON");
@@ -52,6 +61,11 @@ int run(int argc, char** argv) {
   app.add_option("--cluster-tile", tile, "cluster tile size; 0: auto per resolution (32 from 720 lines up, 16 below)")
       ->capture_default_str();
   app.add_option("--tile", tiled_tile, "tile size of the tiled peer in frames")->capture_default_str();
+  app.add_option("--leaf-sizes", leaf_sizes, "lights per leaf of the assignment cases (8, 16, 32)")
+      ->capture_default_str();
+  app.add_option("--light-radius", light_radius,
+                 "radius of the generated lights of the assignment cases (0: the scene's default)")
+      ->capture_default_str();
   app.add_option("--brute-max-lights", brute_max, "skip brute-force assignment above this many lights")->capture_default_str();
   app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
   app.add_option("--device", device, "OpenCL device");
@@ -127,11 +141,12 @@ int run(int argc, char** argv) {
       records.push_back({{"name", std::string("cluster_boxes_") + bounds}, {"resolution", size}, {"n", w * h},
                          {"clusters", clusters}, {"seconds", t_boxes}, {"items_per_second", w * h / t_boxes}});
     }
-    std::printf("  assignment %-8s %12s %12s %10s %12s %7s\n", "lights", "bvh ms", "brute ms", "speed-up", "entries",
-                "levels");
+    std::printf("  assignment %-8s %5s %12s %12s %10s %12s %7s %10s %10s\n", "lights", "leaf", "bvh ms", "brute ms",
+                "speed-up", "entries", "levels", "hit leaves", "cpu speed-up");
     for (const auto& ls : splitList(light_counts)) {
       SceneInputArgs args;
       args.lights = ls;
+      args.light_radius = light_radius;
       const auto lights = loadSceneInputs(args).lights;
       const auto n = std::uint32_t(lights.size());
       cl::Buffer lbuf(rt->context(), CL_MEM_READ_ONLY, std::max<std::size_t>(32, n * sizeof(gpu::PointLight)));
@@ -149,46 +164,76 @@ int run(int argc, char** argv) {
         a.fill(q, ranges, indices, timer);
         q.finish();
       };
-      auto time_assign = [&](ClusterLightAssigner& a, std::uint32_t& total) {
+      struct Timed {
+        double seconds = 0, cpu_seconds = 0;
+        std::uint32_t total = 0;
+        std::uint64_t hit_leaves = 0;
+      };
+      auto time_assign = [&](ClusterLightAssigner& a) {
+        Timed r;
         a.boxes(q, cam, g, u.uniqueKeys(), clusters, nullptr, px);
-        const double t = timeMedian(reps, [&] { run_assign(a, total, nullptr); });
+        const benchutil::WallCpu t = benchutil::timeMedianWallCpu(reps, [&] { run_assign(a, r.total, nullptr); });
+        r.seconds = t.wall;
+        r.cpu_seconds = t.cpu;
         // One more run for the device time of each pass.
         ClPassTimer timer;
-        run_assign(a, total, &timer);
+        run_assign(a, r.total, &timer);
         PassTimings passes;
         timer.collect(passes);
-        std::printf("    %s passes (device ms):", clusterAssignName(a.method()));
+        std::printf("    %s leaf %u passes (device ms):", clusterAssignName(a.method()), a.leafSize());
         for (const auto& [name, ms] : passes.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
-        const std::uint64_t hit_leaves = a.hitLeaves(q);
-        std::printf(" | hit leaves %llu (%.1f lights each)\n", static_cast<unsigned long long>(hit_leaves),
-                    hit_leaves ? double(total) / double(hit_leaves) : 0.0);
-        return t;
+        r.hit_leaves = a.hitLeaves(q);
+        std::printf(" | hit leaves %llu (%.1f lights each)\n", static_cast<unsigned long long>(r.hit_leaves),
+                    r.hit_leaves ? double(r.total) / double(r.hit_leaves) : 0.0);
+        return r;
       };
-      ClusterLightAssigner bvh(*rt, ClusterAssignMethod::Bvh), brute(*rt, ClusterAssignMethod::Brute);
-      // Record slots for every leaf of every cluster (up to 2^25, 256 MB), so
-      // that neither method walks again in the fill pass: brute force, with
-      // its unsorted leaves, has many more hit leaves than the BVH and would
-      // otherwise be the one that overflows the default budget.
-      const std::size_t all_leaves = std::size_t(clusters) * ((n + 31) / 32);
-      for (ClusterLightAssigner* a : {&bvh, &brute}) a->setRecordBudget(std::min<std::size_t>(all_leaves, 1u << 25));
-      std::uint32_t total_bvh = 0, total_brute = 0;
-      const double t_bvh = time_assign(bvh, total_bvh);
-      double t_brute = 0;
-      if (n <= brute_max) {
-        t_brute = time_assign(brute, total_brute);
-        if (total_brute != total_bvh) throw std::runtime_error("BVH and brute force disagree on the list size");
+      // Each leaf size: the BVH and brute force (the same leaf test over
+      // every leaf). The speed-up is against the fastest brute force of the
+      // run, so a leaf size that suits the BVH cannot slow its peer down.
+      std::vector<std::pair<unsigned, Timed>> bvh_runs, brute_runs;
+      for (const auto& lsz : splitList(leaf_sizes)) {
+        const unsigned leaf = unsigned(std::stoul(lsz));
+        ClusterLightAssigner bvh(*rt, ClusterAssignMethod::Bvh, leaf), brute(*rt, ClusterAssignMethod::Brute, leaf);
+        // Record slots for every leaf of every cluster (up to 2^25, 256 MB), so
+        // that neither method walks again in the fill pass: brute force, with
+        // its unsorted leaves, has many more hit leaves than the BVH and would
+        // otherwise be the one that overflows the default budget.
+        const std::size_t all_leaves = std::size_t(clusters) * ((n + bvh.leafSize() - 1) / bvh.leafSize());
+        for (ClusterLightAssigner* a : {&bvh, &brute}) a->setRecordBudget(std::min<std::size_t>(all_leaves, 1u << 25));
+        bvh_runs.emplace_back(bvh.leafSize(), time_assign(bvh));
+        if (n <= brute_max) {
+          brute_runs.emplace_back(brute.leafSize(), time_assign(brute));
+          if (brute_runs.back().second.total != bvh_runs.back().second.total)
+            throw std::runtime_error("BVH and brute force disagree on the list size");
+        }
       }
-      std::printf("  %-11s %8u %12.3f %12s %10s %12u %7u\n", size.c_str(), n, t_bvh * 1e3,
-                  t_brute > 0 ? std::to_string(t_brute * 1e3).c_str() : "-",
-                  t_brute > 0 ? (std::to_string(t_brute / t_bvh) + "x").c_str() : "-", total_bvh, bvh.bvhLevels());
-      records.push_back({{"name", "cluster_assign_bvh"}, {"resolution", size}, {"n", n}, {"lights", n},
-                         {"clusters", clusters}, {"seconds", t_bvh}, {"items_per_second", n / t_bvh},
-                         {"list_entries", total_bvh}, {"bvh_levels", bvh.bvhLevels()},
-                         {"cluster_bounds", bounds}});
-      if (t_brute > 0)
-        records.push_back({{"name", "cluster_assign_brute"}, {"resolution", size}, {"n", n}, {"lights", n},
-                           {"clusters", clusters}, {"seconds", t_brute}, {"items_per_second", n / t_brute},
-                           {"list_entries", total_brute}, {"speedup_bvh_vs_brute", t_brute / t_bvh}});
+      double best_brute = 0, best_brute_cpu = 0;
+      for (const auto& [leaf, r] : brute_runs) {
+        if (best_brute == 0 || r.seconds < best_brute) best_brute = r.seconds;
+        if (best_brute_cpu == 0 || r.cpu_seconds < best_brute_cpu) best_brute_cpu = r.cpu_seconds;
+      }
+      for (std::size_t i = 0; i < bvh_runs.size(); ++i) {
+        const auto& [leaf, b] = bvh_runs[i];
+        const double t_brute = i < brute_runs.size() ? brute_runs[i].second.seconds : 0.0;
+        std::printf("  %-11s %8u %5u %12.3f %12s %10s %12u %7u %10llu %10s\n", size.c_str(), n, leaf, b.seconds * 1e3,
+                    t_brute > 0 ? std::to_string(t_brute * 1e3).c_str() : "-",
+                    best_brute > 0 ? (std::to_string(best_brute / b.seconds) + "x").c_str() : "-", b.total,
+                    levelsFor(n, leaf), static_cast<unsigned long long>(b.hit_leaves),
+                    best_brute_cpu > 0 ? (std::to_string(best_brute_cpu / b.cpu_seconds) + "x").c_str() : "-");
+        records.push_back({{"name", "cluster_assign_bvh"}, {"resolution", size}, {"n", n}, {"lights", n},
+                           {"leaf_size", leaf}, {"clusters", clusters}, {"seconds", b.seconds},
+                           {"cpu_seconds", b.cpu_seconds},
+                           {"items_per_second", n / b.seconds}, {"list_entries", b.total},
+                           {"hit_leaves", b.hit_leaves}, {"bvh_levels", levelsFor(n, leaf)},
+                           {"cluster_bounds", bounds}});
+        if (t_brute > 0)
+          records.push_back({{"name", "cluster_assign_brute"}, {"resolution", size}, {"n", n}, {"lights", n},
+                             {"leaf_size", leaf}, {"clusters", clusters}, {"seconds", t_brute},
+                             {"cpu_seconds", brute_runs[i].second.cpu_seconds},
+                             {"items_per_second", n / t_brute}, {"list_entries", brute_runs[i].second.total},
+                             {"speedup_bvh_vs_best_brute", best_brute / b.seconds},
+                             {"cpu_speedup_bvh_vs_best_brute", best_brute_cpu / b.cpu_seconds}});
+      }
     }
   }
 

@@ -8,7 +8,7 @@
  *   light_bounds_*        bounding cube of the light centres (the Morton frame)
  *   light_morton          30-bit Morton code of each light's quantized position
  *   (radix sort of the codes, light indices as payload)      [BVH only]
- *   pack_leaves           32 lights per leaf as structure of arrays, and the
+ *   pack_leaves           LEAF_SIZE lights per leaf as structure of arrays, and the
  *                         leaf boxes (BVH: Morton order; brute force: given order)
  *   bvh_level             nodes over 32 consecutive nodes of the level below
  *   node_blocks           the node boxes of each level as blocks of 32 siblings
@@ -24,6 +24,12 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #define BVH_BRANCH 32u
+/* Lights per leaf (host: ClusterLightAssigner's leaf size). Leaves are tested
+ * whole in one branch-free loop; small leaves (8: one AVX vector) test fewer
+ * lights that miss, wide ones suit a GPU's SIMD width. */
+#ifndef LEAF_SIZE
+#define LEAF_SIZE 32u
+#endif
 /* Stack of pending nodes: at most BVH_BRANCH per level plus the top level. */
 #define BVH_STACK 256
 #define DEPTH_EPS 1e-4f
@@ -149,26 +155,37 @@ __kernel void cluster_pixel_boxes(__global const float* depth, __global const ui
 
 /* ---------------------------------------------------------------- leaves
  *
- * Lights are tested 32 at a time: a leaf holds 32 lights as structure of
- * arrays (x, y, distance -z, r^2 (1 + 4 DEPTH_EPS)) and one loop of fixed trip
- * count turns a cluster box into a 32-bit hit mask, branch-free, so the
+ * Lights are tested LEAF_SIZE at a time: a leaf holds LEAF_SIZE lights as
+ * structure of arrays (x, y, distance -z, r^2 (1 + 4 DEPTH_EPS)) and one loop
+ * of fixed trip count turns a cluster box into a hit mask, branch-free, so the
  * compiler vectorizes it. Brute force and the BVH share this routine: brute
  * force tests every leaf of the lights in their given order, the BVH only the
  * leaves (of Morton-sorted lights) whose node boxes overlap the cluster box.
  * Padding lights have r^2 = -1 and never hit. */
 
+/* Eight lanes at a time in explicit vectors: PoCL runs a divergent walk one
+ * work-item at a time, and LLVM does not vectorize the bit-building scalar
+ * loop, so the vector types are what puts the leaf test in SIMD registers. */
+inline uint hit_bits8(int8 hit) {
+  const int8 bits = hit & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
+  const int4 h4 = bits.lo | bits.hi;
+  const int2 h2 = h4.lo | h4.hi;
+  return (uint)(h2.x | h2.y);
+}
+
 inline uint leaf_mask(__global const float* soa, uint leaf, float4 lo, float4 hi) {
-  __global const float* b = soa + (size_t)leaf * (4u * BVH_BRANCH);
+  __global const float* b = soa + (size_t)leaf * (4u * LEAF_SIZE);
   uint mask = 0u;
-  for (uint i = 0; i < BVH_BRANCH; ++i) {
-    const float x = b[i], y = b[BVH_BRANCH + i], d = b[2u * BVH_BRANCH + i], r2 = b[3u * BVH_BRANCH + i];
-    const float dx = x - clamp(x, lo.x, hi.x), dy = y - clamp(y, lo.y, hi.y), dz = d - clamp(d, lo.z, hi.z);
-    mask |= (dx * dx + dy * dy + dz * dz <= r2 ? 1u : 0u) << i;
+  for (uint c = 0; c < LEAF_SIZE / 8u; ++c) {
+    const float8 x = vload8(c, b), y = vload8(c, b + LEAF_SIZE), d = vload8(c, b + 2u * LEAF_SIZE);
+    const float8 r2 = vload8(c, b + 3u * LEAF_SIZE);
+    const float8 dx = x - clamp(x, lo.x, hi.x), dy = y - clamp(y, lo.y, hi.y), dz = d - clamp(d, lo.z, hi.z);
+    mask |= hit_bits8(dx * dx + dy * dy + dz * dz <= r2) << (8u * c);
   }
   return mask;
 }
 
-/* Packs lights into leaves: leaf l holds lights ids[32 l .. 32 l + 31] (ids
+/* Packs lights into leaves: leaf l holds lights ids[LEAF_SIZE l ..]  (ids
  * null: the lights in their given order), and for the BVH its box (sphere
  * bounds padded by 1e-3 r: a sphere that passes the leaf test, which
  * tolerates 4 DEPTH_EPS of r^2, always overlaps it; z as positive distance
@@ -177,26 +194,26 @@ __kernel void pack_leaves(__global const float4* spheres, __global const uint* i
                           __global float* soa, __global uint* leaf_ids, __global float4* node_lo,
                           __global float4* node_hi, __global float4* node_sph, uint write_boxes) {
   const uint leaf = get_global_id(0);
-  const uint first = leaf * BVH_BRANCH;
+  const uint first = leaf * LEAF_SIZE;
   if (first >= n) return;
-  __global float* b = soa + (size_t)leaf * (4u * BVH_BRANCH);
+  __global float* b = soa + (size_t)leaf * (4u * LEAF_SIZE);
   float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
-  for (uint i = 0; i < BVH_BRANCH; ++i) {
+  for (uint i = 0; i < LEAF_SIZE; ++i) {
     const uint k = first + i;
     if (k >= n) {
       b[i] = 0.0f;
-      b[BVH_BRANCH + i] = 0.0f;
-      b[2u * BVH_BRANCH + i] = 0.0f;
-      b[3u * BVH_BRANCH + i] = -1.0f;
+      b[LEAF_SIZE + i] = 0.0f;
+      b[2u * LEAF_SIZE + i] = 0.0f;
+      b[3u * LEAF_SIZE + i] = -1.0f;
       leaf_ids[k] = 0xffffffffu;
       continue;
     }
     const uint id = use_ids ? ids[k] : k;
     const float4 s = spheres[id];
     b[i] = s.x;
-    b[BVH_BRANCH + i] = s.y;
-    b[2u * BVH_BRANCH + i] = -s.z;
-    b[3u * BVH_BRANCH + i] = s.w * s.w * (1.0f + 4.0f * DEPTH_EPS);
+    b[LEAF_SIZE + i] = s.y;
+    b[2u * LEAF_SIZE + i] = -s.z;
+    b[3u * LEAF_SIZE + i] = s.w * s.w * (1.0f + 4.0f * DEPTH_EPS);
     leaf_ids[k] = id;
     const float r = s.w * 1.001f + 1e-6f;
     const float4 p = (float4)(s.x, s.y, -s.z, 0.0f);
@@ -208,7 +225,7 @@ __kernel void pack_leaves(__global const float4* spheres, __global const uint* i
     node_hi[leaf] = hi;
     /* Bounding sphere: centre of the centres' box, radius over the lights. */
     float4 clo = (float4)(INFINITY), chi = (float4)(-INFINITY);
-    const uint last = min(first + BVH_BRANCH, n);
+    const uint last = min(first + LEAF_SIZE, n);
     for (uint k = first; k < last; ++k) {
       const float4 s = spheres[use_ids ? ids[k] : k];
       const float4 p = (float4)(s.x, s.y, -s.z, 0.0f);
@@ -366,71 +383,91 @@ inline uint block_mask(__global const float* nsoa, uint block, float4 lo, float4
  * hit leaves than slots is walked again by the fill pass. So nothing is
  * truncated and nothing needs atomics.
  *
- * The walk keeps a stack of nodes whose boxes overlap the cluster box
- * (level << 27 | node); popping an inner node tests its 32 children at once,
- * popping a leaf tests its 32 lights. use_bvh = 0: brute force, every leaf
- * in order. */
+ * The walk keeps a stack of inner nodes whose boxes overlap the cluster box
+ * (level << 27 | node); popping one tests its 32 children at once, and the
+ * leaves among them test their LEAF_SIZE lights. use_bvh = 0: brute force,
+ * every leaf in order. */
 
 inline uint emit_leaf(uint leaf, uint mask, __global const uint* leaf_ids, __global uint* out, uint m) {
   while (mask != 0u) {
     const uint bit = mask & (0u - mask);
-    out[m++] = leaf_ids[leaf * BVH_BRANCH + (31u - clz(bit))];
+    out[m++] = leaf_ids[leaf * LEAF_SIZE + (31u - clz(bit))];
     mask ^= bit;
   }
   return m;
 }
 
+/* One leaf: its hit mask, then (mode 0) a record and the count, or (mode 1)
+ * the lights written out. */
+inline void visit_leaf(uint mode, uint leaf, __global const float* soa, __global const uint* leaf_ids, float4 lo,
+                       float4 hi, __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint* out,
+                       uint* m, uint* h) {
+  const uint mask = leaf_mask(soa, leaf, lo, hi);
+  if (mask == 0u) return;
+  if (mode == 0u) {
+    if (*h < slots) {
+      rec_leaf[*h] = leaf;
+      rec_mask[*h] = mask;
+    }
+    *m += popcount(mask);
+  } else {
+    *m = emit_leaf(leaf, mask, leaf_ids, out, *m);
+  }
+  ++*h;
+}
+
 /* mode 0: count, recording hit leaves into rec_leaf/rec_mask (up to slots);
  * mode 1: count and write the lights to out. Returns the light count and, in
- * *hit_leaves, the number of leaves with hits. */
+ * *hit_leaves, the number of leaves with hits. The leaves under a node of
+ * level 1 are tested straight from its children's mask, never stacked: they
+ * are most of the nodes a walk reaches. */
 inline uint walk(uint mode, uint use_bvh, __global const float* soa, __global const uint* leaf_ids, uint n_leaves,
                  __global const float* nsoa, __global const uint* block_start, uint levels, float4 lo, float4 hi,
                  __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint* out, uint* hit_leaves) {
   uint m = 0u, h = 0u;
-  uint stack[BVH_STACK];
-  uint sp = 0;
-  uint leaf = 0u;
-  if (use_bvh) {
-    const uint top = levels - 1u;
-    uint mask = block_mask(nsoa, block_start[top], lo, hi);
+  if (!use_bvh) {
+    for (uint leaf = 0; leaf < n_leaves; ++leaf)
+      visit_leaf(mode, leaf, soa, leaf_ids, lo, hi, rec_leaf, rec_mask, slots, out, &m, &h);
+    *hit_leaves = h;
+    return m;
+  }
+  const uint top = levels - 1u;
+  uint mask = block_mask(nsoa, block_start[top], lo, hi);
+  if (top == 0u) {
+    /* One block of at most 32 leaves. */
     while (mask != 0u) {
       const uint bit = mask & (0u - mask);
-      stack[sp++] = (top << 27) | (31u - clz(bit));
+      visit_leaf(mode, 31u - clz(bit), soa, leaf_ids, lo, hi, rec_leaf, rec_mask, slots, out, &m, &h);
       mask ^= bit;
     }
+    *hit_leaves = h;
+    return m;
   }
-  for (;;) {
-    if (use_bvh) {
-      if (sp == 0u) break;
-      const uint e = stack[--sp];
-      const uint l = e >> 27, node = e & 0x7ffffffu;
-      if (l > 0u) {
-        uint mask = block_mask(nsoa, block_start[l - 1u] + node, lo, hi);
-        while (mask != 0u) {
-          const uint bit = mask & (0u - mask);
-          stack[sp++] = ((l - 1u) << 27) | (node * BVH_BRANCH + (31u - clz(bit)));
-          mask ^= bit;
-        }
-        continue;
+  uint stack[BVH_STACK];
+  uint sp = 0;
+  while (mask != 0u) {
+    const uint bit = mask & (0u - mask);
+    stack[sp++] = (top << 27) | (31u - clz(bit));
+    mask ^= bit;
+  }
+  while (sp != 0u) {
+    const uint e = stack[--sp];
+    const uint l = e >> 27, node = e & 0x7ffffffu;
+    uint children = block_mask(nsoa, block_start[l - 1u] + node, lo, hi);
+    if (l == 1u) {
+      while (children != 0u) {
+        const uint bit = children & (0u - children);
+        visit_leaf(mode, node * BVH_BRANCH + (31u - clz(bit)), soa, leaf_ids, lo, hi, rec_leaf, rec_mask, slots, out,
+                   &m, &h);
+        children ^= bit;
       }
-      leaf = node;
-    } else if (leaf >= n_leaves) {
-      break;
+      continue;
     }
-    const uint mask = leaf_mask(soa, leaf, lo, hi);
-    if (!use_bvh) ++leaf;
-    if (mask == 0u) continue;
-    const uint this_leaf = use_bvh ? leaf : leaf - 1u;
-    if (mode == 0u) {
-      if (h < slots) {
-        rec_leaf[h] = this_leaf;
-        rec_mask[h] = mask;
-      }
-      m += popcount(mask);
-    } else {
-      m = emit_leaf(this_leaf, mask, leaf_ids, out, m);
+    while (children != 0u) {
+      const uint bit = children & (0u - children);
+      stack[sp++] = ((l - 1u) << 27) | (node * BVH_BRANCH + (31u - clz(bit)));
+      children ^= bit;
     }
-    ++h;
   }
   *hit_leaves = h;
   return m;

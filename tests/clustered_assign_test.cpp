@@ -14,6 +14,7 @@
 #include "clustered_support.hpp"
 #include "host/clustered/ClusterLightAssigner.hpp"
 #include "host/clustered/ClusterUniquer.hpp"
+#include "host/util/Error.hpp"
 #include "support/TestDevice.hpp"
 
 namespace ml {
@@ -99,6 +100,11 @@ void poisonBoxes(ClusterLightAssigner& a, std::size_t clusters) {
   }
 }
 
+TEST(ClusteredAssign, RejectsUnsupportedLeafSizes) {
+  for (unsigned leaf : {0u, 1u, 4u, 24u, 64u})
+    EXPECT_THROW(ClusterLightAssigner(test::runtime(), ClusterAssignMethod::Bvh, leaf), UserError) << leaf;
+}
+
 TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
@@ -110,6 +116,10 @@ TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
   ClusterLightAssigner brute_rewalk(rt, ClusterAssignMethod::Brute), bvh_rewalk(rt, ClusterAssignMethod::Bvh);
   brute_rewalk.setRecordBudget(1);
   bvh_rewalk.setRecordBudget(1);
+  // Smaller leaves: other tree shapes over the same lights (leaf 8 walks one
+  // more level at 40000 lights), and brute force over them.
+  ClusterLightAssigner bvh8(rt, ClusterAssignMethod::Bvh, 8), bvh16(rt, ClusterAssignMethod::Bvh, 16);
+  ClusterLightAssigner brute8(rt, ClusterAssignMethod::Brute, 8);
   // Light counts give BVHs of 1 (< 32 lights), 2 and 3 levels, and none at all.
   for (auto [w, h, tile, n] : {std::tuple{160u, 96u, 32u, 20u}, std::tuple{203u, 117u, 16u, 3000u},
                                std::tuple{64u, 48u, 32u, 40000u}, std::tuple{50u, 30u, 8u, 0u}}) {
@@ -150,12 +160,18 @@ TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
       // The walk-again path once, with the explicit bounds (the default).
       const auto br = explicit_bounds ? assign(brute_rewalk, u, c, f, &pixels) : ref;
       const auto tr = explicit_bounds ? assign(bvh_rewalk, u, c, f, &pixels) : ref;
+      const auto t8 = assign(bvh8, u, c, f, explicit_bounds ? &pixels : nullptr);
+      const auto t16 = assign(bvh16, u, c, f, explicit_bounds ? &pixels : nullptr);
+      const auto b8 = assign(brute8, u, c, f, explicit_bounds ? &pixels : nullptr);
       std::size_t pairs = 0;
       for (std::size_t k = 0; k < ref.size(); ++k) {
         ASSERT_EQ(b[k], ref[k]) << "brute, cluster " << k;
         ASSERT_EQ(t[k], ref[k]) << "bvh, cluster " << k;
         ASSERT_EQ(br[k], ref[k]) << "brute walking again, cluster " << k;
         ASSERT_EQ(tr[k], ref[k]) << "bvh walking again, cluster " << k;
+        ASSERT_EQ(t8[k], ref[k]) << "bvh, leaf 8, cluster " << k;
+        ASSERT_EQ(t16[k], ref[k]) << "bvh, leaf 16, cluster " << k;
+        ASSERT_EQ(b8[k], ref[k]) << "brute, leaf 8, cluster " << k;
         pairs += ref[k].size();
       }
       // (20 lights may all miss the tight boxes of the pixels.)
@@ -171,6 +187,11 @@ TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
       }
       if (n == 40000) {
         EXPECT_EQ(bvh.bvhLevels(), 3u);
+        EXPECT_EQ(bvh8.bvhLevels(), 3u);
+      }
+      if (n == 20) {
+        EXPECT_EQ(bvh.bvhLevels(), 1u);
+        EXPECT_EQ(bvh8.bvhLevels(), 1u);
       }
 
       // Conservative: a light containing a pixel's surface point is in its cluster's list.

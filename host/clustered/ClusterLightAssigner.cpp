@@ -26,7 +26,7 @@ ClusterBounds parseClusterBounds(const std::string& s) {
 const char* clusterBoundsName(ClusterBounds b) { return b == ClusterBounds::Pixels ? "pixels" : "frustum"; }
 
 namespace {
-constexpr std::uint32_t kBranch = 32;  // BVH_BRANCH in the kernel
+constexpr std::uint32_t kBranch = 32;  // BVH_BRANCH in the kernel (inner nodes)
 constexpr unsigned kMaxLevels = 7;     // BVH_STACK (256) >= 32 * levels + 32
 // Hit-leaf records of all clusters together (8 bytes each): clusters with more
 // hit leaves than their share are walked again by the fill pass.
@@ -36,9 +36,20 @@ constexpr std::uint32_t kMortonChunk = 1024;  // MORTON_CHUNK in the kernel
 constexpr std::size_t kNodeFloats = 10;       // NODE_FLOATS in the kernel
 }  // namespace
 
-ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method)
-    : rt_(rt), method_(method), record_budget_(kDefaultRecordBudget), scan_(rt), radix_(rt) {
-  program_ = rt.programs().build("cluster_assign.cl");
+static unsigned checkedLeafSize(unsigned requested) {
+  if (requested != 8 && requested != 16 && requested != 32)
+    throw UserError("cluster BVH leaf size: expected 8, 16 or 32 lights, got " + std::to_string(requested));
+  return requested;
+}
+
+ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method, unsigned leaf_size)
+    : rt_(rt),
+      method_(method),
+      leaf_size_(checkedLeafSize(leaf_size)),
+      record_budget_(kDefaultRecordBudget),
+      scan_(rt),
+      radix_(rt) {
+  program_ = rt.programs().build("cluster_assign.cl", {{"LEAF_SIZE", std::to_string(leaf_size_) + "u"}});
   view_ = cl::Kernel(program_, "light_view");
   boxes_ = cl::Kernel(program_, "cluster_boxes");
   pixel_boxes_ = cl::Kernel(program_, "cluster_pixel_boxes");
@@ -63,7 +74,7 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
 }
 
 std::size_t ClusterLightAssigner::scratchBytes() const {
-  return light_capacity_ * (16 + 4 + 4) + leaf_capacity_ * kBranch * (16 + 4) + node_capacity_ * 48 +
+  return light_capacity_ * (16 + 4 + 4) + leaf_capacity_ * leaf_size_ * (16 + 4) + node_capacity_ * 48 +
          block_capacity_ * kBranch * kNodeFloats * 4 +
          cluster_capacity_ * (32 + 12) + bounds_capacity_ * 4 + record_capacity_ * 8;
 }
@@ -138,7 +149,7 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
     codes_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
     ids_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
   }
-  n_leaves_ = (n + kBranch - 1) / kBranch;
+  n_leaves_ = (n + leaf_size_ - 1) / leaf_size_;
   levels_ = 0;
   if (n > 0) {
     view_.setArg(0, lights);
@@ -196,11 +207,11 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
 
 void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer) {
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
-  const std::uint32_t n_leaves = (n + kBranch - 1) / kBranch;
+  const std::uint32_t n_leaves = (n + leaf_size_ - 1) / leaf_size_;
   if (n_leaves > leaf_capacity_) {
     leaf_capacity_ = std::size_t(n_leaves) + n_leaves / 2;
-    soa_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, leaf_capacity_ * kBranch * 16);
-    leaf_ids_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, leaf_capacity_ * kBranch * 4);
+    soa_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, leaf_capacity_ * leaf_size_ * 16);
+    leaf_ids_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, leaf_capacity_ * leaf_size_ * 4);
   }
   std::vector<cl_uint> start, count, block_start;
   std::uint32_t total = 0, blocks = 0;

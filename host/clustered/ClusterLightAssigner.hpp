@@ -8,8 +8,8 @@
 //   a.fill(q, ranges, indices);   // ranges: LightRange per cluster
 // (count() = boxes() + assign().)
 //
-// Lights are packed 32 to a leaf (structure of arrays) and tested a leaf at a
-// time into a 32-bit hit mask. Brute: every cluster tests every leaf of the
+// Lights are packed leafSize() to a leaf (structure of arrays) and tested a
+// leaf at a time into a hit mask. Brute: every cluster tests every leaf of the
 // lights in their given order (the reference). Bvh: Morton codes of the
 // view-space light centres (quantized in their bounding cube, reduced on the
 // device), radix sort, leaves of the sorted lights and a BVH of branching 32
@@ -53,7 +53,10 @@ struct ClusterPixels {
 
 class ClusterLightAssigner {
  public:
-  ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method);
+  // leaf_size: lights per leaf, 8, 16 or 32 (UserError otherwise). Smaller
+  // leaves test fewer lights that miss but make the walk longer; on PoCL 32 is
+  // the fastest (bench/RESULTS-clustered.md), and it is a warp on a GPU.
+  ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method, unsigned leaf_size = 32);
 
   // boxes() then assign(). pixels: explicit bounds from these pixels; null: sub-frustum bounds.
   std::uint32_t count(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n, const gpu::CameraParams& cam,
@@ -71,12 +74,13 @@ class ClusterLightAssigner {
   ClusterAssignMethod method() const { return method_; }
   void setMethod(ClusterAssignMethod m) { method_ = m; }
   unsigned bvhLevels() const { return levels_; }
+  unsigned leafSize() const { return leaf_size_; }
   // The last count()'s boxes (lo, hi as x, y, z(distance), 0), for tests.
   const cl::Buffer& boxLo() const { return box_lo_; }
   const cl::Buffer& boxHi() const { return box_hi_; }
   std::size_t scratchBytes() const;
   // Leaves with at least one hit, summed over the last count()'s clusters
-  // (blocks; for reports: list entries / (32 x this) is the leaf occupancy).
+  // (blocks; for reports: list entries / this = lights per hit leaf).
   std::uint64_t hitLeaves(cl::CommandQueue& q) const;
   // Hit-leaf records (8 bytes each) shared by all clusters (default 2^22);
   // clusters with more hit leaves than their share are walked again by fill().
@@ -88,6 +92,7 @@ class ClusterLightAssigner {
 
   ClRuntime& rt_;
   ClusterAssignMethod method_;
+  unsigned leaf_size_;
   cl::Program program_, keys_program_;
   cl::Kernel view_, boxes_, pixel_boxes_, morton_, pack_, level_, blocks_, count_k_, fill_k_, ranges_;
   cl::Kernel bounds_part_, bounds_final_;
