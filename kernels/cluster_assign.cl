@@ -361,14 +361,17 @@ __kernel void node_blocks(__global const float4* node_lo, __global const float4*
 inline uint block_mask(__global const float* nsoa, uint block, float4 lo, float4 hi) {
   __global const float* b = nsoa + (size_t)block * (NODE_FLOATS * BVH_BRANCH);
   uint mask = 0u;
-  for (uint i = 0; i < BVH_BRANCH; ++i) {
-    const float cx = b[6u * BVH_BRANCH + i], cy = b[7u * BVH_BRANCH + i], cz = b[8u * BVH_BRANCH + i];
-    const float r = b[9u * BVH_BRANCH + i];
-    const float dx = cx - clamp(cx, lo.x, hi.x), dy = cy - clamp(cy, lo.y, hi.y), dz = cz - clamp(cz, lo.z, hi.z);
-    const bool hit = b[i] <= hi.x && lo.x <= b[3u * BVH_BRANCH + i] && b[BVH_BRANCH + i] <= hi.y &&
-                     lo.y <= b[4u * BVH_BRANCH + i] && b[2u * BVH_BRANCH + i] <= hi.z &&
-                     lo.z <= b[5u * BVH_BRANCH + i] && dx * dx + dy * dy + dz * dz <= r * r && r >= 0.0f;
-    mask |= (hit ? 1u : 0u) << i;
+  for (uint c = 0; c < BVH_BRANCH / 8u; ++c) {
+    const float8 x0 = vload8(c, b), y0 = vload8(c, b + BVH_BRANCH), z0 = vload8(c, b + 2u * BVH_BRANCH);
+    const float8 x1 = vload8(c, b + 3u * BVH_BRANCH), y1 = vload8(c, b + 4u * BVH_BRANCH);
+    const float8 z1 = vload8(c, b + 5u * BVH_BRANCH);
+    const float8 cx = vload8(c, b + 6u * BVH_BRANCH), cy = vload8(c, b + 7u * BVH_BRANCH);
+    const float8 cz = vload8(c, b + 8u * BVH_BRANCH), r = vload8(c, b + 9u * BVH_BRANCH);
+    const float8 dx = cx - clamp(cx, lo.x, hi.x), dy = cy - clamp(cy, lo.y, hi.y), dz = cz - clamp(cz, lo.z, hi.z);
+    /* Bitwise & of the lane masks: every test is evaluated, no branches. */
+    const int8 hit = (x0 <= hi.x) & (lo.x <= x1) & (y0 <= hi.y) & (lo.y <= y1) & (z0 <= hi.z) & (lo.z <= z1) &
+                     (dx * dx + dy * dy + dz * dz <= r * r) & (r >= 0.0f);
+    mask |= hit_bits8(hit) << (8u * c);
   }
   return mask;
 }
