@@ -165,24 +165,27 @@ __kernel void cluster_pixel_boxes(__global const float* depth, __global const ui
 
 /* Eight lanes at a time in explicit vectors: PoCL runs a divergent walk one
  * work-item at a time, and LLVM does not vectorize the bit-building scalar
- * loop, so the vector types are what puts the leaf test in SIMD registers. */
-inline uint hit_bits8(int8 hit) {
-  const int8 bits = hit & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
-  const int4 h4 = bits.lo | bits.hi;
+ * loop, so the vector types are what puts the tests in SIMD registers. Each
+ * chunk of 8 ORs its lanes' bits (lane i of chunk c: bit 8c + i) into one
+ * accumulator, reduced to a scalar once per leaf or block. */
+inline int8 chunk_bits(int8 hit, uint c) { return hit & ((int8)(1, 2, 4, 8, 16, 32, 64, 128) << (int)(8u * c)); }
+
+inline uint or_lanes(int8 v) {
+  const int4 h4 = v.lo | v.hi;
   const int2 h2 = h4.lo | h4.hi;
   return (uint)(h2.x | h2.y);
 }
 
 inline uint leaf_mask(__global const float* soa, uint leaf, float4 lo, float4 hi) {
   __global const float* b = soa + (size_t)leaf * (4u * LEAF_SIZE);
-  uint mask = 0u;
+  int8 acc = (int8)(0);
   for (uint c = 0; c < LEAF_SIZE / 8u; ++c) {
     const float8 x = vload8(c, b), y = vload8(c, b + LEAF_SIZE), d = vload8(c, b + 2u * LEAF_SIZE);
     const float8 r2 = vload8(c, b + 3u * LEAF_SIZE);
     const float8 dx = x - clamp(x, lo.x, hi.x), dy = y - clamp(y, lo.y, hi.y), dz = d - clamp(d, lo.z, hi.z);
-    mask |= hit_bits8(dx * dx + dy * dy + dz * dz <= r2) << (8u * c);
+    acc |= chunk_bits(dx * dx + dy * dy + dz * dz <= r2, c);
   }
-  return mask;
+  return or_lanes(acc);
 }
 
 /* Packs lights into leaves: leaf l holds lights ids[LEAF_SIZE l ..]  (ids
@@ -360,7 +363,7 @@ __kernel void node_blocks(__global const float4* node_lo, __global const float4*
  * is reached). */
 inline uint block_mask(__global const float* nsoa, uint block, float4 lo, float4 hi) {
   __global const float* b = nsoa + (size_t)block * (NODE_FLOATS * BVH_BRANCH);
-  uint mask = 0u;
+  int8 acc = (int8)(0);
   for (uint c = 0; c < BVH_BRANCH / 8u; ++c) {
     const float8 x0 = vload8(c, b), y0 = vload8(c, b + BVH_BRANCH), z0 = vload8(c, b + 2u * BVH_BRANCH);
     const float8 x1 = vload8(c, b + 3u * BVH_BRANCH), y1 = vload8(c, b + 4u * BVH_BRANCH);
@@ -371,9 +374,9 @@ inline uint block_mask(__global const float* nsoa, uint block, float4 lo, float4
     /* Bitwise & of the lane masks: every test is evaluated, no branches. */
     const int8 hit = (x0 <= hi.x) & (lo.x <= x1) & (y0 <= hi.y) & (lo.y <= y1) & (z0 <= hi.z) & (lo.z <= z1) &
                      (dx * dx + dy * dy + dz * dz <= r * r) & (r >= 0.0f);
-    mask |= hit_bits8(hit) << (8u * c);
+    acc |= chunk_bits(hit, c);
   }
-  return mask;
+  return or_lanes(acc);
 }
 
 /* ------------------------------------------------------------ assignment
