@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include "host/util/Error.hpp"
 
@@ -66,6 +68,22 @@ WallCpu timeMedianWallCpu(int reps, F&& f) {
     c.push_back(cpuSeconds() - c0);
   }
   return {median(w), median(c)};
+}
+
+// Fails before a long run, not after it, when `path` (given with `flag`)
+// could not be written: its folder cannot be made (missing folders are
+// created, as the manylights CLI does) or written in, or it is a folder.
+// No-op when empty.
+inline void requireWritable(const std::string& flag, const std::string& path) {
+  if (path.empty()) return;
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) throw UserError(flag + ": '" + path + "' is a directory");
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir, ec)) throw UserError(flag + ": cannot create directory '" + dir.string() + "'");
+  if (::access(dir.c_str(), W_OK) != 0) throw UserError(flag + ": cannot write in '" + dir.string() + "'");
 }
 
 // Writes `doc` to `path` (no-op when empty); UserError naming --json on failure.

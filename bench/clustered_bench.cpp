@@ -70,6 +70,7 @@ int run(int argc, char** argv) {
   app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
   app.add_option("--device", device, "OpenCL device");
   CLI11_PARSE(app, argc, argv);
+  benchutil::requireWritable("--json", json_path);
   const bool bounds_pixels = parseClusterBounds(bounds) == ClusterBounds::Pixels;
 
   auto gl = createHeadlessContext();

@@ -51,6 +51,7 @@
 #include "host/compute/SegmentedSort.hpp"
 #include "host/util/Error.hpp"
 #include "host/util/PassTimings.hpp"
+#include "BenchCommon.hpp"
 
 namespace ml::bench {
 void boostComputeSortU32(cl_command_queue queue, cl_mem buffer, std::size_t n);
@@ -160,6 +161,12 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "cpu", "gpu"}));
   app.add_flag("--profile", profile, "print per-pass CL event times at every size (default: the largest only)");
   CLI11_PARSE(app, argc, argv);
+  try {
+    ml::benchutil::requireWritable("--json", json_path);
+  } catch (const UserError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
   tune.shape = shape == "cpu" ? Shape::CpuChunked : shape == "gpu" ? Shape::GpuWorkGroup : Shape::Auto;
 
   std::vector<std::size_t> sizes;
