@@ -16,6 +16,7 @@
 #include "host/cl/ClRuntime.hpp"
 #include "host/scene/LightAnimator.hpp"
 #include "host/util/Error.hpp"
+#include "host/util/TextFile.hpp"
 
 namespace ml {
 namespace fs = std::filesystem;
@@ -27,16 +28,6 @@ std::string shellQuote(const std::string& s) {
   return q + "'";
 }
 
-void writeText(const std::string& path, const std::string& text, const std::string& flag) {
-  const fs::path parent = fs::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) fs::create_directories(parent, ec);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw UserError(flag + ": cannot write '" + path + "'");
-  out << text;
-  out.close();
-  if (!out) throw UserError(flag + ": writing '" + path + "' failed");
-}
 
 std::string utcNow() {
   const std::time_t t = std::time(nullptr);
@@ -315,8 +306,8 @@ int runBench(const BenchArgs& a) {
   std::vector<FrameRecord> so_far;
   auto save = [&](const std::vector<FrameRecord>& recs) {
     const auto sums = summarizeRuns(recs);
-    if (!json_path.empty()) writeText(json_path, benchJson(meta, recs, sums).dump(1) + "\n", a.json.empty() ? "--plot" : "--json");
-    if (!a.csv.empty()) writeText(a.csv, benchCsv(recs), "--csv");
+    if (!json_path.empty()) writeTextFile(json_path, benchJson(meta, recs, sums).dump(1) + "\n", a.json.empty() ? "--plot" : "--json");
+    if (!a.csv.empty()) writeTextFile(a.csv, benchCsv(recs), "--csv");
   };
   // Results so far are rewritten after every finished run, so an interrupted
   // sweep still leaves usable files.

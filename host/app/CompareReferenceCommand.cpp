@@ -21,6 +21,7 @@
 #include "host/scene/LightSet.hpp"
 #include "host/suite/ThesisReference.hpp"
 #include "host/util/Error.hpp"
+#include "host/util/TextFile.hpp"
 
 namespace ml {
 namespace fs = std::filesystem;
@@ -31,14 +32,6 @@ struct Dist {
   double mean = 0, median = 0, p5 = 0, p95 = 0;
 };
 
-double quantile(const std::vector<double>& sorted, double q) {
-  if (sorted.empty()) return 0.0;
-  const double pos = q * static_cast<double>(sorted.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(pos));
-  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
-  return sorted[lo] + (sorted[hi] - sorted[lo]) * (pos - static_cast<double>(lo));
-}
-
 Dist distribution(std::vector<double> v) {
   Dist d;
   d.n = v.size();
@@ -47,9 +40,9 @@ Dist distribution(std::vector<double> v) {
   double s = 0;
   for (double x : v) s += x;
   d.mean = s / static_cast<double>(v.size());
-  d.median = quantile(v, 0.5);
-  d.p5 = quantile(v, 0.05);
-  d.p95 = quantile(v, 0.95);
+  d.median = percentile(v, 0.5);
+  d.p5 = percentile(v, 0.05);
+  d.p95 = percentile(v, 0.95);
   return d;
 }
 
@@ -117,16 +110,6 @@ struct SeriesRun {
 };
 
 
-void writeFile(const std::string& path, const std::string& text, const std::string& flag) {
-  const fs::path parent = fs::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) fs::create_directories(parent, ec);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw UserError(flag + ": cannot write '" + path + "'");
-  out << text;
-  out.close();
-  if (!out) throw UserError(flag + ": writing '" + path + "' failed");
-}
 
 }  // namespace
 
@@ -512,11 +495,11 @@ int runCompareReference(const CompareReferenceArgs& a) {
     if (!oc.empty()) j["covered_pixels"] = {{"ours", mean(oc)}, {"thesis", mean(tc)}};
     j["series"] = jseries;
     j["ratios"] = jratios;
-    writeFile(a.json, j.dump(1) + "\n", "--json");
+    writeTextFile(a.json, j.dump(1) + "\n", "--json");
     std::printf("\nwrote %s\n", a.json.c_str());
   }
   if (!a.csv.empty()) {
-    writeFile(a.csv, csv, "--csv");
+    writeTextFile(a.csv, csv, "--csv");
     std::printf("wrote %s\n", a.csv.c_str());
   }
   if (!a.markdown.empty()) {
@@ -525,7 +508,7 @@ int runCompareReference(const CompareReferenceArgs& a) {
       text += "\nCovered pixels per frame: ours " + thousands(mean(oc)) + ", thesis " + thousands(mean(tc)) +
               " (naive x " + fixed(a.naive_scale, 0) + " / lights); " + std::to_string(matched.size()) + " of " +
               std::to_string(oc.size()) + " frames match within " + fixed(100.0 * a.coverage_tolerance, 1) + "%.\n";
-    writeFile(a.markdown, text, "--markdown");
+    writeTextFile(a.markdown, text, "--markdown");
     std::printf("wrote %s\n", a.markdown.c_str());
   }
   return 0;

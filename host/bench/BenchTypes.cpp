@@ -24,14 +24,6 @@ bool parseUnsigned(const std::string& s, unsigned& out) {
   return ec == std::errc() && p == s.data() + s.size();
 }
 
-double percentile(const std::vector<double>& sorted, double q) {
-  if (sorted.empty()) return 0.0;
-  const double pos = q * static_cast<double>(sorted.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(pos));
-  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
-  return sorted[lo] + (sorted[hi] - sorted[lo]) * (pos - static_cast<double>(lo));
-}
-
 nlohmann::ordered_json paramsJson(const std::vector<std::pair<std::string, std::string>>& params) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& [k, v] : params) j[k] = v;
@@ -52,6 +44,14 @@ std::string num(double v) {
 }
 
 }  // namespace
+
+double percentile(const std::vector<double>& sorted, double q) {
+  if (sorted.empty()) return 0.0;
+  const double pos = q * static_cast<double>(sorted.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  return sorted[lo] + (sorted[hi] - sorted[lo]) * (pos - static_cast<double>(lo));
+}
 
 FrameRange parseFrameRange(const std::string& text, const std::string& flag) {
   FrameRange r;
@@ -299,7 +299,9 @@ std::vector<RunSummary> summarizeRuns(const std::vector<FrameRecord>& records) {
   return out;
 }
 
-nlohmann::ordered_json recordJson(const FrameRecord& r) {
+// What identifies a run, shared by its frame records and its summary.
+template <class RunFields>
+nlohmann::ordered_json runJson(const RunFields& r) {
   nlohmann::ordered_json j;
   j["run"] = r.run;
   j["technique"] = r.technique;
@@ -310,6 +312,11 @@ nlohmann::ordered_json recordJson(const FrameRecord& r) {
   j["light_count"] = r.light_count;
   j["width"] = r.width;
   j["height"] = r.height;
+  return j;
+}
+
+nlohmann::ordered_json recordJson(const FrameRecord& r) {
+  nlohmann::ordered_json j = runJson(r);
   j["frame"] = r.frame;
   auto count = [&](std::uint64_t v) { return r.counted ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
   j["light_evaluations"] = count(r.light_evaluations);
@@ -330,16 +337,7 @@ nlohmann::ordered_json recordJson(const FrameRecord& r) {
 }
 
 nlohmann::ordered_json summaryJson(const RunSummary& s) {
-  nlohmann::ordered_json j;
-  j["run"] = s.run;
-  j["technique"] = s.technique;
-  j["pipeline"] = s.pipeline;
-  j["params"] = paramsJson(s.params);
-  j["lights"] = s.lights;
-  j["light_file"] = s.light_file;
-  j["light_count"] = s.light_count;
-  j["width"] = s.width;
-  j["height"] = s.height;
+  nlohmann::ordered_json j = runJson(s);
   j["frames"] = s.frames;
   auto opt = [](bool have, const Summary& v) { return have ? toJson(v) : nlohmann::ordered_json(); };
   j["light_evaluations"] = opt(s.counted, s.light_evaluations);

@@ -47,6 +47,8 @@ struct Summary {
 };
 // p95 and median interpolate linearly between order statistics (numpy's default).
 Summary summarize(std::vector<double> values);
+// The q-quantile (0..1) of ascending values, interpolated the same way; 0 when empty.
+double percentile(const std::vector<double>& sorted, double q);
 nlohmann::ordered_json toJson(const Summary& s);
 
 // Technique parameters a sweep may vary, by key. Keys: tile, tile_depth,

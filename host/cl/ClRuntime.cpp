@@ -37,8 +37,11 @@ std::string trimmed(std::string s) {
   return s;
 }
 
-DeviceInfo readInfo(const cl::Platform& p, const cl::Device& d) {
+}  // namespace
+
+DeviceInfo queryDeviceInfo(const cl::Device& d) {
   DeviceInfo i;
+  const cl::Platform p(d.getInfo<CL_DEVICE_PLATFORM>());
   i.platform_name = trimmed(p.getInfo<CL_PLATFORM_NAME>());
   i.platform_version = trimmed(p.getInfo<CL_PLATFORM_VERSION>());
   i.name = trimmed(d.getInfo<CL_DEVICE_NAME>());
@@ -55,7 +58,6 @@ DeviceInfo readInfo(const cl::Platform& p, const cl::Device& d) {
   i.max_alloc_size = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
   return i;
 }
-}  // namespace
 
 bool DeviceInfo::hasExtension(std::string_view ext) const {
   std::istringstream ss(extensions);
@@ -110,7 +112,7 @@ std::vector<DeviceListing> listDevices() {
     } catch (const cl::Error&) {
       continue;  // CL_DEVICE_NOT_FOUND on an empty platform is not an error for us
     }
-    for (const auto& d : devices) out.push_back({static_cast<int>(out.size()), p, d, readInfo(p, d)});
+    for (const auto& d : devices) out.push_back({static_cast<int>(out.size()), p, d, queryDeviceInfo(d)});
   }
   if (out.empty()) throw UserError(kNoPlatformHelp);
   return out;

@@ -65,6 +65,9 @@ struct DeviceListing {
   DeviceInfo info;
 };
 
+// The device's (and its platform's) properties, strings trimmed of padding.
+DeviceInfo queryDeviceInfo(const cl::Device& d);
+
 // All devices of all platforms, in a stable order. Throws UserError naming the
 // package to install when no platform is present.
 std::vector<DeviceListing> listDevices();

@@ -13,31 +13,6 @@ namespace ml::compute {
 
 namespace {
 
-std::string trimmed(std::string s) {
-  while (!s.empty() && (s.back() == '\0' || s.back() == ' ' || s.back() == '\n')) s.pop_back();
-  return s;
-}
-
-DeviceInfo queryInfo(const cl::Device& d) {
-  DeviceInfo i;
-  cl::Platform p(d.getInfo<CL_DEVICE_PLATFORM>());
-  i.platform_name = trimmed(p.getInfo<CL_PLATFORM_NAME>());
-  i.platform_version = trimmed(p.getInfo<CL_PLATFORM_VERSION>());
-  i.name = trimmed(d.getInfo<CL_DEVICE_NAME>());
-  i.vendor = trimmed(d.getInfo<CL_DEVICE_VENDOR>());
-  i.version = trimmed(d.getInfo<CL_DEVICE_VERSION>());
-  i.driver_version = trimmed(d.getInfo<CL_DRIVER_VERSION>());
-  i.c_version = trimmed(d.getInfo<CL_DEVICE_OPENCL_C_VERSION>());
-  i.extensions = d.getInfo<CL_DEVICE_EXTENSIONS>();
-  i.type = d.getInfo<CL_DEVICE_TYPE>();
-  i.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
-  i.max_work_group_size = d.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
-  i.local_mem_size = d.getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
-  i.global_mem_size = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
-  i.max_alloc_size = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
-  return i;
-}
-
 bool isPow2(std::size_t v) { return v && !(v & (v - 1)); }
 
 }  // namespace
@@ -118,7 +93,7 @@ ComputeEnv::ComputeEnv(ClRuntime& rt)
       programs_(&rt.programs(), [](ProgramBuilder*) {}) {}
 
 ComputeEnv::ComputeEnv(const cl::Context& context, const cl::Device& device)
-    : context_(context), device_(device), info_(std::make_shared<DeviceInfo>(queryInfo(device))) {
+    : context_(context), device_(device), info_(std::make_shared<DeviceInfo>(queryDeviceInfo(device))) {
   programs_ = std::make_shared<ProgramBuilder>(context_, device_, *info_);
 }
 
