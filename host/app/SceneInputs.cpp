@@ -32,24 +32,10 @@ SceneInputs loadSceneInputs(const SceneInputArgs& args) {
     out.lights = loadLightsJson(p);
     out.lights_label = std::to_string(out.lights.size()) + " (" + p + ")";
   } else if (parseCount(args.lights, count)) {
-    LightVolumeSet vf;
     std::string vol_path = args.light_volumes;
     if (vol_path.empty() && default_scene) vol_path = dataPath("default/light_volumes.json");
-    if (!vol_path.empty()) {
-      vf = loadLightVolumesJson(vol_path);
-    } else {
-      LightVolume whole;
-      whole.min = out.scene.bounds.min;
-      whole.max = out.scene.bounds.max;
-      vf.volumes = {whole};
-    }
-    LightGenParams gp = vf.defaults;
-    gp.count = count;
-    gp.seed = args.seed;
-    const glm::vec3 ext = out.scene.bounds.max - out.scene.bounds.min;
-    if (args.light_radius > 0) gp.radius = args.light_radius;
-    else if (vol_path.empty()) gp.radius = std::max({ext.x, ext.y, ext.z}) / 20.0f;
-    out.lights = generateLights(vf.volumes, gp);
+    out.lights = generateLightsIn(vol_path, out.scene.bounds.min, out.scene.bounds.max, count, args.seed,
+                                  args.light_radius);
     out.lights_label = std::to_string(count) + " generated (seed " + std::to_string(args.seed) + ")";
   } else {
     if (args.lights.size() > 0 && args.lights[0] == '-')

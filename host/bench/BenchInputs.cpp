@@ -141,27 +141,13 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::
         continue;
       }
       if (count == 0) throw UserError(flag + ": a generated light set needs at least one light");
-      LightVolumeSet vf;
       std::string vol = args.light_volumes;
       if (vol.empty() && !scene.dir.empty() && fs::is_regular_file(fs::path(scene.dir) / "light_volumes.json"))
         vol = (fs::path(scene.dir) / "light_volumes.json").string();
-      if (!vol.empty()) {
-        vf = loadLightVolumesJson(vol);
-      } else {
-        LightVolume whole;
-        whole.min = scene.scene.bounds.min;
-        whole.max = scene.scene.bounds.max;
-        vf.volumes = {whole};
-      }
-      LightGenParams gp = vf.defaults;
-      gp.count = count;
-      gp.seed = args.seed;
-      const glm::vec3 ext = scene.scene.bounds.max - scene.scene.bounds.min;
-      if (args.light_radius > 0) gp.radius = args.light_radius;
-      else if (vol.empty()) gp.radius = std::max({ext.x, ext.y, ext.z}) / 20.0f;
       LightSetInput s;
       s.label = item + " generated";
-      s.lights = generateLights(vf.volumes, gp);
+      s.lights = generateLightsIn(vol, scene.scene.bounds.min, scene.scene.bounds.max, count, args.seed,
+                                  args.light_radius);
       out.push_back(std::move(s));
     } else {
       std::string file = item;

@@ -1,5 +1,6 @@
 #include "host/scene/LightSet.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -171,6 +172,23 @@ LightVolumeSet loadLightVolumesJson(const std::string& path) {
     d.count = static_cast<std::uint32_t>(c->get<std::uint64_t>());
   }
   return set;
+}
+
+std::vector<gpu::PointLight> generateLightsIn(const std::string& volumes_path, glm::vec3 lo, glm::vec3 hi,
+                                              std::uint32_t count, std::uint64_t seed, float radius) {
+  LightVolumeSet vf;
+  if (!volumes_path.empty()) {
+    vf = loadLightVolumesJson(volumes_path);
+  } else {
+    vf.volumes = {LightVolume{lo, hi, 1.0f}};
+  }
+  LightGenParams gp = vf.defaults;
+  gp.count = count;
+  gp.seed = seed;
+  const glm::vec3 ext = hi - lo;
+  if (radius > 0) gp.radius = radius;
+  else if (volumes_path.empty()) gp.radius = std::max({ext.x, ext.y, ext.z}) / 20.0f;
+  return generateLights(vf.volumes, gp);
 }
 
 }  // namespace ml

@@ -49,6 +49,12 @@ struct LightVolumeSet {
 };
 LightVolumeSet loadLightVolumesJson(const std::string& path);
 
+// `count` lights in the volumes of `volumes_path` with its suggested radius
+// and jitter; without a file, uniformly in the box [lo, hi] with radius 1/20
+// of its largest side. radius > 0 overrides either radius.
+std::vector<gpu::PointLight> generateLightsIn(const std::string& volumes_path, glm::vec3 lo, glm::vec3 hi,
+                                              std::uint32_t count, std::uint64_t seed, float radius);
+
 // Throws UserError naming the file on missing file, bad JSON or bad fields
 // (non-positive radius, wrong array lengths, non-finite numbers).
 std::vector<gpu::PointLight> loadLightsJson(const std::string& path);
