@@ -13,33 +13,14 @@
 
 #include "host/scene/Camera.hpp"
 #include "host/util/Error.hpp"
+#include "support/TempDir.hpp"
 #include "support/TestDevice.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    path_ = fs::temp_directory_path() / ("manylights-camera-test-" + std::to_string(rd()) + std::to_string(rd()));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = (path_ / name).string();
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using ml::test::TempDir;
 
 ml::Camera randomCamera(std::mt19937_64& rng) {
   std::uniform_real_distribution<float> coord(-50.0f, 50.0f), fov(20.0f, 110.0f), nearp(0.01f, 1.0f);

@@ -16,33 +16,14 @@
 
 #include "host/scene/LightSet.hpp"
 #include "host/util/Error.hpp"
+#include "support/TempDir.hpp"
 #include "support/TestDevice.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    path_ = fs::temp_directory_path() / ("manylights-lights-test-" + std::to_string(rd()) + std::to_string(rd()));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = (path_ / name).string();
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using ml::test::TempDir;
 
 glm::vec3 pos(const ml::gpu::PointLight& l) { return {l.position_radius.x, l.position_radius.y, l.position_radius.z}; }
 glm::vec3 col(const ml::gpu::PointLight& l) { return {l.color.x, l.color.y, l.color.z}; }
