@@ -49,6 +49,7 @@ int run(int argc, char** argv) {
   unsigned tile = 0, tiled_tile = 16;
   unsigned brute_max = 100000;
   float light_radius = 0.0f;
+  bool key_order = false;
   int reps = 5;
   std::string device, bounds = "pixels";
   app.add_option("--json", json_path, "write records as JSON");
@@ -66,6 +67,8 @@ int run(int argc, char** argv) {
   app.add_option("--light-radius", light_radius,
                  "radius of the generated lights of the assignment cases (0: the scene's default)")
       ->capture_default_str();
+  app.add_flag("--key-order", key_order,
+               "assignment passes over the clusters in key order instead of tile-Morton order");
   app.add_option("--brute-max-lights", brute_max, "skip brute-force assignment above this many lights")->capture_default_str();
   app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
   app.add_option("--device", device, "OpenCL device");
@@ -200,7 +203,10 @@ int run(int argc, char** argv) {
         // its unsorted leaves, has many more hit leaves than the BVH and would
         // otherwise be the one that overflows the default budget.
         const std::size_t all_leaves = std::size_t(clusters) * ((n + bvh.leafSize() - 1) / bvh.leafSize());
-        for (ClusterLightAssigner* a : {&bvh, &brute}) a->setRecordBudget(std::min<std::size_t>(all_leaves, 1u << 25));
+        for (ClusterLightAssigner* a : {&bvh, &brute}) {
+          a->setRecordBudget(std::min<std::size_t>(all_leaves, 1u << 25));
+          a->setClusterOrder(!key_order);
+        }
         bvh_runs.emplace_back(bvh.leafSize(), time_assign(bvh));
         if (n <= brute_max) {
           brute_runs.emplace_back(brute.leafSize(), time_assign(brute));

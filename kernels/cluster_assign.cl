@@ -379,6 +379,32 @@ inline uint block_mask(__global const float* nsoa, uint block, float4 lo, float4
   return or_lanes(acc);
 }
 
+/* Work order of the clusters for the assignment passes: tiles along a 2D
+ * Morton curve, a tile's slices in order. Clusters that run one after the
+ * other then share more of the leaves they read (the walk waits on memory,
+ * not arithmetic), where key order runs along whole tile rows. The lists do
+ * not depend on the order. */
+inline uint spread_2d(uint v) {
+  v &= 0xffffu;
+  v = (v | (v << 8)) & 0x00ff00ffu;
+  v = (v | (v << 4)) & 0x0f0f0f0fu;
+  v = (v | (v << 2)) & 0x33333333u;
+  v = (v | (v << 1)) & 0x55555555u;
+  return v;
+}
+
+__kernel void cluster_order(__global const uint* keys, uint count, uint x_bits, uint k_bits, __global uint* codes,
+                            __global uint* ids) {
+  const uint c = get_global_id(0);
+  if (c >= count) return;
+  const uint key = keys[c];
+  const uint k = key & ((1u << k_bits) - 1u);
+  const uint i = (key >> k_bits) & ((1u << x_bits) - 1u);
+  const uint j = key >> (k_bits + x_bits);
+  codes[c] = ((spread_2d(i) | (spread_2d(j) << 1)) << k_bits) | k;
+  ids[c] = c;
+}
+
 /* ------------------------------------------------------------ assignment
  *
  * count -> scan -> fill, one work-item per cluster with private state (the
@@ -483,9 +509,9 @@ __kernel void assign_count(__global const float* soa, __global const uint* leaf_
                            __global const float* nsoa, __global const uint* block_start, uint levels, uint use_bvh,
                            __global const float4* box_lo, __global const float4* box_hi, uint count,
                            __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint* hit_leaves,
-                           __global uint* counts) {
-  const uint c = get_global_id(0);
-  if (c >= count) return;
+                           __global uint* counts, __global const uint* order, uint use_order) {
+  if (get_global_id(0) >= count) return;
+  const uint c = use_order ? order[get_global_id(0)] : (uint)get_global_id(0);
   uint h = 0u;
   counts[c] = n_leaves == 0u ? 0u
                              : walk(0u, use_bvh, soa, leaf_ids, n_leaves, nsoa, block_start, levels, box_lo[c],
@@ -498,9 +524,10 @@ __kernel void assign_fill(__global const float* soa, __global const uint* leaf_i
                           __global const float* nsoa, __global const uint* block_start, uint levels, uint use_bvh,
                           __global const float4* box_lo, __global const float4* box_hi, uint count,
                           __global const uint* rec_leaf, __global const uint* rec_mask, uint slots,
-                          __global const uint* hit_leaves, __global const uint* offsets, __global uint* indices) {
-  const uint c = get_global_id(0);
-  if (c >= count) return;
+                          __global const uint* hit_leaves, __global const uint* offsets, __global uint* indices,
+                          __global const uint* order, uint use_order) {
+  if (get_global_id(0) >= count) return;
+  const uint c = use_order ? order[get_global_id(0)] : (uint)get_global_id(0);
   const uint h = hit_leaves[c];
   __global uint* out = indices + offsets[c];
   if (h <= slots) {

@@ -120,6 +120,9 @@ TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
   // more level at 40000 lights), and brute force over them.
   ClusterLightAssigner bvh8(rt, ClusterAssignMethod::Bvh, 8), bvh16(rt, ClusterAssignMethod::Bvh, 16);
   ClusterLightAssigner brute8(rt, ClusterAssignMethod::Brute, 8);
+  // The BVH passes in key order instead of tile-Morton order.
+  ClusterLightAssigner bvh_key_order(rt, ClusterAssignMethod::Bvh);
+  bvh_key_order.setClusterOrder(false);
   // Light counts give BVHs of 1 (< 32 lights), 2 and 3 levels, and none at all.
   for (auto [w, h, tile, n] : {std::tuple{160u, 96u, 32u, 20u}, std::tuple{203u, 117u, 16u, 3000u},
                                std::tuple{64u, 48u, 32u, 40000u}, std::tuple{50u, 30u, 8u, 0u}}) {
@@ -163,6 +166,7 @@ TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
       const auto t8 = assign(bvh8, u, c, f, explicit_bounds ? &pixels : nullptr);
       const auto t16 = assign(bvh16, u, c, f, explicit_bounds ? &pixels : nullptr);
       const auto b8 = assign(brute8, u, c, f, explicit_bounds ? &pixels : nullptr);
+      const auto tk = assign(bvh_key_order, u, c, f, explicit_bounds ? &pixels : nullptr);
       std::size_t pairs = 0;
       for (std::size_t k = 0; k < ref.size(); ++k) {
         ASSERT_EQ(b[k], ref[k]) << "brute, cluster " << k;
@@ -172,6 +176,7 @@ TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
         ASSERT_EQ(t8[k], ref[k]) << "bvh, leaf 8, cluster " << k;
         ASSERT_EQ(t16[k], ref[k]) << "bvh, leaf 16, cluster " << k;
         ASSERT_EQ(b8[k], ref[k]) << "brute, leaf 8, cluster " << k;
+        ASSERT_EQ(tk[k], ref[k]) << "bvh in key order, cluster " << k;
         pairs += ref[k].size();
       }
       // (20 lights may all miss the tight boxes of the pixels.)

@@ -60,6 +60,7 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
   bounds_part_ = cl::Kernel(program_, "light_bounds_partial");
   bounds_final_ = cl::Kernel(program_, "light_bounds_final");
   count_k_ = cl::Kernel(program_, "assign_count");
+  order_k_ = cl::Kernel(program_, "cluster_order");
   fill_k_ = cl::Kernel(program_, "assign_fill");
   // The tiled kernel's write_grid turns (offsets, counts) into LightRanges.
   keys_program_ = rt.programs().build("tiled_light_culling.cl", {{"TILE_SIZE", "16"}, {"DEPTH_MODE", "0"}});
@@ -69,7 +70,7 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
   frame_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
   for (cl::Buffer* b :
        {&spheres_, &codes_, &ids_, &soa_, &leaf_ids_, &node_lo_, &node_hi_, &node_sph_, &node_soa_, &rec_leaf_,
-        &rec_mask_})
+        &rec_mask_, &order_codes_, &order_ids_})
     *b = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
 }
 
@@ -107,6 +108,8 @@ void ClusterLightAssigner::boxes(cl::CommandQueue& q, const gpu::CameraParams& c
   }
   q.enqueueWriteBuffer(bounds_, CL_FALSE, 0, g.slice_bounds.size() * 4, g.slice_bounds.data());
   if (clusters == 0) return;
+  order_keys_ = unique_keys;
+  order_grid_ = g;
   if (pixels) {
     const cl_uint n_tiles = g.tiles_x * g.tiles_y;
     q.enqueueFillBuffer(box_lo_, cl_float4{{kInf, kInf, kInf, kInf}}, 0, std::size_t(clusters) * 16);
@@ -187,6 +190,7 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
     }
     packLeaves(q, n, bvh_, timer);
   }
+  orderClusters(q, clusters, timer);
   // Record slots per cluster: an equal share of the budget, at most every leaf.
   slots_ = std::uint32_t(std::min<std::size_t>(n_leaves_, std::max<std::size_t>(1, record_budget_ / clusters)));
   if (std::size_t(clusters) * slots_ > record_capacity_) {
@@ -200,6 +204,8 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
   count_k_.setArg(12, slots_);
   count_k_.setArg(13, hit_leaves_);
   count_k_.setArg(14, counts_);
+  count_k_.setArg(15, order_ids_);
+  count_k_.setArg(16, cl_uint(use_order_));
   q.enqueueNDRangeKernel(count_k_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr,
                          ev("cluster-assign-count"));
   return scan_.exclusiveTotal(q, counts_, offsets_, clusters, timer);
@@ -275,6 +281,27 @@ void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool
   }
 }
 
+void ClusterLightAssigner::orderClusters(cl::CommandQueue& q, std::uint32_t clusters, ClPassTimer* timer) {
+  const ClusterGrid& g = order_grid_;
+  const unsigned tile_bits = 2 * std::max(g.x_bits, g.y_bits);
+  use_order_ = bvh_ && cluster_order_ && tile_bits + g.k_bits <= 32;
+  if (!use_order_) return;
+  if (clusters > order_capacity_) {
+    order_capacity_ = std::size_t(clusters) + clusters / 2;
+    order_codes_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, order_capacity_ * 4);
+    order_ids_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, order_capacity_ * 4);
+  }
+  order_k_.setArg(0, order_keys_);
+  order_k_.setArg(1, clusters);
+  order_k_.setArg(2, cl_uint(g.x_bits));
+  order_k_.setArg(3, cl_uint(g.k_bits));
+  order_k_.setArg(4, order_codes_);
+  order_k_.setArg(5, order_ids_);
+  q.enqueueNDRangeKernel(order_k_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr,
+                         timer ? timer->next("cluster-order") : nullptr);
+  radix_.sort(q, order_codes_, &order_ids_, clusters, tile_bits + g.k_bits, timer);
+}
+
 std::uint64_t ClusterLightAssigner::hitLeaves(cl::CommandQueue& q) const {
   if (clusters_ == 0) return 0;
   std::vector<std::uint32_t> h(clusters_);
@@ -306,6 +333,8 @@ void ClusterLightAssigner::fill(cl::CommandQueue& q, cl::Buffer& ranges, cl::Buf
   fill_k_.setArg(13, hit_leaves_);
   fill_k_.setArg(14, offsets_);
   fill_k_.setArg(15, indices);
+  fill_k_.setArg(16, order_ids_);
+  fill_k_.setArg(17, cl_uint(use_order_));
   q.enqueueNDRangeKernel(fill_k_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr,
                          timer ? timer->next("cluster-assign-fill") : nullptr);
   ranges_.setArg(0, offsets_);

@@ -14,7 +14,8 @@
 // view-space light centres (quantized in their bounding cube, reduced on the
 // device), radix sort, leaves of the sorted lights and a BVH of branching 32
 // over them (boxes and bounding spheres), rebuilt from scratch each assign()
-// (bottom-up, one launch per level); each cluster walks it. Both use the same leaf test, so their lists are the same sets
+// (bottom-up, one launch per level); each cluster walks it, the clusters
+// taken in tile-Morton order so that consecutive walks share leaves. Both use the same leaf test, so their lists are the same sets
 // (BVH lists in Morton order, brute force ascending). Lists are count -> scan
 // -> fill and never truncate: count() records each cluster's hit leaves
 // (leaf, mask) in a bounded scratch, fill() expands them and walks again only
@@ -85,17 +86,25 @@ class ClusterLightAssigner {
   // Hit-leaf records (8 bytes each) shared by all clusters (default 2^22);
   // clusters with more hit leaves than their share are walked again by fill().
   void setRecordBudget(std::size_t records) { record_budget_ = records; }
+  // Bvh: walk the clusters in tile-Morton order (default; sorted in assign())
+  // or in key order. The lists are the same; brute force always uses key order.
+  void setClusterOrder(bool morton) { cluster_order_ = morton; }
 
  private:
   void packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer);
   void setAssignArgs(cl::Kernel& k);
+  void orderClusters(cl::CommandQueue& q, std::uint32_t clusters, ClPassTimer* timer);
 
   ClRuntime& rt_;
   ClusterAssignMethod method_;
   unsigned leaf_size_;
   cl::Program program_, keys_program_;
   cl::Kernel view_, boxes_, pixel_boxes_, morton_, pack_, level_, blocks_, count_k_, fill_k_, ranges_;
-  cl::Kernel bounds_part_, bounds_final_;
+  cl::Kernel bounds_part_, bounds_final_, order_k_;
+  cl::Buffer order_codes_, order_ids_, order_keys_;
+  ClusterGrid order_grid_;
+  std::size_t order_capacity_ = 0;
+  bool cluster_order_ = true, use_order_ = false;
   cl::Buffer part_lo_, part_hi_, frame_;
   cl::Buffer spheres_, codes_, ids_, soa_, leaf_ids_, node_lo_, node_hi_, node_sph_, node_soa_, block_start_;
   cl::Buffer box_lo_, box_hi_, counts_, offsets_, bounds_, rec_leaf_, rec_mask_, hit_leaves_;
