@@ -130,6 +130,7 @@ int run(int argc, char** argv) {
   std::string suite_dir = "/work/shared/data/thesis-suite/scenes/spaceship-indoor";
   // "tiled-deferred@32/none": the thesis's tiled baseline (32x32 tiles, no depth bounds).
   std::string compare = "tiled-deferred,tiled-deferred@32/none,clustered-deferred", device;
+  std::string update_fractions = "0.01,0.1,1";
   int reps = 3, update_reps = 5;
   unsigned camera_frames = 4;
   bool no_render = false, lazy_removal = false;
@@ -141,6 +142,8 @@ int run(int argc, char** argv) {
   app.add_option("--compare", compare, "techniques counted in the same run ('' for none)")->capture_default_str();
   app.add_option("--reps", reps, "builds per case (median reported)")->capture_default_str();
   app.add_option("--update-reps", update_reps, "updates per case (median reported)")->capture_default_str();
+  app.add_option("--update-fractions", update_fractions, "fractions of the lights moving per update")
+      ->capture_default_str();
   app.add_option("--suite", suite_dir, "thesis suite scene folder (its lights/ holds the 1890-light set)")
       ->capture_default_str();
   app.add_option("--device", device, "OpenCL device");
@@ -209,7 +212,8 @@ int run(int argc, char** argv) {
     }
     const double rebuild = median(rebuild_ms), rebuild_c = median(rebuild_cpu);
     const double rebuild_min = *std::min_element(rebuild_ms.begin(), rebuild_ms.end());
-    for (const double fraction : {0.01, 0.1, 1.0}) {
+    for (const auto& fraction_text : splitList(update_fractions)) {
+      const double fraction = std::stod(fraction_text);
       // The same motion as --animate: distinct lights, steps of up to r/4,
       // staying within r/2 of their start.
       LightAnimator anim(lights0, fraction);
