@@ -6,12 +6,9 @@
 namespace ml::hashed {
 
 std::uint64_t LightSetPool::hashOf(const std::uint32_t* p, std::size_t n) {
-  std::uint64_t h = 0x9E3779B97F4A7C15ull ^ n;
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= p[i] + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-    h *= 0xBF58476D1CE4E5B9ull;
-  }
-  return h ^ (h >> 31);
+  std::uint64_t sum = 0;
+  for (std::size_t i = 0; i < n; ++i) sum += elementHash(p[i]);
+  return hashOfSum(sum, n);
 }
 
 void LightSetPool::rebuildIndex(std::size_t capacity) {

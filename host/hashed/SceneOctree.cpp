@@ -1,8 +1,9 @@
 #include "host/hashed/SceneOctree.hpp"
 
-#include <tbb/parallel_sort.h>
-
 #include <algorithm>
+
+#include "host/hashed/KeySort.hpp"
+#include "host/hashed/LightSetPool.hpp"
 
 namespace ml::hashed {
 namespace {
@@ -20,6 +21,7 @@ const std::vector<std::uint32_t> kNoLights;
 SceneOctree::SceneOctree(const OctreeBounds& bounds, const GeometryMask* mask) : b_(bounds), mask_(mask) {
   nodes_.emplace_back();
   sets_.emplace_back();
+  sums_.push_back(0);
 }
 
 void SceneOctree::record(unsigned t, const glm::uvec3& c) {
@@ -40,9 +42,7 @@ std::vector<std::uint64_t> SceneOctree::takeTouched() {
   std::vector<std::uint64_t> out;
   out.swap(touched_);
   last_parent_ = ~std::uint64_t(0);
-  if (out.size() < 16384) std::sort(out.begin(), out.end());
-  else tbb::parallel_sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  sortUniqueKeys(out, sort_scratch_);
   return out;
 }
 
@@ -55,6 +55,7 @@ std::int32_t SceneOctree::allocBlock() {
   const std::int32_t b = std::int32_t(nodes_.size());
   nodes_.resize(nodes_.size() + 8);
   sets_.resize(sets_.size() + 8);
+  sums_.resize(sums_.size() + 8);
   return b;
 }
 
@@ -66,11 +67,17 @@ void SceneOctree::split(std::int32_t n, unsigned t, const glm::uvec3& c) {
     const std::int32_t ch = block + std::int32_t(k);
     nodes_[ch] = Node{};
     nodes_[ch].dirty = true;
-    if (care(t + 1, childCoord(c, k))) sets_[ch] = sets_[n];
-    else sets_[ch].clear();
+    if (care(t + 1, childCoord(c, k))) {
+      sets_[ch] = sets_[n];
+      sums_[ch] = sums_[n];
+    } else {
+      sets_[ch].clear();
+      sums_[ch] = 0;
+    }
   }
   nodes_[n].child = block;
   std::vector<std::uint32_t>().swap(sets_[n]);
+  sums_[n] = 0;
   recordChildren(t, c);
 }
 
@@ -78,11 +85,12 @@ bool SceneOctree::addToSet(std::int32_t n, std::uint32_t l) {
   auto& s = sets_[n];
   if (s.empty() || s.back() < l) {
     s.push_back(l);  // full builds insert lights in index order
-    return true;
+  } else {
+    const auto it = std::lower_bound(s.begin(), s.end(), l);
+    if (it != s.end() && *it == l) return false;
+    s.insert(it, l);
   }
-  const auto it = std::lower_bound(s.begin(), s.end(), l);
-  if (it != s.end() && *it == l) return false;
-  s.insert(it, l);
+  sums_[n] += LightSetPool::elementHash(l);
   return true;
 }
 
@@ -91,6 +99,7 @@ bool SceneOctree::eraseFromSet(std::int32_t n, std::uint32_t l) {
   const auto it = std::lower_bound(s.begin(), s.end(), l);
   if (it == s.end() || *it != l) return false;
   s.erase(it);
+  sums_[n] -= LightSetPool::elementHash(l);
   return true;
 }
 
@@ -247,19 +256,29 @@ void SceneOctree::subtreeEnds(const LightOctree& o, std::vector<std::uint32_t>& 
   }
 }
 
-inline SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc) {
+// Above a light octree's roots: which children of node (t, c) hold a root
+// (kHoldsRoot + r when the child is root r) or lie above one; one pass over
+// the roots per node instead of one per child.
+void SceneOctree::aboveChildren(const Stream& s, unsigned t, const glm::uvec3& c, std::uint8_t out[8]) {
+  std::fill(out, out + 8, kNoRoot);
+  const unsigned below = s.o.root_depth - t - 1;  // root_depth > t here
+  for (unsigned r = 0; r < s.o.root_count; ++r) {
+    const glm::uvec3 cc = s.o.roots[r] >> below;
+    if ((cc >> 1u) != c) continue;
+    out[childBit(cc)] = below == 0 ? std::uint8_t(kHoldsRoot + r) : kAboveRoot;
+  }
+}
+
+inline SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, std::uint8_t above) {
   switch (parent) {
     case Cover::Empty: return Cover::Empty;
     case Cover::Full: return Cover::Full;
     case Cover::Branch: return Cover(*s.cur++);
     case Cover::Above:
-      for (unsigned r = 0; r < s.o.root_count; ++r) {
-        if ((s.o.roots[r] >> (s.o.root_depth - t1)) != cc) continue;
-        if (t1 < s.o.root_depth) return Cover::Above;
-        s.cur = s.o.nodes.data() + s.o.root_start[r];
-        return Cover(*s.cur++);
-      }
-      return Cover::Empty;
+      if (above == kNoRoot) return Cover::Empty;
+      if (above == kAboveRoot) return Cover::Above;
+      s.cur = s.o.nodes.data() + s.o.root_start[above - kHoldsRoot];
+      return Cover(*s.cur++);
   }
   return Cover::Empty;
 }
@@ -316,9 +335,12 @@ void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Co
     split(n, t, c);  // Table 8.1: the new version covers part of the leaf
   }
   const std::int32_t ch = nodes_[n].child;
+  std::uint8_t above_a[8] = {}, above_b[8] = {};
+  if (ka == Cover::Above) aboveChildren(sa, t, c, above_a);
+  if (kb == Cover::Above) aboveChildren(sb, t, c, above_b);
   for (unsigned k = 0; k < 8; ++k) {
     const glm::uvec3 cc = childCoord(c, k);
-    const Cover ca = childCover(ka, sa, t + 1, cc), cb = childCover(kb, sb, t + 1, cc);
+    const Cover ca = childCover(ka, sa, above_a[k]), cb = childCover(kb, sb, above_b[k]);
     if (ca == cb && (ca == Cover::Empty || ca == Cover::Full)) continue;  // unchanged here
     replaceRec(ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
   }
@@ -341,13 +363,21 @@ void SceneOctree::normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c) 
     if (!care(t + 1, childCoord(c, k))) continue;  // an empty leaf that takes any set
     if (!isLeaf(x)) return;
     if (!common) common = &sets_[x];
-    else if (*common != sets_[x]) return;
+    else if (sums_[common - sets_.data()] != sums_[x] || *common != sets_[x]) return;
   }
   const bool empty = !common || common->empty();
   if (!empty && t <= b_.start_depth) return;
-  if (!empty) sets_[n] = *common;
-  else sets_[n].clear();
-  for (unsigned k = 0; k < 8; ++k) std::vector<std::uint32_t>().swap(sets_[ch + std::int32_t(k)]);
+  if (!empty) {
+    sets_[n] = *common;
+    sums_[n] = sums_[common - sets_.data()];
+  } else {
+    sets_[n].clear();
+    sums_[n] = 0;
+  }
+  for (unsigned k = 0; k < 8; ++k) {
+    std::vector<std::uint32_t>().swap(sets_[ch + std::int32_t(k)]);
+    sums_[ch + std::int32_t(k)] = 0;
+  }
   nodes_[n].child = -1;
   free_blocks_.push_back(ch);
   recordChildren(t, c);
@@ -359,6 +389,7 @@ SceneOctree::NodeView SceneOctree::view(std::int32_t n) const {
   v.leaf = isLeaf(n);
   if (v.leaf) {
     v.lights = &sets_[n];
+    v.set_sum = sums_[n];
     return v;
   }
   for (unsigned k = 0; k < 8; ++k) {

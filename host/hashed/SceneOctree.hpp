@@ -67,6 +67,7 @@ class SceneOctree {
     bool exists = false;  // false: inside a leaf above `depth`, or outside
     bool leaf = false;
     const std::vector<std::uint32_t>* lights = nullptr;  // leaves
+    std::uint64_t set_sum = 0;  // leaves: LightSetPool::elementHash summed over `lights`
     std::uint8_t leaf_mask = 0, filled_mask = 0;          // branches: the 8 children
   };
   NodeView find(unsigned depth, const glm::uvec3& coord) const;
@@ -123,7 +124,9 @@ class SceneOctree {
     // After reading a branch (cur is at its first child): past its children.
     const LightNode* branchEnd() const { return o.nodes.data() + end[(cur - o.nodes.data()) - 1]; }
   };
-  static inline Cover childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc);
+  static constexpr std::uint8_t kNoRoot = 0, kAboveRoot = 1, kHoldsRoot = 2;
+  static void aboveChildren(const Stream& s, unsigned t, const glm::uvec3& c, std::uint8_t out[8]);
+  static inline Cover childCover(Cover parent, Stream& s, std::uint8_t above);
   static void consume(Cover k, Stream& s) {
     if (k == Cover::Branch) s.cur = s.branchEnd();
   }
@@ -142,9 +145,12 @@ class SceneOctree {
   const GeometryMask* mask_;
   std::vector<Node> nodes_;                      // nodes_[0] is the root
   std::vector<std::vector<std::uint32_t>> sets_; // per node; only leaves use theirs
+  // Per node, LightSetPool::elementHash summed over sets_[n], kept with every
+  // edit so that the sync hashes a changed set in O(1) instead of reading it.
+  std::vector<std::uint64_t> sums_;
   std::vector<std::int32_t> free_blocks_;
   bool recording_ = false;
-  std::vector<std::uint64_t> touched_;
+  std::vector<std::uint64_t> touched_, sort_scratch_;
   std::uint64_t last_parent_ = ~std::uint64_t(0);
 };
 
