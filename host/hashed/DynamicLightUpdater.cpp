@@ -50,13 +50,6 @@ class Batch {
     }
   }
   ~Batch() { finish(); }
-  // Blocks until octree k is built (building others meanwhile).
-  void waitFor(std::size_t k) {
-    const std::size_t c = k / kChunk;
-    while (!ready_[c].load(std::memory_order_acquire)) {
-      if (!claimOne()) std::this_thread::yield();
-    }
-  }
   void finish() {
     if (helpers_) {
       work();
@@ -178,28 +171,26 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   Batch batch(to_insert, replaced, s.bounds_, s.lightGeometry());
   auto& new_octrees = batch.octrees;
   SceneOctree& tree = *s.tree_;
+  // The moved lights' edits run in parallel per subtree (replaceAll), so
+  // they start once every octree is built (on all threads).
+  batch.finish();
+  st.light_octrees_ms = msSince(t);
+  t = Clock::now();
   tree.setRecording(true);
   for (const auto& o : to_remove) tree.remove(o);
   for (const auto i : reinsert) tree.remove(cache[i]);
-  // Moved lights come first in to_insert: replace their old versions in one
-  // walk; the rest (added lights, lazy mode) are plain inserts.
-  double waited_ms = 0.0;
-  for (std::size_t k = 0; k < new_octrees.size(); ++k) {
-    const auto w = Clock::now();
-    batch.waitFor(k);
-    waited_ms += msSince(w);
-    if (k < replaced.size()) tree.replace(replaced[k], new_octrees[k], &batch.old_ends[k], &batch.new_ends[k]);
-    else tree.insert(new_octrees[k]);
-  }
-  batch.finish();
+  // Moved lights come first in to_insert: their old versions are replaced
+  // (one joint walk each); the rest (added lights, lazy mode) are inserts.
+  std::vector<SceneOctree::Replacement> replacements(replaced.size());
+  for (std::size_t k = 0; k < replaced.size(); ++k)
+    replacements[k] = {&replaced[k], &new_octrees[k], &batch.old_ends[k], &batch.new_ends[k]};
+  tree.replaceAll(replacements);
+  for (std::size_t k = replaced.size(); k < new_octrees.size(); ++k) tree.insert(new_octrees[k]);
   for (const auto i : reinsert) tree.insert(cache[i]);
   tree.normalize();
   const std::vector<std::uint64_t> touched = tree.takeTouched();
   tree.setRecording(false);
-  // Building the octrees overlaps the edits: what the edits waited for it
-  // (or built it themselves) counts as octree time, the rest as tree time.
-  st.light_octrees_ms = waited_ms;
-  st.tree_ms = msSince(t) - waited_ms;
+  st.tree_ms = msSince(t);
   for (std::size_t k = 0; k < to_insert.size(); ++k) cache[to_insert[k].first] = std::move(new_octrees[k]);
 
   t = Clock::now();

@@ -1,6 +1,9 @@
 #include "host/hashed/SceneOctree.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <stdexcept>
 
 #include "host/hashed/KeySort.hpp"
 #include "host/hashed/LightSetPool.hpp"
@@ -24,29 +27,35 @@ SceneOctree::SceneOctree(const OctreeBounds& bounds, const GeometryMask* mask) :
   sums_.push_back(0);
 }
 
-void SceneOctree::record(unsigned t, const glm::uvec3& c) {
+void SceneOctree::record(Lane& ln, unsigned t, const glm::uvec3& c) {
   if (!recording_) return;
-  touched_.push_back(nodeKey(t, c));
+  ln.touched.push_back(nodeKey(t, c));
   // The parent's description (its children's leaf/filled bits) may change too.
-  if (t > 0) recordParent(nodeKey(t - 1, c >> 1u));
+  if (t > 0) recordParent(ln, nodeKey(t - 1, c >> 1u));
 }
 
-void SceneOctree::recordChildren(unsigned t, const glm::uvec3& c) {
+void SceneOctree::recordChildren(Lane& ln, unsigned t, const glm::uvec3& c) {
   if (!recording_) return;
-  touched_.push_back(nodeKey(t, c));
-  if (t > 0) recordParent(nodeKey(t - 1, c >> 1u));
-  for (unsigned k = 0; k < 8; ++k) touched_.push_back(nodeKey(t + 1, childCoord(c, k)));
+  ln.touched.push_back(nodeKey(t, c));
+  if (t > 0) recordParent(ln, nodeKey(t - 1, c >> 1u));
+  for (unsigned k = 0; k < 8; ++k) ln.touched.push_back(nodeKey(t + 1, childCoord(c, k)));
 }
 
 std::vector<std::uint64_t> SceneOctree::takeTouched() {
   std::vector<std::uint64_t> out;
-  out.swap(touched_);
-  last_parent_ = ~std::uint64_t(0);
+  out.swap(main_.touched);
+  main_.last_parent = ~std::uint64_t(0);
   sortUniqueKeys(out, sort_scratch_);
   return out;
 }
 
-std::int32_t SceneOctree::allocBlock() {
+std::int32_t SceneOctree::allocBlock(Lane& ln) {
+  if (ln.reserved) {
+    // Parallel edits take the blocks reserved beforehand (nodes_ must not grow).
+    const std::size_t i = reserved_taken_.fetch_add(1, std::memory_order_relaxed);
+    if (i >= free_blocks_.size()) throw std::logic_error("scene octree: parallel edits outgrew their reservation");
+    return free_blocks_[free_blocks_.size() - 1 - i];
+  }
   if (!free_blocks_.empty()) {
     const std::int32_t b = free_blocks_.back();
     free_blocks_.pop_back();
@@ -61,8 +70,8 @@ std::int32_t SceneOctree::allocBlock() {
 
 // Table 7.1, "leaf meets branch": the leaf becomes a branch whose children
 // carry its lights (children without geometry stay empty: nothing queries them).
-void SceneOctree::split(std::int32_t n, unsigned t, const glm::uvec3& c) {
-  const std::int32_t block = allocBlock();
+void SceneOctree::split(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c) {
+  const std::int32_t block = allocBlock(ln);
   for (unsigned k = 0; k < 8; ++k) {
     const std::int32_t ch = block + std::int32_t(k);
     nodes_[ch] = Node{};
@@ -78,7 +87,7 @@ void SceneOctree::split(std::int32_t n, unsigned t, const glm::uvec3& c) {
   nodes_[n].child = block;
   std::vector<std::uint32_t>().swap(sets_[n]);
   sums_[n] = 0;
-  recordChildren(t, c);
+  recordChildren(ln, t, c);
 }
 
 bool SceneOctree::addToSet(std::int32_t n, std::uint32_t l) {
@@ -116,7 +125,7 @@ void SceneOctree::insert(const LightOctree& lo) {
         break;
       }
       nodes_[n].dirty = true;
-      if (isLeaf(n)) split(n, t, c);
+      if (isLeaf(n)) split(main_, n, t, c);
       const glm::uvec3 cc = lo.roots[r] >> (lo.root_depth - t - 1);
       n = nodes_[n].child + std::int32_t(childBit(cc));
       ++t;
@@ -137,28 +146,28 @@ void SceneOctree::insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, con
     return;
   }
   if (type == LightNode::Full) {
-    addFull(n, t, c, l);
+    addFull(main_, n, t, c, l);
     return;
   }
   nodes_[n].dirty = true;
-  if (isLeaf(n)) split(n, t, c);
+  if (isLeaf(n)) split(main_, n, t, c);
   const std::int32_t ch = nodes_[n].child;
   for (unsigned k = 0; k < 8; ++k) insertRec(ch + std::int32_t(k), t + 1, childCoord(c, k), cur, l);
 }
 
 // Table 7.1, full light node: added to a leaf, or to every child of a branch.
-void SceneOctree::addFull(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
+void SceneOctree::addFull(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
   if (!care(t, c)) return;
   nodes_[n].dirty = true;
   if (isLeaf(n)) {
     if (t > b_.start_depth) {
-      if (addToSet(n, l)) record(t, c);
+      if (addToSet(n, l)) record(ln, t, c);
       return;
     }
-    split(n, t, c);  // no non-empty leaves at or above the start depth
+    split(ln, n, t, c);  // no non-empty leaves at or above the start depth
   }
   const std::int32_t ch = nodes_[n].child;
-  for (unsigned k = 0; k < 8; ++k) addFull(ch + std::int32_t(k), t + 1, childCoord(c, k), l);
+  for (unsigned k = 0; k < 8; ++k) addFull(ln, ch + std::int32_t(k), t + 1, childCoord(c, k), l);
 }
 
 void SceneOctree::remove(const LightOctree& lo) {
@@ -175,7 +184,7 @@ void SceneOctree::remove(const LightOctree& lo) {
       if (isLeaf(n)) {
         if (eraseFromSet(n, lo.light)) {
           nodes_[n].dirty = true;
-          record(t, c);
+          record(main_, t, c);
         }
         below = false;
         break;
@@ -205,31 +214,31 @@ void SceneOctree::removeRec(std::int32_t n, unsigned t, const glm::uvec3& c, con
   if (isLeaf(n)) {
     if (eraseFromSet(n, l)) {
       nodes_[n].dirty = true;
-      record(t, c);
+      record(main_, t, c);
     }
     if (type == LightNode::Branch) skipChildren(cur);
     return;
   }
   nodes_[n].dirty = true;
   if (type == LightNode::Full) {
-    removeAll(n, t, c, l);
+    removeAll(main_, n, t, c, l);
     return;
   }
   const std::int32_t ch = nodes_[n].child;
   for (unsigned k = 0; k < 8; ++k) removeRec(ch + std::int32_t(k), t + 1, childCoord(c, k), cur, l);
 }
 
-void SceneOctree::removeAll(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
+void SceneOctree::removeAll(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
   if (isLeaf(n)) {
     if (eraseFromSet(n, l)) {
       nodes_[n].dirty = true;
-      record(t, c);
+      record(ln, t, c);
     }
     return;
   }
   nodes_[n].dirty = true;
   const std::int32_t ch = nodes_[n].child;
-  for (unsigned k = 0; k < 8; ++k) removeAll(ch + std::int32_t(k), t + 1, childCoord(c, k), l);
+  for (unsigned k = 0; k < 8; ++k) removeAll(ln, ch + std::int32_t(k), t + 1, childCoord(c, k), l);
 }
 
 // end[i] = one past node i's preorder subtree, for every root's subtree.
@@ -299,10 +308,10 @@ void SceneOctree::replace(const LightOctree& a, const LightOctree& b, const std:
     return o.root_depth == 0 ? Cover(*s.cur++) : Cover::Above;  // depth 0: the one root is the scene root
   };
   const Cover ka = top(a, sa), kb = top(b, sb);
-  replaceRec(0, 0, glm::uvec3(0), ka, sa, kb, sb, b.light);
+  replaceRec(main_, 0, 0, glm::uvec3(0), ka, sa, kb, sb, b.light);
 }
 
-void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
+void SceneOctree::replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
                              Stream& sb, std::uint32_t l) {
   const bool pa = ka == Cover::Branch || ka == Cover::Above, pb = kb == Cover::Branch || kb == Cover::Above;
   if (!care(t, c) || (!pa && !pb && ka == kb)) {  // nothing stored here, or no change
@@ -311,8 +320,8 @@ void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Co
     return;
   }
   if (!pa && !pb) {  // whole node gained or lost the light
-    if (kb == Cover::Full) addFull(n, t, c, l);
-    else removeAll(n, t, c, l);
+    if (kb == Cover::Full) addFull(ln, n, t, c, l);
+    else removeAll(ln, n, t, c, l);
     return;
   }
   if (ka == Cover::Branch && kb == Cover::Branch) {
@@ -328,11 +337,11 @@ void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Co
   if (isLeaf(n)) {
     if (!pb) {  // the new version covers this leaf entirely or not at all
       consume(ka, sa);
-      if (kb == Cover::Full) addFull(n, t, c, l);
-      else if (eraseFromSet(n, l)) record(t, c);
+      if (kb == Cover::Full) addFull(ln, n, t, c, l);
+      else if (eraseFromSet(n, l)) record(ln, t, c);
       return;
     }
-    split(n, t, c);  // Table 8.1: the new version covers part of the leaf
+    split(ln, n, t, c);  // Table 8.1: the new version covers part of the leaf
   }
   const std::int32_t ch = nodes_[n].child;
   std::uint8_t above_a[8] = {}, above_b[8] = {};
@@ -342,11 +351,162 @@ void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Co
     const glm::uvec3 cc = childCoord(c, k);
     const Cover ca = childCover(ka, sa, above_a[k]), cb = childCover(kb, sb, above_b[k]);
     if (ca == cb && (ca == Cover::Empty || ca == Cover::Full)) continue;  // unchanged here
-    replaceRec(ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
+    replaceRec(ln, ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
   }
 }
 
-void SceneOctree::removeEverywhere(std::uint32_t l) { removeAll(0, 0, glm::uvec3(0), l); }
+SceneOctree::Cover SceneOctree::coverAt(Stream& s, unsigned t, const glm::uvec3& c) {
+  const LightOctree& o = s.o;
+  if (o.empty()) return Cover::Empty;
+  if (t < o.root_depth) {
+    for (unsigned r = 0; r < o.root_count; ++r)
+      if ((o.roots[r] >> (o.root_depth - t)) == c) return Cover::Above;
+    return Cover::Empty;
+  }
+  for (unsigned r = 0; r < o.root_count; ++r) {
+    if ((c >> (t - o.root_depth)) != o.roots[r]) continue;
+    // Down from the root along c's path, skipping earlier siblings' subtrees.
+    s.cur = o.nodes.data() + o.root_start[r];
+    for (unsigned d = o.root_depth; d < t; ++d) {
+      const LightNode type = *s.cur++;
+      if (type != LightNode::Branch) return Cover(type);  // the same for every node below
+      const unsigned k = childBit(c >> (t - d - 1));
+      for (unsigned i = 0; i < k; ++i) s.cur = o.nodes.data() + s.end[s.cur - o.nodes.data()];
+    }
+    return Cover(*s.cur++);
+  }
+  return Cover::Empty;
+}
+
+// At most one split per branch of the new version and per node above its
+// roots; a full node at or above the start depth may split down to it.
+std::size_t SceneOctree::splitBound(const LightOctree& o, unsigned start_depth) {
+  if (o.empty()) return 0;
+  std::size_t bound = 0;
+  for (unsigned t = 0; t < o.root_depth; ++t) {  // distinct ancestors of the roots
+    glm::uvec3 seen[8];
+    unsigned n = 0;
+    for (unsigned r = 0; r < o.root_count; ++r) {
+      const glm::uvec3 a = o.roots[r] >> (o.root_depth - t);
+      if (std::find(seen, seen + n, a) == seen + n) seen[n++] = a;
+    }
+    bound += n;
+  }
+  // Preorder with 8 children per branch: the branch count follows from the size.
+  bound += (o.nodes.size() - o.root_count) / 8;
+  if (o.root_depth > start_depth) return bound;  // no full node at or above the start depth
+  for (unsigned r = 0; r < o.root_count; ++r) {
+    const LightNode* cur = o.nodes.data() + o.root_start[r];
+    unsigned pending[kMaxDepth + 2], top = 0;  // children left per open branch
+    unsigned t = o.root_depth;
+    for (;;) {
+      const LightNode type = *cur++;
+      if (type == LightNode::Branch) {
+        pending[top++] = 8;
+        ++t;
+        continue;
+      }
+      if (type == LightNode::Full && t <= start_depth) {
+        std::size_t level = 1;
+        for (unsigned d = t; d <= start_depth; ++d, level *= 8) bound += level;
+      }
+      while (top > 0 && --pending[top - 1] == 0) {
+        --top;
+        --t;
+      }
+      if (top == 0) break;
+    }
+  }
+  return bound;
+}
+
+void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
+  const unsigned P = std::min(2u, b_.start_depth);
+  // Few lights or no room to partition: not worth the tasks.
+  if (P == 0 || batch.size() < 32) {
+    for (const auto& r : batch) replace(*r.old_version, *r.new_version, r.old_ends, r.new_ends);
+    return;
+  }
+  // Every node above depth P becomes a branch (the tasks must not split
+  // shared nodes); normalize() merges back the ones that stay empty.
+  std::vector<std::int32_t> part(std::size_t(1) << (3 * P), -1);  // depth-P node per subtree
+  auto open = [&](auto& self, std::int32_t n, unsigned t, const glm::uvec3& c, std::size_t id) -> void {
+    if (t == P) {
+      part[id] = n;
+      return;
+    }
+    if (!care(t, c)) return;  // nothing is ever stored below
+    nodes_[n].dirty = true;
+    if (isLeaf(n)) split(main_, n, t, c);
+    for (unsigned k = 0; k < 8; ++k) self(self, nodes_[n].child + std::int32_t(k), t + 1, childCoord(c, k), id * 8 + k);
+  };
+  open(open, 0, 0, glm::uvec3(0), 0);
+  auto partId = [&](const glm::uvec3& c) {  // depth-P coordinate -> index in `part`
+    std::size_t id = 0;
+    for (unsigned d = 0; d < P; ++d) id = id * 8 + childBit(c >> (P - d - 1));
+    return id;
+  };
+  // Route each light to the subtrees its versions reach, in batch order.
+  std::vector<std::vector<std::uint32_t>> work(part.size());
+  std::size_t bound = 0;
+  std::vector<std::uint8_t> seen(part.size(), 0);
+  for (std::uint32_t j = 0; j < batch.size(); ++j) {
+    bound += splitBound(*batch[j].new_version, b_.start_depth);
+    std::vector<std::size_t> ids;
+    for (const LightOctree* o : {batch[j].old_version, batch[j].new_version})
+      for (unsigned r = 0; r < o->root_count; ++r) {
+        if (o->root_depth >= P) {
+          ids.push_back(partId(o->roots[r] >> (o->root_depth - P)));
+          continue;
+        }
+        const unsigned shift = P - o->root_depth;  // the root spans 8^shift subtrees
+        const glm::uvec3 base = o->roots[r] << shift;
+        for (unsigned x = 0; x < (1u << shift); ++x)
+          for (unsigned y = 0; y < (1u << shift); ++y)
+            for (unsigned z = 0; z < (1u << shift); ++z) ids.push_back(partId(base + glm::uvec3(x, y, z)));
+      }
+    for (const auto id : ids)
+      if (part[id] >= 0 && !seen[id]) {
+        seen[id] = 1;
+        work[id].push_back(j);
+      }
+    for (const auto id : ids) seen[id] = 0;
+  }
+  // Reserve the blocks the tasks may split into, so that nodes_ stays put.
+  if (free_blocks_.size() < bound) {
+    const std::size_t grow = bound - free_blocks_.size();
+    const std::int32_t first = std::int32_t(nodes_.size());
+    nodes_.resize(nodes_.size() + 8 * grow);
+    sets_.resize(sets_.size() + 8 * grow);
+    sums_.resize(sums_.size() + 8 * grow);
+    for (std::size_t i = grow; i-- > 0;) free_blocks_.push_back(first + std::int32_t(8 * i));
+  }
+  reserved_taken_.store(0, std::memory_order_relaxed);
+  std::vector<std::size_t> busy;
+  for (std::size_t id = 0; id < part.size(); ++id)
+    if (!work[id].empty()) busy.push_back(id);
+  std::vector<Lane> lanes(busy.size());
+  tbb::parallel_for(std::size_t(0), busy.size(), [&](std::size_t i) {
+    const std::size_t id = busy[i];
+    Lane& ln = lanes[i];
+    ln.reserved = true;
+    glm::uvec3 c(0);
+    for (unsigned d = 0; d < P; ++d) c = childCoord(c, unsigned(id >> (3 * (P - d - 1))) & 7u);
+    for (const auto j : work[id]) {
+      const Replacement& r = batch[j];
+      Stream sa{*r.old_version, r.old_version->nodes.data(), r.old_ends->data()};
+      Stream sb{*r.new_version, r.new_version->nodes.data(), r.new_ends->data()};
+      const Cover ka = coverAt(sa, P, c), kb = coverAt(sb, P, c);
+      if (ka == kb && (ka == Cover::Empty || ka == Cover::Full)) continue;  // unchanged here
+      replaceRec(ln, part[id], P, c, ka, sa, kb, sb, r.new_version->light);
+    }
+  });
+  free_blocks_.resize(free_blocks_.size() - reserved_taken_.load(std::memory_order_relaxed));
+  for (auto& ln : lanes)
+    if (recording_) main_.touched.insert(main_.touched.end(), ln.touched.begin(), ln.touched.end());
+}
+
+void SceneOctree::removeEverywhere(std::uint32_t l) { removeAll(main_, 0, 0, glm::uvec3(0), l); }
 
 void SceneOctree::normalize() { normalizeRec(0, 0, glm::uvec3(0)); }
 
@@ -380,7 +540,7 @@ void SceneOctree::normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c) 
   }
   nodes_[n].child = -1;
   free_blocks_.push_back(ch);
-  recordChildren(t, c);
+  recordChildren(main_, t, c);
 }
 
 SceneOctree::NodeView SceneOctree::view(std::int32_t n) const {
