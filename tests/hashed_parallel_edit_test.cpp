@@ -1,8 +1,9 @@
 // The parallel tree edit (SceneOctree::replaceAll: one task per subtree at
 // depth 2) against one replace() at a time, with lights that span several
 // subtrees, sit on the subtrees' shared faces or touch the bounds; and whole
-// updates run with 1 and with 4 threads: identical light index lists and
-// hash tables, word for word.
+// updates, sequential on 1 thread and parallel (HashedConfig::
+// parallel_tree_edits) on 1 and on 4 threads: identical light index lists
+// and hash tables, word for word.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
@@ -120,9 +121,13 @@ TEST(HashedParallelEdit, UpdatesDoNotDependOnTheThreadCount) {
   cfg.max_incremental_fraction = 1.0;
   const OctreeBounds b = boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, cfg.start_depth);
   auto lights = partitionStressLights(rng, b, true);
-  HashedStructure one(cfg), many(cfg);
+  // Sequential edits on 1 thread against parallel ones on 1 and 4 threads.
+  HashedConfig par_cfg = cfg;
+  par_cfg.parallel_tree_edits = true;
+  HashedStructure one(cfg), par1(par_cfg), many(par_cfg);
   tbb::task_arena a1(1), a4(4);
   a1.execute([&] { one.build(lights, b); });
+  a1.execute([&] { par1.build(lights, b); });
   a4.execute([&] { many.build(lights, b); });
   for (int round = 0; round < 6; ++round) {
     for (auto& l : lights) {
@@ -132,18 +137,22 @@ TEST(HashedParallelEdit, UpdatesDoNotDependOnTheThreadCount) {
         axis(l, a) = std::clamp(axis(l, a) + float(uni(rng, -step, step)), r, float(kBox) - r);
     }
     const UpdateStats s1 = a1.execute([&] { return one.update(lights); });
+    const UpdateStats p1 = a1.execute([&] { return par1.update(lights); });
     const UpdateStats s4 = a4.execute([&] { return many.update(lights); });
     ASSERT_FALSE(s1.full_rebuild) << s1.reason;
+    ASSERT_FALSE(p1.full_rebuild) << p1.reason;
     ASSERT_FALSE(s4.full_rebuild) << s4.reason;
     EXPECT_GE(s1.moved, 32u);
-    const LinklessOctree &x = one.linkless(), &y = many.linkless();
-    EXPECT_EQ(x.pool().list(), y.pool().list()) << "round " << round;
-    ASSERT_EQ(x.layerCount(), y.layerCount());
-    for (unsigned i = 0; i < x.layerCount(); ++i) {
-      EXPECT_EQ(x.desc(i).tableWords(), y.desc(i).tableWords()) << "layer " << i;
-      EXPECT_EQ(x.desc(i).offsetWords(), y.desc(i).offsetWords()) << "layer " << i;
-      EXPECT_EQ(x.data(i).tableWords(), y.data(i).tableWords()) << "layer " << i;
-      EXPECT_EQ(x.data(i).offsetWords(), y.data(i).offsetWords()) << "layer " << i;
+    const LinklessOctree& x = one.linkless();
+    for (const LinklessOctree* y : {&par1.linkless(), &many.linkless()}) {
+      EXPECT_EQ(x.pool().list(), y->pool().list()) << "round " << round;
+      ASSERT_EQ(x.layerCount(), y->layerCount());
+      for (unsigned i = 0; i < x.layerCount(); ++i) {
+        EXPECT_EQ(x.desc(i).tableWords(), y->desc(i).tableWords()) << "layer " << i;
+        EXPECT_EQ(x.desc(i).offsetWords(), y->desc(i).offsetWords()) << "layer " << i;
+        EXPECT_EQ(x.data(i).tableWords(), y->data(i).tableWords()) << "layer " << i;
+        EXPECT_EQ(x.data(i).offsetWords(), y->data(i).offsetWords()) << "layer " << i;
+      }
     }
     HashedStructure fresh(cfg);
     fresh.build(lights, b);

@@ -50,6 +50,13 @@ class Batch {
     }
   }
   ~Batch() { finish(); }
+  // Blocks until octree k is built (building others meanwhile).
+  void waitFor(std::size_t k) {
+    const std::size_t c = k / kChunk;
+    while (!ready_[c].load(std::memory_order_acquire)) {
+      if (!claimOne()) std::this_thread::yield();
+    }
+  }
   void finish() {
     if (helpers_) {
       work();
@@ -171,26 +178,39 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   Batch batch(to_insert, replaced, s.bounds_, s.lightGeometry());
   auto& new_octrees = batch.octrees;
   SceneOctree& tree = *s.tree_;
-  // The moved lights' edits run in parallel per subtree (replaceAll), so
-  // they start once every octree is built (on all threads).
-  batch.finish();
-  st.light_octrees_ms = msSince(t);
-  t = Clock::now();
   tree.setRecording(true);
   for (const auto& o : to_remove) tree.remove(o);
   for (const auto i : reinsert) tree.remove(cache[i]);
   // Moved lights come first in to_insert: their old versions are replaced
   // (one joint walk each); the rest (added lights, lazy mode) are inserts.
-  std::vector<SceneOctree::Replacement> replacements(replaced.size());
-  for (std::size_t k = 0; k < replaced.size(); ++k)
-    replacements[k] = {&replaced[k], &new_octrees[k], &batch.old_ends[k], &batch.new_ends[k]};
-  tree.replaceAll(replacements);
-  for (std::size_t k = replaced.size(); k < new_octrees.size(); ++k) tree.insert(new_octrees[k]);
+  double waited_ms = 0.0;
+  std::size_t e = 0;  // next octree to edit in
+  if (s.cfg_.parallel_tree_edits && !replaced.empty()) {
+    // Per subtree in parallel, once every octree is built.
+    const auto w = Clock::now();
+    batch.finish();
+    waited_ms += msSince(w);
+    std::vector<SceneOctree::Replacement> replacements(replaced.size());
+    for (; e < replaced.size(); ++e)
+      replacements[e] = {&replaced[e], &new_octrees[e], &batch.old_ends[e], &batch.new_ends[e]};
+    tree.replaceAll(replacements);
+  }
+  for (; e < new_octrees.size(); ++e) {
+    const auto w = Clock::now();
+    batch.waitFor(e);
+    waited_ms += msSince(w);
+    if (e < replaced.size()) tree.replace(replaced[e], new_octrees[e], &batch.old_ends[e], &batch.new_ends[e]);
+    else tree.insert(new_octrees[e]);
+  }
+  batch.finish();
   for (const auto i : reinsert) tree.insert(cache[i]);
   tree.normalize();
   const std::vector<std::uint64_t> touched = tree.takeTouched();
   tree.setRecording(false);
-  st.tree_ms = msSince(t);
+  // Building the octrees overlaps the edits: what the edits waited for it
+  // (or built it themselves) counts as octree time, the rest as tree time.
+  st.light_octrees_ms = waited_ms;
+  st.tree_ms = msSince(t) - waited_ms;
   for (std::size_t k = 0; k < to_insert.size(); ++k) cache[to_insert[k].first] = std::move(new_octrees[k]);
 
   t = Clock::now();

@@ -395,6 +395,10 @@ std::size_t SceneOctree::splitBound(const LightOctree& o, unsigned start_depth) 
   // Preorder with 8 children per branch: the branch count follows from the size.
   bound += (o.nodes.size() - o.root_count) / 8;
   if (o.root_depth > start_depth) return bound;  // no full node at or above the start depth
+  if (o.root_depth == start_depth) {  // only the roots themselves are that high
+    for (unsigned r = 0; r < o.root_count; ++r) bound += o.nodes[o.root_start[r]] == LightNode::Full ? 1 : 0;
+    return bound;
+  }
   for (unsigned r = 0; r < o.root_count; ++r) {
     const LightNode* cur = o.nodes.data() + o.root_start[r];
     unsigned pending[kMaxDepth + 2], top = 0;  // children left per open branch
@@ -450,9 +454,10 @@ void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
   std::vector<std::vector<std::uint32_t>> work(part.size());
   std::size_t bound = 0;
   std::vector<std::uint8_t> seen(part.size(), 0);
+  std::vector<std::size_t> ids;
   for (std::uint32_t j = 0; j < batch.size(); ++j) {
     bound += splitBound(*batch[j].new_version, b_.start_depth);
-    std::vector<std::size_t> ids;
+    ids.clear();
     for (const LightOctree* o : {batch[j].old_version, batch[j].new_version})
       for (unsigned r = 0; r < o->root_count; ++r) {
         if (o->root_depth >= P) {
