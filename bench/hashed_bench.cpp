@@ -130,9 +130,10 @@ int run(int argc, char** argv) {
   std::string suite_dir = "/work/shared/data/thesis-suite/scenes/spaceship-indoor";
   // "tiled-deferred@32/none": the thesis's tiled baseline (32x32 tiles, no depth bounds).
   std::string compare = "tiled-deferred,tiled-deferred@32/none,clustered-deferred", device;
+  std::string update_fractions = "0.01,0.1,1";
   int reps = 3, update_reps = 5;
   unsigned camera_frames = 4;
-  bool no_render = false, lazy_removal = false;
+  bool no_render = false, lazy_removal = false, parallel_tree_edits = false;
   app.add_option("--json", json_path, "write records as JSON");
   app.add_option("--lights", light_counts, "generated light counts in the default scene")->capture_default_str();
   app.add_option("--node-sizes", node_sizes, "node sizes to sweep")->capture_default_str();
@@ -141,10 +142,14 @@ int run(int argc, char** argv) {
   app.add_option("--compare", compare, "techniques counted in the same run ('' for none)")->capture_default_str();
   app.add_option("--reps", reps, "builds per case (median reported)")->capture_default_str();
   app.add_option("--update-reps", update_reps, "updates per case (median reported)")->capture_default_str();
+  app.add_option("--update-fractions", update_fractions, "fractions of the lights moving per update")
+      ->capture_default_str();
   app.add_option("--suite", suite_dir, "thesis suite scene folder (its lights/ holds the 1890-light set)")
       ->capture_default_str();
   app.add_option("--device", device, "OpenCL device");
   app.add_flag("--no-render", no_render, "host-side sections only");
+  app.add_flag("--parallel-tree-edits", parallel_tree_edits,
+               "updates: edit the tree per depth-2 subtree in parallel (HashedConfig::parallel_tree_edits)");
   app.add_flag("--lazy-removal", lazy_removal,
                "updates: leave moved lights' old indices until a flush (conservative superset lookups)");
   CLI11_PARSE(app, argc, argv);
@@ -199,6 +204,7 @@ int run(int argc, char** argv) {
     cfg.node_size = "0.5r";
     cfg.max_incremental_fraction = 1.0;  // measure the incremental path itself
     cfg.lazy_removal = lazy_removal;
+    cfg.parallel_tree_edits = parallel_tree_edits;
     std::vector<double> rebuild_ms, rebuild_cpu;
     for (int i = 0; i < update_reps; ++i) {
       hashed::HashedStructure hs(cfg);
@@ -209,7 +215,8 @@ int run(int argc, char** argv) {
     }
     const double rebuild = median(rebuild_ms), rebuild_c = median(rebuild_cpu);
     const double rebuild_min = *std::min_element(rebuild_ms.begin(), rebuild_ms.end());
-    for (const double fraction : {0.01, 0.1, 1.0}) {
+    for (const auto& fraction_text : splitList(update_fractions)) {
+      const double fraction = std::stod(fraction_text);
       // The same motion as --animate: distinct lights, steps of up to r/4,
       // staying within r/2 of their start.
       LightAnimator anim(lights0, fraction);
@@ -246,6 +253,7 @@ int run(int argc, char** argv) {
   }
   out["updates"] = updates;
   out["updates_lazy_removal"] = lazy_removal;
+  out["updates_parallel_tree_edits"] = parallel_tree_edits;
 
   // --- 3. Thesis suite: the 1890-light Spaceship Indoor set ---
   std::printf("\n3. Thesis suite: Spaceship Indoor, 1890 lights\n");

@@ -71,6 +71,14 @@ void expectSameAsFreshBuild(const HashedStructure& updated, const Scene* scene, 
     EXPECT_EQ(updated.linkless().desc(i).size(), fresh.linkless().desc(i).size());
     EXPECT_EQ(updated.linkless().data(i).size(), fresh.linkless().data(i).size());
   }
+  // Every leaf's kept element-hash sum matches its set (else equal sets
+  // would not find each other in the light set pool).
+  updated.tree().forEachNode([](unsigned t, const glm::uvec3&, const SceneOctree::NodeView& v) {
+    if (!v.leaf) return;
+    std::uint64_t sum = 0;
+    for (const auto l : *v.lights) sum += LightSetPool::elementHash(l);
+    EXPECT_EQ(v.set_sum, sum) << "leaf at depth " << t;
+  });
   for (const auto& p : points) ASSERT_EQ(updated.linkless().lightsAt(p), fresh.linkless().lightsAt(p));
   for (int i = 0; i < 2000; ++i) {
     const glm::vec3 p = randomPointIn(rng, updated.bounds());

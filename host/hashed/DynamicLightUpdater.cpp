@@ -181,15 +181,26 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   tree.setRecording(true);
   for (const auto& o : to_remove) tree.remove(o);
   for (const auto i : reinsert) tree.remove(cache[i]);
-  // Moved lights come first in to_insert: replace their old versions in one
-  // walk; the rest (added lights, lazy mode) are plain inserts.
+  // Moved lights come first in to_insert: their old versions are replaced
+  // (one joint walk each); the rest (added lights, lazy mode) are inserts.
   double waited_ms = 0.0;
-  for (std::size_t k = 0; k < new_octrees.size(); ++k) {
+  std::size_t e = 0;  // next octree to edit in
+  if (s.cfg_.parallel_tree_edits && !replaced.empty()) {
+    // Per subtree in parallel, once every octree is built.
     const auto w = Clock::now();
-    batch.waitFor(k);
+    batch.finish();
     waited_ms += msSince(w);
-    if (k < replaced.size()) tree.replace(replaced[k], new_octrees[k], &batch.old_ends[k], &batch.new_ends[k]);
-    else tree.insert(new_octrees[k]);
+    std::vector<SceneOctree::Replacement> replacements(replaced.size());
+    for (; e < replaced.size(); ++e)
+      replacements[e] = {&replaced[e], &new_octrees[e], &batch.old_ends[e], &batch.new_ends[e]};
+    tree.replaceAll(replacements);
+  }
+  for (; e < new_octrees.size(); ++e) {
+    const auto w = Clock::now();
+    batch.waitFor(e);
+    waited_ms += msSince(w);
+    if (e < replaced.size()) tree.replace(replaced[e], new_octrees[e], &batch.old_ends[e], &batch.new_ends[e]);
+    else tree.insert(new_octrees[e]);
   }
   batch.finish();
   for (const auto i : reinsert) tree.insert(cache[i]);

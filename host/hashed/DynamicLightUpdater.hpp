@@ -16,7 +16,9 @@
 //     re-offsetting its group (see PerfectSpatialHash).
 //  Threads: the tree edits (step 2) are sequential; the new octrees are built
 //  on the other threads while the edits consume them in order, and the
-//  previous update's light index list garbage is compacted meanwhile. Step 3
+//  previous update's light index list garbage is compacted meanwhile. With
+//  HashedConfig::parallel_tree_edits the moved lights' edits instead run per
+//  depth-2 subtree in parallel once their octrees are built (same result). Step 3
 //  derives the touched keys in parallel, interns the light sets in key order,
 //  then edits each table in its own task. The result does not depend on the
 //  thread count.

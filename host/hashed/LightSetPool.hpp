@@ -19,6 +19,19 @@ class LightSetPool {
   std::uint32_t acquire(const std::vector<std::uint32_t>& set) { return acquire(set, hashOf(set.data(), set.size())); }
   // The same with the set's hashOf() computed by the caller (e.g. in parallel).
   std::uint32_t acquire(const std::vector<std::uint32_t>& set, std::uint64_t hash);
+  // A set's hash is a function of the sum of its elements' hashes, so that
+  // whoever edits a set one element at a time (SceneOctree) can keep the sum
+  // and hash it in O(1): hashOf(p, n) == hashOfSum(sum of elementHash(p[i]), n).
+  static std::uint64_t elementHash(std::uint32_t light) {
+    std::uint64_t z = (std::uint64_t(light) + 1) * 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  static std::uint64_t hashOfSum(std::uint64_t sum, std::size_t n) {
+    std::uint64_t h = (sum ^ (std::uint64_t(n) * 0xD6E8FEB86659FD93ull)) * 0xBF58476D1CE4E5B9ull;
+    return h ^ (h >> 31);
+  }
   static std::uint64_t hashOf(const std::uint32_t* p, std::size_t n);
   void release(std::uint32_t offset);
   void clear();

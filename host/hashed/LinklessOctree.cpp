@@ -38,7 +38,8 @@ void LinklessOctree::buildFrom(const SceneOctree& tree) {
       if (t >= ds && t < b_.depth) desc_entries[t - ds].push_back({c, {v.leaf_mask, v.filled_mask}});
     } else if (!v.lights->empty()) {
       if (t <= ds) throw std::logic_error("scene octree: filled leaf at or above the start depth");
-      data_entries[t - ds - 1].push_back({c, {pool_.acquire(*v.lights), std::uint32_t(v.lights->size())}});
+      const std::uint32_t offset = pool_.acquire(*v.lights, LightSetPool::hashOfSum(v.set_sum, v.lights->size()));
+      data_entries[t - ds - 1].push_back({c, {offset, std::uint32_t(v.lights->size())}});
     }
   });
   std::vector<PshBuildReport> reports(2 * layers);
@@ -186,7 +187,7 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std
       d.data_want = v.exists && v.leaf && !v.lights->empty();
       if (d.data_want) {
         d.set = v.lights;
-        d.set_hash = LightSetPool::hashOf(v.lights->data(), v.lights->size());
+        d.set_hash = LightSetPool::hashOfSum(v.set_sum, v.lights->size());
       }
     }
   };

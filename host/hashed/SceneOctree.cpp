@@ -1,8 +1,12 @@
 #include "host/hashed/SceneOctree.hpp"
 
-#include <tbb/parallel_sort.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <stdexcept>
+
+#include "host/hashed/KeySort.hpp"
+#include "host/hashed/LightSetPool.hpp"
 
 namespace ml::hashed {
 namespace {
@@ -20,33 +24,38 @@ const std::vector<std::uint32_t> kNoLights;
 SceneOctree::SceneOctree(const OctreeBounds& bounds, const GeometryMask* mask) : b_(bounds), mask_(mask) {
   nodes_.emplace_back();
   sets_.emplace_back();
+  sums_.push_back(0);
 }
 
-void SceneOctree::record(unsigned t, const glm::uvec3& c) {
+void SceneOctree::record(Lane& ln, unsigned t, const glm::uvec3& c) {
   if (!recording_) return;
-  touched_.push_back(nodeKey(t, c));
+  ln.touched.push_back(nodeKey(t, c));
   // The parent's description (its children's leaf/filled bits) may change too.
-  if (t > 0) recordParent(nodeKey(t - 1, c >> 1u));
+  if (t > 0) recordParent(ln, nodeKey(t - 1, c >> 1u));
 }
 
-void SceneOctree::recordChildren(unsigned t, const glm::uvec3& c) {
+void SceneOctree::recordChildren(Lane& ln, unsigned t, const glm::uvec3& c) {
   if (!recording_) return;
-  touched_.push_back(nodeKey(t, c));
-  if (t > 0) recordParent(nodeKey(t - 1, c >> 1u));
-  for (unsigned k = 0; k < 8; ++k) touched_.push_back(nodeKey(t + 1, childCoord(c, k)));
+  ln.touched.push_back(nodeKey(t, c));
+  if (t > 0) recordParent(ln, nodeKey(t - 1, c >> 1u));
+  for (unsigned k = 0; k < 8; ++k) ln.touched.push_back(nodeKey(t + 1, childCoord(c, k)));
 }
 
 std::vector<std::uint64_t> SceneOctree::takeTouched() {
   std::vector<std::uint64_t> out;
-  out.swap(touched_);
-  last_parent_ = ~std::uint64_t(0);
-  if (out.size() < 16384) std::sort(out.begin(), out.end());
-  else tbb::parallel_sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  out.swap(main_.touched);
+  main_.last_parent = ~std::uint64_t(0);
+  sortUniqueKeys(out, sort_scratch_);
   return out;
 }
 
-std::int32_t SceneOctree::allocBlock() {
+std::int32_t SceneOctree::allocBlock(Lane& ln) {
+  if (ln.reserved) {
+    // Parallel edits take the blocks reserved beforehand (nodes_ must not grow).
+    const std::size_t i = reserved_taken_.fetch_add(1, std::memory_order_relaxed);
+    if (i >= free_blocks_.size()) throw std::logic_error("scene octree: parallel edits outgrew their reservation");
+    return free_blocks_[free_blocks_.size() - 1 - i];
+  }
   if (!free_blocks_.empty()) {
     const std::int32_t b = free_blocks_.back();
     free_blocks_.pop_back();
@@ -55,34 +64,42 @@ std::int32_t SceneOctree::allocBlock() {
   const std::int32_t b = std::int32_t(nodes_.size());
   nodes_.resize(nodes_.size() + 8);
   sets_.resize(sets_.size() + 8);
+  sums_.resize(sums_.size() + 8);
   return b;
 }
 
 // Table 7.1, "leaf meets branch": the leaf becomes a branch whose children
 // carry its lights (children without geometry stay empty: nothing queries them).
-void SceneOctree::split(std::int32_t n, unsigned t, const glm::uvec3& c) {
-  const std::int32_t block = allocBlock();
+void SceneOctree::split(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c) {
+  const std::int32_t block = allocBlock(ln);
   for (unsigned k = 0; k < 8; ++k) {
     const std::int32_t ch = block + std::int32_t(k);
     nodes_[ch] = Node{};
     nodes_[ch].dirty = true;
-    if (care(t + 1, childCoord(c, k))) sets_[ch] = sets_[n];
-    else sets_[ch].clear();
+    if (care(t + 1, childCoord(c, k))) {
+      sets_[ch] = sets_[n];
+      sums_[ch] = sums_[n];
+    } else {
+      sets_[ch].clear();
+      sums_[ch] = 0;
+    }
   }
   nodes_[n].child = block;
   std::vector<std::uint32_t>().swap(sets_[n]);
-  recordChildren(t, c);
+  sums_[n] = 0;
+  recordChildren(ln, t, c);
 }
 
 bool SceneOctree::addToSet(std::int32_t n, std::uint32_t l) {
   auto& s = sets_[n];
   if (s.empty() || s.back() < l) {
     s.push_back(l);  // full builds insert lights in index order
-    return true;
+  } else {
+    const auto it = std::lower_bound(s.begin(), s.end(), l);
+    if (it != s.end() && *it == l) return false;
+    s.insert(it, l);
   }
-  const auto it = std::lower_bound(s.begin(), s.end(), l);
-  if (it != s.end() && *it == l) return false;
-  s.insert(it, l);
+  sums_[n] += LightSetPool::elementHash(l);
   return true;
 }
 
@@ -91,6 +108,7 @@ bool SceneOctree::eraseFromSet(std::int32_t n, std::uint32_t l) {
   const auto it = std::lower_bound(s.begin(), s.end(), l);
   if (it == s.end() || *it != l) return false;
   s.erase(it);
+  sums_[n] -= LightSetPool::elementHash(l);
   return true;
 }
 
@@ -107,7 +125,7 @@ void SceneOctree::insert(const LightOctree& lo) {
         break;
       }
       nodes_[n].dirty = true;
-      if (isLeaf(n)) split(n, t, c);
+      if (isLeaf(n)) split(main_, n, t, c);
       const glm::uvec3 cc = lo.roots[r] >> (lo.root_depth - t - 1);
       n = nodes_[n].child + std::int32_t(childBit(cc));
       ++t;
@@ -128,28 +146,28 @@ void SceneOctree::insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, con
     return;
   }
   if (type == LightNode::Full) {
-    addFull(n, t, c, l);
+    addFull(main_, n, t, c, l);
     return;
   }
   nodes_[n].dirty = true;
-  if (isLeaf(n)) split(n, t, c);
+  if (isLeaf(n)) split(main_, n, t, c);
   const std::int32_t ch = nodes_[n].child;
   for (unsigned k = 0; k < 8; ++k) insertRec(ch + std::int32_t(k), t + 1, childCoord(c, k), cur, l);
 }
 
 // Table 7.1, full light node: added to a leaf, or to every child of a branch.
-void SceneOctree::addFull(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
+void SceneOctree::addFull(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
   if (!care(t, c)) return;
   nodes_[n].dirty = true;
   if (isLeaf(n)) {
     if (t > b_.start_depth) {
-      if (addToSet(n, l)) record(t, c);
+      if (addToSet(n, l)) record(ln, t, c);
       return;
     }
-    split(n, t, c);  // no non-empty leaves at or above the start depth
+    split(ln, n, t, c);  // no non-empty leaves at or above the start depth
   }
   const std::int32_t ch = nodes_[n].child;
-  for (unsigned k = 0; k < 8; ++k) addFull(ch + std::int32_t(k), t + 1, childCoord(c, k), l);
+  for (unsigned k = 0; k < 8; ++k) addFull(ln, ch + std::int32_t(k), t + 1, childCoord(c, k), l);
 }
 
 void SceneOctree::remove(const LightOctree& lo) {
@@ -166,7 +184,7 @@ void SceneOctree::remove(const LightOctree& lo) {
       if (isLeaf(n)) {
         if (eraseFromSet(n, lo.light)) {
           nodes_[n].dirty = true;
-          record(t, c);
+          record(main_, t, c);
         }
         below = false;
         break;
@@ -196,31 +214,31 @@ void SceneOctree::removeRec(std::int32_t n, unsigned t, const glm::uvec3& c, con
   if (isLeaf(n)) {
     if (eraseFromSet(n, l)) {
       nodes_[n].dirty = true;
-      record(t, c);
+      record(main_, t, c);
     }
     if (type == LightNode::Branch) skipChildren(cur);
     return;
   }
   nodes_[n].dirty = true;
   if (type == LightNode::Full) {
-    removeAll(n, t, c, l);
+    removeAll(main_, n, t, c, l);
     return;
   }
   const std::int32_t ch = nodes_[n].child;
   for (unsigned k = 0; k < 8; ++k) removeRec(ch + std::int32_t(k), t + 1, childCoord(c, k), cur, l);
 }
 
-void SceneOctree::removeAll(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
+void SceneOctree::removeAll(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
   if (isLeaf(n)) {
     if (eraseFromSet(n, l)) {
       nodes_[n].dirty = true;
-      record(t, c);
+      record(ln, t, c);
     }
     return;
   }
   nodes_[n].dirty = true;
   const std::int32_t ch = nodes_[n].child;
-  for (unsigned k = 0; k < 8; ++k) removeAll(ch + std::int32_t(k), t + 1, childCoord(c, k), l);
+  for (unsigned k = 0; k < 8; ++k) removeAll(ln, ch + std::int32_t(k), t + 1, childCoord(c, k), l);
 }
 
 // end[i] = one past node i's preorder subtree, for every root's subtree.
@@ -247,19 +265,29 @@ void SceneOctree::subtreeEnds(const LightOctree& o, std::vector<std::uint32_t>& 
   }
 }
 
-inline SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc) {
+// Above a light octree's roots: which children of node (t, c) hold a root
+// (kHoldsRoot + r when the child is root r) or lie above one; one pass over
+// the roots per node instead of one per child.
+void SceneOctree::aboveChildren(const Stream& s, unsigned t, const glm::uvec3& c, std::uint8_t out[8]) {
+  std::fill(out, out + 8, kNoRoot);
+  const unsigned below = s.o.root_depth - t - 1;  // root_depth > t here
+  for (unsigned r = 0; r < s.o.root_count; ++r) {
+    const glm::uvec3 cc = s.o.roots[r] >> below;
+    if ((cc >> 1u) != c) continue;
+    out[childBit(cc)] = below == 0 ? std::uint8_t(kHoldsRoot + r) : kAboveRoot;
+  }
+}
+
+inline SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, std::uint8_t above) {
   switch (parent) {
     case Cover::Empty: return Cover::Empty;
     case Cover::Full: return Cover::Full;
     case Cover::Branch: return Cover(*s.cur++);
     case Cover::Above:
-      for (unsigned r = 0; r < s.o.root_count; ++r) {
-        if ((s.o.roots[r] >> (s.o.root_depth - t1)) != cc) continue;
-        if (t1 < s.o.root_depth) return Cover::Above;
-        s.cur = s.o.nodes.data() + s.o.root_start[r];
-        return Cover(*s.cur++);
-      }
-      return Cover::Empty;
+      if (above == kNoRoot) return Cover::Empty;
+      if (above == kAboveRoot) return Cover::Above;
+      s.cur = s.o.nodes.data() + s.o.root_start[above - kHoldsRoot];
+      return Cover(*s.cur++);
   }
   return Cover::Empty;
 }
@@ -280,10 +308,10 @@ void SceneOctree::replace(const LightOctree& a, const LightOctree& b, const std:
     return o.root_depth == 0 ? Cover(*s.cur++) : Cover::Above;  // depth 0: the one root is the scene root
   };
   const Cover ka = top(a, sa), kb = top(b, sb);
-  replaceRec(0, 0, glm::uvec3(0), ka, sa, kb, sb, b.light);
+  replaceRec(main_, 0, 0, glm::uvec3(0), ka, sa, kb, sb, b.light);
 }
 
-void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
+void SceneOctree::replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
                              Stream& sb, std::uint32_t l) {
   const bool pa = ka == Cover::Branch || ka == Cover::Above, pb = kb == Cover::Branch || kb == Cover::Above;
   if (!care(t, c) || (!pa && !pb && ka == kb)) {  // nothing stored here, or no change
@@ -292,8 +320,8 @@ void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Co
     return;
   }
   if (!pa && !pb) {  // whole node gained or lost the light
-    if (kb == Cover::Full) addFull(n, t, c, l);
-    else removeAll(n, t, c, l);
+    if (kb == Cover::Full) addFull(ln, n, t, c, l);
+    else removeAll(ln, n, t, c, l);
     return;
   }
   if (ka == Cover::Branch && kb == Cover::Branch) {
@@ -309,22 +337,181 @@ void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Co
   if (isLeaf(n)) {
     if (!pb) {  // the new version covers this leaf entirely or not at all
       consume(ka, sa);
-      if (kb == Cover::Full) addFull(n, t, c, l);
-      else if (eraseFromSet(n, l)) record(t, c);
+      if (kb == Cover::Full) addFull(ln, n, t, c, l);
+      else if (eraseFromSet(n, l)) record(ln, t, c);
       return;
     }
-    split(n, t, c);  // Table 8.1: the new version covers part of the leaf
+    split(ln, n, t, c);  // Table 8.1: the new version covers part of the leaf
   }
   const std::int32_t ch = nodes_[n].child;
+  std::uint8_t above_a[8] = {}, above_b[8] = {};
+  if (ka == Cover::Above) aboveChildren(sa, t, c, above_a);
+  if (kb == Cover::Above) aboveChildren(sb, t, c, above_b);
   for (unsigned k = 0; k < 8; ++k) {
     const glm::uvec3 cc = childCoord(c, k);
-    const Cover ca = childCover(ka, sa, t + 1, cc), cb = childCover(kb, sb, t + 1, cc);
+    const Cover ca = childCover(ka, sa, above_a[k]), cb = childCover(kb, sb, above_b[k]);
     if (ca == cb && (ca == Cover::Empty || ca == Cover::Full)) continue;  // unchanged here
-    replaceRec(ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
+    replaceRec(ln, ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
   }
 }
 
-void SceneOctree::removeEverywhere(std::uint32_t l) { removeAll(0, 0, glm::uvec3(0), l); }
+SceneOctree::Cover SceneOctree::coverAt(Stream& s, unsigned t, const glm::uvec3& c) {
+  const LightOctree& o = s.o;
+  if (o.empty()) return Cover::Empty;
+  if (t < o.root_depth) {
+    for (unsigned r = 0; r < o.root_count; ++r)
+      if ((o.roots[r] >> (o.root_depth - t)) == c) return Cover::Above;
+    return Cover::Empty;
+  }
+  for (unsigned r = 0; r < o.root_count; ++r) {
+    if ((c >> (t - o.root_depth)) != o.roots[r]) continue;
+    // Down from the root along c's path, skipping earlier siblings' subtrees.
+    s.cur = o.nodes.data() + o.root_start[r];
+    for (unsigned d = o.root_depth; d < t; ++d) {
+      const LightNode type = *s.cur++;
+      if (type != LightNode::Branch) return Cover(type);  // the same for every node below
+      const unsigned k = childBit(c >> (t - d - 1));
+      for (unsigned i = 0; i < k; ++i) s.cur = o.nodes.data() + s.end[s.cur - o.nodes.data()];
+    }
+    return Cover(*s.cur++);
+  }
+  return Cover::Empty;
+}
+
+// At most one split per branch of the new version and per node above its
+// roots; a full node at or above the start depth may split down to it.
+std::size_t SceneOctree::splitBound(const LightOctree& o, unsigned start_depth) {
+  if (o.empty()) return 0;
+  std::size_t bound = 0;
+  for (unsigned t = 0; t < o.root_depth; ++t) {  // distinct ancestors of the roots
+    glm::uvec3 seen[8];
+    unsigned n = 0;
+    for (unsigned r = 0; r < o.root_count; ++r) {
+      const glm::uvec3 a = o.roots[r] >> (o.root_depth - t);
+      if (std::find(seen, seen + n, a) == seen + n) seen[n++] = a;
+    }
+    bound += n;
+  }
+  // Preorder with 8 children per branch: the branch count follows from the size.
+  bound += (o.nodes.size() - o.root_count) / 8;
+  if (o.root_depth > start_depth) return bound;  // no full node at or above the start depth
+  if (o.root_depth == start_depth) {  // only the roots themselves are that high
+    for (unsigned r = 0; r < o.root_count; ++r) bound += o.nodes[o.root_start[r]] == LightNode::Full ? 1 : 0;
+    return bound;
+  }
+  for (unsigned r = 0; r < o.root_count; ++r) {
+    const LightNode* cur = o.nodes.data() + o.root_start[r];
+    unsigned pending[kMaxDepth + 2], top = 0;  // children left per open branch
+    unsigned t = o.root_depth;
+    for (;;) {
+      const LightNode type = *cur++;
+      if (type == LightNode::Branch) {
+        pending[top++] = 8;
+        ++t;
+        continue;
+      }
+      if (type == LightNode::Full && t <= start_depth) {
+        std::size_t level = 1;
+        for (unsigned d = t; d <= start_depth; ++d, level *= 8) bound += level;
+      }
+      while (top > 0 && --pending[top - 1] == 0) {
+        --top;
+        --t;
+      }
+      if (top == 0) break;
+    }
+  }
+  return bound;
+}
+
+void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
+  const unsigned P = std::min(2u, b_.start_depth);
+  // Few lights or no room to partition: not worth the tasks.
+  if (P == 0 || batch.size() < 32) {
+    for (const auto& r : batch) replace(*r.old_version, *r.new_version, r.old_ends, r.new_ends);
+    return;
+  }
+  // Every node above depth P becomes a branch (the tasks must not split
+  // shared nodes); normalize() merges back the ones that stay empty.
+  std::vector<std::int32_t> part(std::size_t(1) << (3 * P), -1);  // depth-P node per subtree
+  auto open = [&](auto& self, std::int32_t n, unsigned t, const glm::uvec3& c, std::size_t id) -> void {
+    if (t == P) {
+      part[id] = n;
+      return;
+    }
+    if (!care(t, c)) return;  // nothing is ever stored below
+    nodes_[n].dirty = true;
+    if (isLeaf(n)) split(main_, n, t, c);
+    for (unsigned k = 0; k < 8; ++k) self(self, nodes_[n].child + std::int32_t(k), t + 1, childCoord(c, k), id * 8 + k);
+  };
+  open(open, 0, 0, glm::uvec3(0), 0);
+  auto partId = [&](const glm::uvec3& c) {  // depth-P coordinate -> index in `part`
+    std::size_t id = 0;
+    for (unsigned d = 0; d < P; ++d) id = id * 8 + childBit(c >> (P - d - 1));
+    return id;
+  };
+  // Route each light to the subtrees its versions reach, in batch order.
+  std::vector<std::vector<std::uint32_t>> work(part.size());
+  std::size_t bound = 0;
+  std::vector<std::uint8_t> seen(part.size(), 0);
+  std::vector<std::size_t> ids;
+  for (std::uint32_t j = 0; j < batch.size(); ++j) {
+    bound += splitBound(*batch[j].new_version, b_.start_depth);
+    ids.clear();
+    for (const LightOctree* o : {batch[j].old_version, batch[j].new_version})
+      for (unsigned r = 0; r < o->root_count; ++r) {
+        if (o->root_depth >= P) {
+          ids.push_back(partId(o->roots[r] >> (o->root_depth - P)));
+          continue;
+        }
+        const unsigned shift = P - o->root_depth;  // the root spans 8^shift subtrees
+        const glm::uvec3 base = o->roots[r] << shift;
+        for (unsigned x = 0; x < (1u << shift); ++x)
+          for (unsigned y = 0; y < (1u << shift); ++y)
+            for (unsigned z = 0; z < (1u << shift); ++z) ids.push_back(partId(base + glm::uvec3(x, y, z)));
+      }
+    for (const auto id : ids)
+      if (part[id] >= 0 && !seen[id]) {
+        seen[id] = 1;
+        work[id].push_back(j);
+      }
+    for (const auto id : ids) seen[id] = 0;
+  }
+  // Reserve the blocks the tasks may split into, so that nodes_ stays put.
+  if (free_blocks_.size() < bound) {
+    const std::size_t grow = bound - free_blocks_.size();
+    const std::int32_t first = std::int32_t(nodes_.size());
+    nodes_.resize(nodes_.size() + 8 * grow);
+    sets_.resize(sets_.size() + 8 * grow);
+    sums_.resize(sums_.size() + 8 * grow);
+    for (std::size_t i = grow; i-- > 0;) free_blocks_.push_back(first + std::int32_t(8 * i));
+  }
+  reserved_taken_.store(0, std::memory_order_relaxed);
+  std::vector<std::size_t> busy;
+  for (std::size_t id = 0; id < part.size(); ++id)
+    if (!work[id].empty()) busy.push_back(id);
+  std::vector<Lane> lanes(busy.size());
+  tbb::parallel_for(std::size_t(0), busy.size(), [&](std::size_t i) {
+    const std::size_t id = busy[i];
+    Lane& ln = lanes[i];
+    ln.reserved = true;
+    glm::uvec3 c(0);
+    for (unsigned d = 0; d < P; ++d) c = childCoord(c, unsigned(id >> (3 * (P - d - 1))) & 7u);
+    for (const auto j : work[id]) {
+      const Replacement& r = batch[j];
+      Stream sa{*r.old_version, r.old_version->nodes.data(), r.old_ends->data()};
+      Stream sb{*r.new_version, r.new_version->nodes.data(), r.new_ends->data()};
+      const Cover ka = coverAt(sa, P, c), kb = coverAt(sb, P, c);
+      if (ka == kb && (ka == Cover::Empty || ka == Cover::Full)) continue;  // unchanged here
+      replaceRec(ln, part[id], P, c, ka, sa, kb, sb, r.new_version->light);
+    }
+  });
+  free_blocks_.resize(free_blocks_.size() - reserved_taken_.load(std::memory_order_relaxed));
+  for (auto& ln : lanes)
+    if (recording_) main_.touched.insert(main_.touched.end(), ln.touched.begin(), ln.touched.end());
+}
+
+void SceneOctree::removeEverywhere(std::uint32_t l) { removeAll(main_, 0, 0, glm::uvec3(0), l); }
 
 void SceneOctree::normalize() { normalizeRec(0, 0, glm::uvec3(0)); }
 
@@ -341,16 +528,24 @@ void SceneOctree::normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c) 
     if (!care(t + 1, childCoord(c, k))) continue;  // an empty leaf that takes any set
     if (!isLeaf(x)) return;
     if (!common) common = &sets_[x];
-    else if (*common != sets_[x]) return;
+    else if (sums_[common - sets_.data()] != sums_[x] || *common != sets_[x]) return;
   }
   const bool empty = !common || common->empty();
   if (!empty && t <= b_.start_depth) return;
-  if (!empty) sets_[n] = *common;
-  else sets_[n].clear();
-  for (unsigned k = 0; k < 8; ++k) std::vector<std::uint32_t>().swap(sets_[ch + std::int32_t(k)]);
+  if (!empty) {
+    sets_[n] = *common;
+    sums_[n] = sums_[common - sets_.data()];
+  } else {
+    sets_[n].clear();
+    sums_[n] = 0;
+  }
+  for (unsigned k = 0; k < 8; ++k) {
+    std::vector<std::uint32_t>().swap(sets_[ch + std::int32_t(k)]);
+    sums_[ch + std::int32_t(k)] = 0;
+  }
   nodes_[n].child = -1;
   free_blocks_.push_back(ch);
-  recordChildren(t, c);
+  recordChildren(main_, t, c);
 }
 
 SceneOctree::NodeView SceneOctree::view(std::int32_t n) const {
@@ -359,6 +554,7 @@ SceneOctree::NodeView SceneOctree::view(std::int32_t n) const {
   v.leaf = isLeaf(n);
   if (v.leaf) {
     v.lights = &sets_[n];
+    v.set_sum = sums_[n];
     return v;
   }
   for (unsigned k = 0; k < 8; ++k) {

@@ -19,6 +19,7 @@
 //    keys whose hash entries the linkless octree must re-derive.
 #include <glm/glm.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -53,6 +54,18 @@ class SceneOctree {
   void replace(const LightOctree& old_version, const LightOctree& new_version,
                const std::vector<std::uint32_t>* old_ends = nullptr,
                const std::vector<std::uint32_t>* new_ends = nullptr);
+  // Many lights' replacements at once, with the same result as replace() on
+  // each: the subtrees at depth min(2, start depth) are disjoint, so each is
+  // edited by its own task (TBB) with the lights whose old or new version
+  // reaches it. The tree is the same for any thread count; only which free
+  // node blocks hold which nodes varies. Ends as for replace(), not null.
+  struct Replacement {
+    const LightOctree* old_version;
+    const LightOctree* new_version;
+    const std::vector<std::uint32_t>* old_ends;
+    const std::vector<std::uint32_t>* new_ends;
+  };
+  void replaceAll(const std::vector<Replacement>& batch);
   // Per node of `light`: one past its preorder subtree (what replace() walks by).
   static void subtreeEnds(const LightOctree& light, std::vector<std::uint32_t>& end);
   // Removes `light` from every leaf (e.g. a light whose old octree is unknown).
@@ -67,6 +80,7 @@ class SceneOctree {
     bool exists = false;  // false: inside a leaf above `depth`, or outside
     bool leaf = false;
     const std::vector<std::uint32_t>* lights = nullptr;  // leaves
+    std::uint64_t set_sum = 0;  // leaves: LightSetPool::elementHash summed over `lights`
     std::uint8_t leaf_mask = 0, filled_mask = 0;          // branches: the 8 children
   };
   NodeView find(unsigned depth, const glm::uvec3& coord) const;
@@ -95,21 +109,29 @@ class SceneOctree {
   bool care(unsigned t, const glm::uvec3& c) const { return !mask_ || mask_->has(t, c); }
   bool isLeaf(std::int32_t n) const { return nodes_[n].child < 0; }
   NodeView view(std::int32_t n) const;
-  void record(unsigned t, const glm::uvec3& c);
-  void recordChildren(unsigned t, const glm::uvec3& c);
+  // Who is editing: the touched keys it recorded, and whether it takes node
+  // blocks from the reservation (parallel edits of disjoint subtrees) or
+  // may grow the node arrays (everyone else).
+  struct Lane {
+    std::vector<std::uint64_t> touched;
+    std::uint64_t last_parent = ~std::uint64_t(0);
+    bool reserved = false;
+  };
+  void record(Lane& ln, unsigned t, const glm::uvec3& c);
+  void recordChildren(Lane& ln, unsigned t, const glm::uvec3& c);
   // Siblings change together: a parent just recorded is not pushed again
   // (takeTouched() would drop the duplicate anyway, after sorting it).
-  void recordParent(std::uint64_t key) {
-    if (key == last_parent_) return;
-    touched_.push_back(key);
-    last_parent_ = key;
+  void recordParent(Lane& ln, std::uint64_t key) {
+    if (key == ln.last_parent) return;
+    ln.touched.push_back(key);
+    ln.last_parent = key;
   }
-  std::int32_t allocBlock();
-  void split(std::int32_t n, unsigned t, const glm::uvec3& c);
+  std::int32_t allocBlock(Lane& ln);
+  void split(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c);
   void insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
-  void addFull(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
+  void addFull(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
   void removeRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
-  void removeAll(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
+  void removeAll(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
   bool addToSet(std::int32_t n, std::uint32_t l);
   bool eraseFromSet(std::int32_t n, std::uint32_t l);
   void normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c);
@@ -123,13 +145,19 @@ class SceneOctree {
     // After reading a branch (cur is at its first child): past its children.
     const LightNode* branchEnd() const { return o.nodes.data() + end[(cur - o.nodes.data()) - 1]; }
   };
-  static inline Cover childCover(Cover parent, Stream& s, unsigned t1, const glm::uvec3& cc);
+  static constexpr std::uint8_t kNoRoot = 0, kAboveRoot = 1, kHoldsRoot = 2;
+  static void aboveChildren(const Stream& s, unsigned t, const glm::uvec3& c, std::uint8_t out[8]);
+  static inline Cover childCover(Cover parent, Stream& s, std::uint8_t above);
   static void consume(Cover k, Stream& s) {
     if (k == Cover::Branch) s.cur = s.branchEnd();
   }
   std::vector<std::uint32_t> end_a_, end_b_;  // replace()'s scratch
-  void replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb, Stream& sb,
-                  std::uint32_t l);
+  void replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
+                  Stream& sb, std::uint32_t l);
+  // A version's coverage of the node (t, c) with the stream positioned as
+  // replaceRec() expects it there (t must not exceed the version's depth).
+  static Cover coverAt(Stream& s, unsigned t, const glm::uvec3& c);
+  static std::size_t splitBound(const LightOctree& o, unsigned start_depth);
 
   template <class F>
   void walk(std::int32_t n, unsigned t, const glm::uvec3& c, F& f) const {
@@ -142,10 +170,14 @@ class SceneOctree {
   const GeometryMask* mask_;
   std::vector<Node> nodes_;                      // nodes_[0] is the root
   std::vector<std::vector<std::uint32_t>> sets_; // per node; only leaves use theirs
+  // Per node, LightSetPool::elementHash summed over sets_[n], kept with every
+  // edit so that the sync hashes a changed set in O(1) instead of reading it.
+  std::vector<std::uint64_t> sums_;
   std::vector<std::int32_t> free_blocks_;
   bool recording_ = false;
-  std::vector<std::uint64_t> touched_;
-  std::uint64_t last_parent_ = ~std::uint64_t(0);
+  Lane main_;
+  std::vector<std::uint64_t> sort_scratch_;
+  std::atomic<std::size_t> reserved_taken_{0};  // blocks taken from the back of free_blocks_
 };
 
 }  // namespace ml::hashed

@@ -1,0 +1,168 @@
+// The parallel tree edit (SceneOctree::replaceAll: one task per subtree at
+// depth 2) against one replace() at a time, with lights that span several
+// subtrees, sit on the subtrees' shared faces or touch the bounds; and whole
+// updates, sequential on 1 thread and parallel (HashedConfig::
+// parallel_tree_edits) on 1 and on 4 threads: identical light index lists
+// and hash tables, word for word.
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <random>
+#include <tuple>
+
+#include "hashed_support.hpp"
+#include "host/hashed/LightOctreeBuilder.hpp"
+#include "host/hashed/SceneOctree.hpp"
+#include "support/TestDevice.hpp"
+
+namespace ml::hashed {
+namespace {
+
+using namespace test_support;
+
+constexpr double kBox = 50.0;
+
+float& axis(gpu::PointLight& l, int a) {
+  return a == 0 ? l.position_radius.x : a == 1 ? l.position_radius.y : l.position_radius.z;
+}
+
+using NodeDump = std::vector<std::tuple<unsigned, std::uint64_t, bool, std::vector<std::uint32_t>>>;
+NodeDump dump(const SceneOctree& tree) {
+  NodeDump out;
+  tree.forEachNode([&](unsigned t, const glm::uvec3& c, const SceneOctree::NodeView& v) {
+    out.emplace_back(t, nodeKey(t, c), v.leaf, v.leaf ? *v.lights : std::vector<std::uint32_t>{});
+  });
+  return out;
+}
+
+// Random lights plus lights centred on the faces, edges and corners shared by
+// the depth-1 and depth-2 subtrees, some large enough to span many of them.
+// `inside`: every sphere inside the box (updates then never leave the bounds).
+std::vector<gpu::PointLight> partitionStressLights(std::mt19937_64& rng, const OctreeBounds& b, bool inside) {
+  auto lights = randomLights(rng, 300, kBox, 1.0, 3.0, !inside);
+  const double side = b.cell_size * double(1u << b.depth);
+  for (const double f : {0.25, 0.5, 0.75})
+    for (int i = 0; i < 12; ++i) {
+      glm::dvec3 p(uni(rng, 0, kBox), uni(rng, 0, kBox), uni(rng, 0, kBox));
+      const int axes = 1 + int(rng() % 3);  // a face, an edge or a corner
+      for (int a = 0; a < axes; ++a) p[(i + a) % 3] = b.origin[(i + a) % 3] + f * side;
+      const float r = i % 4 == 0 ? float(uni(rng, 6, inside ? 8 : 20)) : float(uni(rng, 0.5, 3));
+      lights.push_back(makeLight(glm::vec3(p), r, glm::vec3(1)));
+    }
+  for (auto& l : lights)  // centres inside the box the bounds were made for
+    for (int a = 0; a < 3; ++a) {
+      const float margin = inside ? l.position_radius.w : 0.0f;
+      axis(l, a) = std::clamp(axis(l, a), margin, float(kBox) - margin);
+    }
+  return lights;
+}
+
+TEST(HashedParallelEdit, ReplaceAllEqualsOneReplaceAtATime) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const OctreeBounds b = boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, 3);
+  ASSERT_GE(b.start_depth, 2u);
+  auto lights = partitionStressLights(rng, b, false);
+  LightGridScratch scratch;
+  std::vector<LightOctree> old_versions;
+  for (std::uint32_t i = 0; i < lights.size(); ++i)
+    old_versions.push_back(buildLightOctree(lights[i], i, b, scratch));
+  for (int round = 0; round < 3; ++round) {
+    SceneOctree one(b, nullptr), par1(b, nullptr), parN(b, nullptr);
+    for (auto* t : {&one, &par1, &parN}) {
+      for (const auto& o : old_versions) t->insert(o);
+      t->normalize();
+    }
+    // Move a third of the lights: small steps, jumps across subtrees, growth.
+    std::vector<LightOctree> moved_old, moved_new;
+    for (std::uint32_t i = 0; i < lights.size(); ++i) {
+      if (rng() % 3) continue;
+      auto l = lights[i];
+      const double step = rng() % 4 == 0 ? kBox * 0.5 : l.position_radius.w * 0.5;
+      for (int a = 0; a < 3; ++a)
+        axis(l, a) = std::clamp(axis(l, a) + float(uni(rng, -step, step)), 0.0f, float(kBox));
+      if (rng() % 5 == 0) l.position_radius.w *= float(uni(rng, 0.5, 2.0));
+      moved_old.push_back(old_versions[i]);
+      moved_new.push_back(buildLightOctree(l, i, b, scratch));
+      lights[i] = l;
+      old_versions[i] = moved_new.back();
+    }
+    ASSERT_GE(moved_new.size(), 32u);  // replaceAll's parallel path
+    std::vector<std::vector<std::uint32_t>> ends_old(moved_old.size()), ends_new(moved_new.size());
+    std::vector<SceneOctree::Replacement> batch;
+    for (std::size_t k = 0; k < moved_old.size(); ++k) {
+      SceneOctree::subtreeEnds(moved_old[k], ends_old[k]);
+      SceneOctree::subtreeEnds(moved_new[k], ends_new[k]);
+      batch.push_back({&moved_old[k], &moved_new[k], &ends_old[k], &ends_new[k]});
+    }
+    for (const auto& r : batch) one.replace(*r.old_version, *r.new_version);
+    tbb::task_arena(1).execute([&] { par1.replaceAll(batch); });
+    tbb::task_arena(4).execute([&] { parN.replaceAll(batch); });
+    for (auto* t : {&one, &par1, &parN}) t->normalize();
+    const NodeDump want = dump(one);
+    EXPECT_TRUE(dump(par1) == want) << "round " << round << ", 1 thread";
+    EXPECT_TRUE(dump(parN) == want) << "round " << round << ", 4 threads";
+    // And both equal the tree built from scratch.
+    SceneOctree fresh(b, nullptr);
+    for (const auto& o : old_versions) fresh.insert(o);
+    fresh.normalize();
+    EXPECT_TRUE(dump(fresh) == want) << "round " << round;
+    if (HasFailure()) return;
+  }
+}
+
+TEST(HashedParallelEdit, UpdatesDoNotDependOnTheThreadCount) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  HashedConfig cfg;
+  cfg.node_size = "0.5";
+  cfg.max_incremental_fraction = 1.0;
+  const OctreeBounds b = boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, cfg.start_depth);
+  auto lights = partitionStressLights(rng, b, true);
+  // Sequential edits on 1 thread against parallel ones on 1 and 4 threads.
+  HashedConfig par_cfg = cfg;
+  par_cfg.parallel_tree_edits = true;
+  HashedStructure one(cfg), par1(par_cfg), many(par_cfg);
+  tbb::task_arena a1(1), a4(4);
+  a1.execute([&] { one.build(lights, b); });
+  a1.execute([&] { par1.build(lights, b); });
+  a4.execute([&] { many.build(lights, b); });
+  for (int round = 0; round < 6; ++round) {
+    for (auto& l : lights) {
+      if (rng() % 4) continue;
+      const float r = l.position_radius.w, step = r * 0.4f;
+      for (int a = 0; a < 3; ++a)
+        axis(l, a) = std::clamp(axis(l, a) + float(uni(rng, -step, step)), r, float(kBox) - r);
+    }
+    const UpdateStats s1 = a1.execute([&] { return one.update(lights); });
+    const UpdateStats p1 = a1.execute([&] { return par1.update(lights); });
+    const UpdateStats s4 = a4.execute([&] { return many.update(lights); });
+    ASSERT_FALSE(s1.full_rebuild) << s1.reason;
+    ASSERT_FALSE(p1.full_rebuild) << p1.reason;
+    ASSERT_FALSE(s4.full_rebuild) << s4.reason;
+    EXPECT_GE(s1.moved, 32u);
+    const LinklessOctree& x = one.linkless();
+    for (const LinklessOctree* y : {&par1.linkless(), &many.linkless()}) {
+      EXPECT_EQ(x.pool().list(), y->pool().list()) << "round " << round;
+      ASSERT_EQ(x.layerCount(), y->layerCount());
+      for (unsigned i = 0; i < x.layerCount(); ++i) {
+        EXPECT_EQ(x.desc(i).tableWords(), y->desc(i).tableWords()) << "layer " << i;
+        EXPECT_EQ(x.desc(i).offsetWords(), y->desc(i).offsetWords()) << "layer " << i;
+        EXPECT_EQ(x.data(i).tableWords(), y->data(i).tableWords()) << "layer " << i;
+        EXPECT_EQ(x.data(i).offsetWords(), y->data(i).offsetWords()) << "layer " << i;
+      }
+    }
+    HashedStructure fresh(cfg);
+    fresh.build(lights, b);
+    for (int i = 0; i < 1000; ++i) {
+      const glm::vec3 p = randomPointIn(rng, b);
+      ASSERT_EQ(x.lightsAt(p), fresh.linkless().lightsAt(p));
+    }
+    if (HasFailure()) return;
+  }
+}
+
+}  // namespace
+}  // namespace ml::hashed
