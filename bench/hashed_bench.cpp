@@ -153,6 +153,7 @@ int run(int argc, char** argv) {
   app.add_flag("--lazy-removal", lazy_removal,
                "updates: leave moved lights' old indices until a flush (conservative superset lookups)");
   CLI11_PARSE(app, argc, argv);
+  benchutil::requireWritable("--json", json_path);
   unsigned width = 0, height = 0;
   parseSize(size, "--size", width, height);
 
