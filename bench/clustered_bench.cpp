@@ -156,22 +156,27 @@ int run(int argc, char** argv) {
       cl::Buffer lbuf(rt->context(), CL_MEM_READ_ONLY, std::max<std::size_t>(32, n * sizeof(gpu::PointLight)));
       if (n) q.enqueueWriteBuffer(lbuf, CL_TRUE, 0, n * sizeof(gpu::PointLight), lights.data());
       cl::Buffer ranges(rt->context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, clusters * 8));
-      cl::Buffer indices;
-      std::size_t cap = 0;
-      // Lights -> clusters: count (BVH build included) + scan + fill, the boxes made beforehand.
+      cl::Buffer list_records, leaf_lights;
+      std::size_t cap = 0, leaf_cap = 0;
+      // Lights -> clusters: count (BVH build included) + scan + fill (hit
+      // records copied into place, leaf slots' light ids), the boxes made beforehand.
       auto run_assign = [&](ClusterLightAssigner& a, std::uint32_t& total, ClPassTimer* timer) {
         total = a.assign(q, lbuf, n, cam, timer);
-        if (std::size_t(total) * 4 + 16 > cap) {
-          cap = std::size_t(total) * 6 + 16;
-          indices = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
+        if (std::size_t(total) * 8 + 16 > cap) {
+          cap = std::size_t(total) * 12 + 16;
+          list_records = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
         }
-        a.fill(q, ranges, indices, timer);
+        if (a.leafLightSlots() * 4 + 16 > leaf_cap) {
+          leaf_cap = a.leafLightSlots() * 4 + 16;
+          leaf_lights = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, leaf_cap);
+        }
+        a.fill(q, ranges, list_records, leaf_lights, timer);
         q.finish();
       };
       struct Timed {
         double seconds = 0, cpu_seconds = 0;
-        std::uint32_t total = 0;
-        std::uint64_t hit_leaves = 0;
+        std::uint32_t total = 0;  // records (hit leaves)
+        std::uint64_t listed = 0;  // lights in the lists
       };
       auto time_assign = [&](ClusterLightAssigner& a) {
         Timed r;
@@ -186,9 +191,9 @@ int run(int argc, char** argv) {
         timer.collect(passes);
         std::printf("    %s leaf %u passes (device ms):", clusterAssignName(a.method()), a.leafSize());
         for (const auto& [name, ms] : passes.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
-        r.hit_leaves = a.hitLeaves(q);
-        std::printf(" | hit leaves %llu (%.1f lights each)\n", static_cast<unsigned long long>(r.hit_leaves),
-                    r.hit_leaves ? double(r.total) / double(r.hit_leaves) : 0.0);
+        r.listed = a.listedLights(q);
+        std::printf(" | hit leaves %u (%.1f lights each)\n", r.total,
+                    r.total ? double(r.listed) / double(r.total) : 0.0);
         return r;
       };
       // Each leaf size: the BVH and brute force (the same leaf test over
@@ -210,7 +215,7 @@ int run(int argc, char** argv) {
         bvh_runs.emplace_back(bvh.leafSize(), time_assign(bvh));
         if (n <= brute_max) {
           brute_runs.emplace_back(brute.leafSize(), time_assign(brute));
-          if (brute_runs.back().second.total != bvh_runs.back().second.total)
+          if (brute_runs.back().second.listed != bvh_runs.back().second.listed)
             throw std::runtime_error("BVH and brute force disagree on the list size");
         }
       }
@@ -224,20 +229,21 @@ int run(int argc, char** argv) {
         const double t_brute = i < brute_runs.size() ? brute_runs[i].second.seconds : 0.0;
         std::printf("  %-11s %8u %5u %12.3f %12s %10s %12u %7u %10llu %10s\n", size.c_str(), n, leaf, b.seconds * 1e3,
                     t_brute > 0 ? std::to_string(t_brute * 1e3).c_str() : "-",
-                    best_brute > 0 ? (std::to_string(best_brute / b.seconds) + "x").c_str() : "-", b.total,
-                    levelsFor(n, leaf), static_cast<unsigned long long>(b.hit_leaves),
+                    best_brute > 0 ? (std::to_string(best_brute / b.seconds) + "x").c_str() : "-",
+                    unsigned(b.listed), levelsFor(n, leaf), static_cast<unsigned long long>(b.total),
                     best_brute_cpu > 0 ? (std::to_string(best_brute_cpu / b.cpu_seconds) + "x").c_str() : "-");
         records.push_back({{"name", "cluster_assign_bvh"}, {"resolution", size}, {"n", n}, {"lights", n},
                            {"leaf_size", leaf}, {"clusters", clusters}, {"seconds", b.seconds},
                            {"cpu_seconds", b.cpu_seconds},
-                           {"items_per_second", n / b.seconds}, {"list_entries", b.total},
-                           {"hit_leaves", b.hit_leaves}, {"bvh_levels", levelsFor(n, leaf)},
+                           {"items_per_second", n / b.seconds}, {"list_entries", b.listed},
+                           {"hit_leaves", b.total}, {"bvh_levels", levelsFor(n, leaf)},
                            {"cluster_bounds", bounds}});
         if (t_brute > 0)
           records.push_back({{"name", "cluster_assign_brute"}, {"resolution", size}, {"n", n}, {"lights", n},
                              {"leaf_size", leaf}, {"clusters", clusters}, {"seconds", t_brute},
                              {"cpu_seconds", brute_runs[i].second.cpu_seconds},
-                             {"items_per_second", n / t_brute}, {"list_entries", brute_runs[i].second.total},
+                             {"items_per_second", n / t_brute}, {"list_entries", brute_runs[i].second.listed},
+                             {"hit_leaves", brute_runs[i].second.total},
                              {"speedup_bvh_vs_best_brute", best_brute / b.seconds},
                              {"cpu_speedup_bvh_vs_best_brute", best_brute_cpu / b.cpu_seconds}});
       }

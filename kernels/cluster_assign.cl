@@ -6,7 +6,8 @@
  *   cluster_pixel_boxes   depth + pixel -> cluster map -> view-space AABB of
  *                         each cluster's pixels (explicit bounds)
  *   light_bounds_*        bounding cube of the light centres (the Morton frame)
- *   light_morton          30-bit Morton code of each light's quantized position
+ *   light_morton          Morton code of each light's quantized position
+ *                         (MORTON_AXIS_BITS per axis)
  *   (radix sort of the codes, light indices as payload)      [BVH only]
  *   pack_leaves           LEAF_SIZE lights per leaf as structure of arrays, and the
  *                         leaf boxes (BVH: Morton order; brute force: given order)
@@ -201,6 +202,9 @@ __kernel void pack_leaves(__global const float4* spheres, __global const uint* i
   if (first >= n) return;
   __global float* b = soa + (size_t)leaf * (4u * LEAF_SIZE);
   float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  /* The leaf's view-space centres (z as distance), gathered once for the
+   * bounding sphere's two passes below. */
+  float4 p_leaf[LEAF_SIZE];
   for (uint i = 0; i < LEAF_SIZE; ++i) {
     const uint k = first + i;
     if (k >= n) {
@@ -222,25 +226,22 @@ __kernel void pack_leaves(__global const float4* spheres, __global const uint* i
     const float4 p = (float4)(s.x, s.y, -s.z, 0.0f);
     lo = fmin(lo, p - r);
     hi = fmax(hi, p + r);
+    p_leaf[i] = (float4)(p.xyz, s.w);
   }
   if (write_boxes) {
     node_lo[leaf] = lo;
     node_hi[leaf] = hi;
     /* Bounding sphere: centre of the centres' box, radius over the lights. */
     float4 clo = (float4)(INFINITY), chi = (float4)(-INFINITY);
-    const uint last = min(first + LEAF_SIZE, n);
-    for (uint k = first; k < last; ++k) {
-      const float4 s = spheres[use_ids ? ids[k] : k];
-      const float4 p = (float4)(s.x, s.y, -s.z, 0.0f);
+    const uint count = min(LEAF_SIZE, n - first);
+    for (uint i = 0; i < count; ++i) {
+      const float4 p = (float4)(p_leaf[i].xyz, 0.0f);
       clo = fmin(clo, p);
       chi = fmax(chi, p);
     }
     const float4 c = (clo + chi) * 0.5f;
     float rad = 0.0f;
-    for (uint k = first; k < last; ++k) {
-      const float4 s = spheres[use_ids ? ids[k] : k];
-      rad = fmax(rad, length((float4)(s.x, s.y, -s.z, 0.0f) - c) + s.w);
-    }
+    for (uint i = 0; i < count; ++i) rad = fmax(rad, length((float4)(p_leaf[i].xyz, 0.0f) - c) + p_leaf[i].w);
     node_sph[leaf] = (float4)(c.xyz, rad * 1.001f + 1e-6f);
   }
 }
@@ -289,14 +290,20 @@ __kernel void light_bounds_final(__global const float4* part_lo, __global const 
 }
 
 /* Quantized in the cube [lo, lo + extent] of frame[0]; positions outside
- * (none, with the frame above) would clamp, which only costs tree quality. */
+ * (none, with the frame above) would clamp, which only costs tree quality.
+ * 8 bits per axis (the host's default) make 3 radix passes of 8 bits instead
+ * of 4: lights that share a cell of 1/256 of the extent keep their input
+ * order, which at 32 lights per leaf costs nothing measurable. */
+#ifndef MORTON_AXIS_BITS
+#define MORTON_AXIS_BITS 10u
+#endif
 __kernel void light_morton(__global const float4* spheres, uint n, __global const float4* frame,
                            __global uint* codes, __global uint* ids) {
   const uint i = get_global_id(0);
   if (i >= n) return;
   const float4 s = spheres[i];
   const float4 f = frame[0];
-  const float3 t = clamp((s.xyz - f.xyz) * f.w, 0.0f, 1.0f) * 1023.0f;
+  const float3 t = clamp((s.xyz - f.xyz) * f.w, 0.0f, 1.0f) * (float)((1u << MORTON_AXIS_BITS) - 1u);
   codes[i] = spread10((uint)t.x) | (spread10((uint)t.y) << 1) | (spread10((uint)t.z) << 2);
   ids[i] = i;
 }
@@ -408,58 +415,53 @@ __kernel void cluster_order(__global const uint* keys, uint count, uint x_bits, 
 /* ------------------------------------------------------------ assignment
  *
  * count -> scan -> fill, one work-item per cluster with private state (the
- * CPU shape; see the PoCL notes). The count pass walks (or, brute force,
- * sweeps) the leaves and records each hit leaf as (leaf, mask) in the
- * cluster's own slots of a scratch buffer, up to `slots` of them; the fill
- * pass then only expands those masks into light indices. A cluster with more
- * hit leaves than slots is walked again by the fill pass. So nothing is
- * truncated and nothing needs atomics.
+ * CPU shape; see the PoCL notes). A cluster's light list is a list of hit
+ * records (first light slot of the leaf, hit mask): the leaf test yields a
+ * mask anyway, and a record stands for ~11 lights at high light densities, so
+ * the lists are several times smaller than index lists and nothing has to
+ * expand them on the device (the shader walks the masks, lookup_clustered.glsl).
+ * The count pass walks (or, brute force, sweeps) the leaves and records each
+ * hit leaf in the cluster's own slots of a scratch buffer, up to `slots` of
+ * them; the fill pass copies them to the cluster's place in the list. A
+ * cluster with more hit leaves than slots is walked again by the fill pass.
+ * So nothing is truncated and nothing needs atomics.
  *
  * The walk keeps a stack of inner nodes whose boxes overlap the cluster box
  * (level << 27 | node); popping one tests its 32 children at once, and the
  * leaves among them test their LEAF_SIZE lights. use_bvh = 0: brute force,
  * every leaf in order. */
 
-inline uint emit_leaf(uint leaf, uint mask, __global const uint* leaf_ids, __global uint* out, uint m) {
-  while (mask != 0u) {
-    const uint bit = mask & (0u - mask);
-    out[m++] = leaf_ids[leaf * LEAF_SIZE + (31u - clz(bit))];
-    mask ^= bit;
-  }
-  return m;
-}
-
-/* One leaf: its hit mask, then (mode 0) a record and the count, or (mode 1)
- * the lights written out. */
-inline void visit_leaf(uint mode, uint leaf, __global const float* soa, __global const uint* leaf_ids, float4 lo,
-                       float4 hi, __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint* out,
-                       uint* m, uint* h) {
+/* One leaf: its hit mask, then a record in the count pass's slots (mode 0,
+ * while they last) or in the list (mode 1); *m counts lights, *h records. */
+inline void visit_leaf(uint mode, uint leaf, __global const float* soa, float4 lo, float4 hi,
+                       __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint2* out, uint* m,
+                       uint* h) {
   const uint mask = leaf_mask(soa, leaf, lo, hi);
   if (mask == 0u) return;
   if (mode == 0u) {
     if (*h < slots) {
-      rec_leaf[*h] = leaf;
+      rec_leaf[*h] = leaf * LEAF_SIZE;
       rec_mask[*h] = mask;
     }
-    *m += popcount(mask);
   } else {
-    *m = emit_leaf(leaf, mask, leaf_ids, out, *m);
+    out[*h] = (uint2)(leaf * LEAF_SIZE, mask);
   }
+  *m += popcount(mask);
   ++*h;
 }
 
 /* mode 0: count, recording hit leaves into rec_leaf/rec_mask (up to slots);
- * mode 1: count and write the lights to out. Returns the light count and, in
- * *hit_leaves, the number of leaves with hits. The leaves under a node of
+ * mode 1: count and write the records to out. Returns the light count and, in
+ * *hit_leaves, the number of leaves with hits (records). The leaves under a node of
  * level 1 are tested straight from its children's mask, never stacked: they
  * are most of the nodes a walk reaches. */
-inline uint walk(uint mode, uint use_bvh, __global const float* soa, __global const uint* leaf_ids, uint n_leaves,
+inline uint walk(uint mode, uint use_bvh, __global const float* soa, uint n_leaves,
                  __global const float* nsoa, __global const uint* block_start, uint levels, float4 lo, float4 hi,
-                 __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint* out, uint* hit_leaves) {
+                 __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint2* out, uint* hit_leaves) {
   uint m = 0u, h = 0u;
   if (!use_bvh) {
     for (uint leaf = 0; leaf < n_leaves; ++leaf)
-      visit_leaf(mode, leaf, soa, leaf_ids, lo, hi, rec_leaf, rec_mask, slots, out, &m, &h);
+      visit_leaf(mode, leaf, soa, lo, hi, rec_leaf, rec_mask, slots, out, &m, &h);
     *hit_leaves = h;
     return m;
   }
@@ -469,7 +471,7 @@ inline uint walk(uint mode, uint use_bvh, __global const float* soa, __global co
     /* One block of at most 32 leaves. */
     while (mask != 0u) {
       const uint bit = mask & (0u - mask);
-      visit_leaf(mode, 31u - clz(bit), soa, leaf_ids, lo, hi, rec_leaf, rec_mask, slots, out, &m, &h);
+      visit_leaf(mode, 31u - clz(bit), soa, lo, hi, rec_leaf, rec_mask, slots, out, &m, &h);
       mask ^= bit;
     }
     *hit_leaves = h;
@@ -489,8 +491,7 @@ inline uint walk(uint mode, uint use_bvh, __global const float* soa, __global co
     if (l == 1u) {
       while (children != 0u) {
         const uint bit = children & (0u - children);
-        visit_leaf(mode, node * BVH_BRANCH + (31u - clz(bit)), soa, leaf_ids, lo, hi, rec_leaf, rec_mask, slots, out,
-                   &m, &h);
+        visit_leaf(mode, node * BVH_BRANCH + (31u - clz(bit)), soa, lo, hi, rec_leaf, rec_mask, slots, out, &m, &h);
         children ^= bit;
       }
       continue;
@@ -505,38 +506,35 @@ inline uint walk(uint mode, uint use_bvh, __global const float* soa, __global co
   return m;
 }
 
-__kernel void assign_count(__global const float* soa, __global const uint* leaf_ids, uint n_leaves,
-                           __global const float* nsoa, __global const uint* block_start, uint levels, uint use_bvh,
-                           __global const float4* box_lo, __global const float4* box_hi, uint count,
-                           __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint* hit_leaves,
-                           __global uint* counts, __global const uint* order, uint use_order) {
+__kernel void assign_count(__global const float* soa, uint n_leaves, __global const float* nsoa,
+                           __global const uint* block_start, uint levels, uint use_bvh, __global const float4* box_lo,
+                           __global const float4* box_hi, uint count, __global uint* rec_leaf, __global uint* rec_mask,
+                           uint slots, __global uint* hit_leaves, __global uint* counts, __global const uint* order,
+                           uint use_order) {
   if (get_global_id(0) >= count) return;
   const uint c = use_order ? order[get_global_id(0)] : (uint)get_global_id(0);
   uint h = 0u;
   counts[c] = n_leaves == 0u ? 0u
-                             : walk(0u, use_bvh, soa, leaf_ids, n_leaves, nsoa, block_start, levels, box_lo[c],
-                                    box_hi[c], rec_leaf + (size_t)c * slots, rec_mask + (size_t)c * slots, slots, 0,
-                                    &h);
+                             : walk(0u, use_bvh, soa, n_leaves, nsoa, block_start, levels, box_lo[c], box_hi[c],
+                                    rec_leaf + (size_t)c * slots, rec_mask + (size_t)c * slots, slots, 0, &h);
   hit_leaves[c] = h;
 }
 
-__kernel void assign_fill(__global const float* soa, __global const uint* leaf_ids, uint n_leaves,
-                          __global const float* nsoa, __global const uint* block_start, uint levels, uint use_bvh,
-                          __global const float4* box_lo, __global const float4* box_hi, uint count,
-                          __global const uint* rec_leaf, __global const uint* rec_mask, uint slots,
-                          __global const uint* hit_leaves, __global const uint* offsets, __global uint* indices,
-                          __global const uint* order, uint use_order) {
+/* offsets: exclusive scan of hit_leaves (records). */
+__kernel void assign_fill(__global const float* soa, uint n_leaves, __global const float* nsoa,
+                          __global const uint* block_start, uint levels, uint use_bvh, __global const float4* box_lo,
+                          __global const float4* box_hi, uint count, __global const uint* rec_leaf,
+                          __global const uint* rec_mask, uint slots, __global const uint* hit_leaves,
+                          __global const uint* offsets, __global uint2* records, __global const uint* order,
+                          uint use_order) {
   if (get_global_id(0) >= count) return;
   const uint c = use_order ? order[get_global_id(0)] : (uint)get_global_id(0);
   const uint h = hit_leaves[c];
-  __global uint* out = indices + offsets[c];
+  __global uint2* out = records + offsets[c];
   if (h <= slots) {
-    uint m = 0u;
-    for (uint j = 0; j < h; ++j)
-      m = emit_leaf(rec_leaf[(size_t)c * slots + j], rec_mask[(size_t)c * slots + j], leaf_ids, out, m);
+    for (uint j = 0; j < h; ++j) out[j] = (uint2)(rec_leaf[(size_t)c * slots + j], rec_mask[(size_t)c * slots + j]);
     return;
   }
   uint unused = 0u;
-  walk(1u, use_bvh, soa, leaf_ids, n_leaves, nsoa, block_start, levels, box_lo[c], box_hi[c], 0, 0, 0u, out,
-       &unused);
+  walk(1u, use_bvh, soa, n_leaves, nsoa, block_start, levels, box_lo[c], box_hi[c], 0, 0, 0u, out, &unused);
 }

@@ -41,7 +41,8 @@ Frame clusters(ClusterUniquer& u, const test::ClusterCase& c, cl::Buffer& depth,
   return f;
 }
 
-// Sorted list per cluster, with the range layout checked. pixels: explicit bounds.
+// Sorted list per cluster, expanded from the hit records, with the range and
+// record layout checked. pixels: explicit bounds.
 std::vector<std::vector<std::uint32_t>> assign(ClusterLightAssigner& a, ClusterUniquer& u, const test::ClusterCase& c,
                                                const Frame& f, const ClusterPixels* pixels) {
   ClRuntime& rt = test::runtime();
@@ -51,18 +52,37 @@ std::vector<std::vector<std::uint32_t>> assign(ClusterLightAssigner& a, ClusterU
   if (n) q.enqueueWriteBuffer(lights, CL_TRUE, 0, n * 32, c.lights.data());
   const auto clusters = std::uint32_t(f.unique.size());
   const std::uint32_t total = a.count(q, lights, n, c.cam(), f.grid, u.uniqueKeys(), clusters, nullptr, pixels);
+  const std::size_t slots = a.leafLightSlots();
   cl::Buffer ranges(rt.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, clusters * 8));
-  cl::Buffer indices(rt.context(), CL_MEM_READ_WRITE, total * 4 + 64);
+  cl::Buffer records(rt.context(), CL_MEM_READ_WRITE, total * 8 + 64);
+  cl::Buffer leaf_lights(rt.context(), CL_MEM_READ_WRITE, slots * 4 + 64);
   q.enqueueFillBuffer(ranges, kPoison, 0, std::max<std::size_t>(16, clusters * 8));
-  q.enqueueFillBuffer(indices, kPoison, 0, total * 4 + 64);
-  a.fill(q, ranges, indices);
+  q.enqueueFillBuffer(records, kPoison, 0, total * 8 + 64);
+  q.enqueueFillBuffer(leaf_lights, kPoison, 0, slots * 4 + 64);
+  a.fill(q, ranges, records, leaf_lights);
   std::vector<gpu::LightRange> r(clusters);
-  std::vector<std::uint32_t> idx(total + 16);
+  std::vector<std::uint32_t> rec(2 * (total + 8)), leaf(slots + 16);
   if (clusters) q.enqueueReadBuffer(ranges, CL_TRUE, 0, clusters * 8, r.data());
-  q.enqueueReadBuffer(indices, CL_TRUE, 0, idx.size() * 4, idx.data());
-  for (std::size_t i = total; i < idx.size(); ++i) EXPECT_EQ(idx[i], kPoison) << "write past the list end";
+  q.enqueueReadBuffer(records, CL_TRUE, 0, rec.size() * 4, rec.data());
+  q.enqueueReadBuffer(leaf_lights, CL_TRUE, 0, leaf.size() * 4, leaf.data());
+  for (std::size_t i = 2 * std::size_t(total); i < rec.size(); ++i) EXPECT_EQ(rec[i], kPoison) << "write past the list end";
+  for (std::size_t i = slots; i < leaf.size(); ++i) EXPECT_EQ(leaf[i], kPoison) << "write past the leaf slots";
+  // Every light sits in exactly one slot; slots past the last light are empty.
+  std::vector<std::uint32_t> seen(n, 0);
+  for (std::size_t i = 0; i < slots; ++i) {
+    if (leaf[i] == 0xffffffffu) continue;
+    if (leaf[i] >= n) {
+      ADD_FAILURE() << "leaf slot " << i << " holds " << leaf[i];
+      continue;
+    }
+    ++seen[leaf[i]];
+  }
+  if (clusters) {
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1u), std::ptrdiff_t(n)) << "leaf slots are not a permutation";
+  }
   std::vector<std::vector<std::uint32_t>> lists(clusters);
   std::uint32_t offset = 0;
+  std::uint64_t lights_listed = 0;
   for (std::uint32_t k = 0; k < clusters; ++k) {
     EXPECT_EQ(r[k].offset, offset) << "cluster " << k;
     offset += r[k].count;
@@ -70,10 +90,25 @@ std::vector<std::vector<std::uint32_t>> assign(ClusterLightAssigner& a, ClusterU
       ADD_FAILURE() << "cluster " << k << " out of range";
       continue;
     }
-    lists[k].assign(idx.begin() + r[k].offset, idx.begin() + r[k].offset + r[k].count);
+    for (std::uint32_t j = r[k].offset; j < r[k].offset + r[k].count; ++j) {
+      const std::uint32_t slot = rec[2 * j], mask = rec[2 * j + 1];
+      if (mask == 0 || slot % a.leafSize() != 0 || slot + a.leafSize() > slots) {
+        ADD_FAILURE() << "cluster " << k << ": bad record (" << slot << ", " << mask << ")";
+        continue;
+      }
+      for (unsigned b = 0; b < a.leafSize(); ++b) {
+        if (!(mask >> b & 1u)) continue;
+        EXPECT_LT(leaf[slot + b], n) << "cluster " << k << " lists an empty slot";
+        lists[k].push_back(leaf[slot + b]);
+      }
+    }
+    lights_listed += lists[k].size();
     std::sort(lists[k].begin(), lists[k].end());
+    EXPECT_EQ(std::adjacent_find(lists[k].begin(), lists[k].end()), lists[k].end()) << "cluster " << k << ": a light twice";
   }
   EXPECT_EQ(offset, total);
+  EXPECT_EQ(a.hitLeaves(q), total);
+  EXPECT_EQ(a.listedLights(q), lights_listed);
   return lists;
 }
 

@@ -58,4 +58,10 @@ LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {
   return none;
 }
 
-uint lightIndexAt(LightList list, uint i) { return hs_light_indices[list.offset + i]; }
+bool nextLight(inout LightList list, out uint light_index) {
+  light_index = 0u;
+  if (list.count == 0u) return false;
+  light_index = hs_light_indices[list.offset++];
+  --list.count;
+  return true;
+}

@@ -12,4 +12,10 @@ LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {
   uvec2 r = tile_grid[tile.y * u_tiles_x + tile.x];
   return LightList(r.x, r.y);
 }
-uint lightIndexAt(LightList list, uint i) { return light_indices[list.offset + i]; }
+bool nextLight(inout LightList list, out uint light_index) {
+  light_index = 0u;
+  if (list.count == 0u) return false;
+  light_index = light_indices[list.offset++];
+  --list.count;
+  return true;
+}

@@ -1,7 +1,7 @@
 // The main thesis's shading model, exactly: white Lambert, attenuation
 // (1 - d/r) clamped to [0,1] then squared, cosine clamped, ambient 0.1:
 //   colour = base * (0.1 + 0.9 * sum_i I_i * cos_i * att_i)
-// `lightListFor` and `lightIndexAt` come from the technique's lookup_*.glsl.
+// `lightListFor` and `nextLight` come from the technique's lookup_*.glsl.
 vec3 computeLight(PointLight light, vec3 P, vec3 N) {
   vec3 L = light.position_radius.xyz - P;
   float d = length(L);
@@ -16,19 +16,20 @@ vec3 computeLight(PointLight light, vec3 P, vec3 N) {
 vec3 shadePoint(vec3 P, vec3 N, vec3 view_pos, vec2 frag_coord, vec3 base_color, out uvec2 counts) {
   LightList list = lightListFor(P, view_pos, frag_coord);
   vec3 acc = vec3(0.0);
-  uint in_range = 0u;
-  for (uint i = 0u; i < list.count; ++i) {
-    PointLight light = lights[lightIndexAt(list, i)];
+  uint evaluated = 0u, in_range = 0u, light_index;
+  while (nextLight(list, light_index)) {
+    PointLight light = lights[light_index];
     acc += computeLight(light, P, N);
+    ++evaluated;
 #ifdef COUNT_LIGHTS
     vec3 dv = light.position_radius.xyz - P;
     if (dot(dv, dv) < light.position_radius.w * light.position_radius.w) in_range++;
 #endif
   }
-  counts = uvec2(list.count, in_range);
+  counts = uvec2(evaluated, in_range);
 #ifdef COUNT_LIGHTS
-  uint before = atomicAdd(fragment_evaluations_lo, list.count);
-  if (before + list.count < before) atomicAdd(fragment_evaluations_hi, 1u);
+  uint before = atomicAdd(fragment_evaluations_lo, evaluated);
+  if (before + evaluated < before) atomicAdd(fragment_evaluations_hi, 1u);
 #endif
   return base_color * (vec3(0.1) + 0.9 * acc);
 }

@@ -5,8 +5,11 @@
 //   2. assign(inputs)       -- builds/updates the structure, on the CL device,
 //   3. bindForShading(prog) -- binds the structure's buffers for GLSL,
 // and the shared forward/deferred shaders include lookupShader(), which must
-// define `struct LightList`, `LightList lightListFor(vec3 world_pos,
-// vec3 view_pos, vec2 frag_coord)` and `uint lightIndexAt(LightList, uint i)`.
+// define `struct LightList` (a cursor over the point's lights), `LightList
+// lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord)` and `bool
+// nextLight(inout LightList, out uint light_index)` (false past the end). A
+// cursor rather than (offset, count) lets a list be stored compressed
+// (clustered shading's hit masks).
 // Every technique's lists must be conservative: each light whose sphere
 // contains the shaded point is in its list (tests hold them to it), which is
 // what makes the per-frame lower bound exact.

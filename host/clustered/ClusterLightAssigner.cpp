@@ -34,6 +34,9 @@ constexpr std::size_t kDefaultRecordBudget = std::size_t(1) << 22;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr std::uint32_t kMortonChunk = 1024;  // MORTON_CHUNK in the kernel
 constexpr std::size_t kNodeFloats = 10;       // NODE_FLOATS in the kernel
+// Morton quantization per axis: 3 x 8 bits sort in 3 radix passes (8-bit
+// digits on CPUs) where 3 x 10 take 4; see light_morton.
+constexpr unsigned kMortonAxisBits = 8;
 }  // namespace
 
 static unsigned checkedLeafSize(unsigned requested) {
@@ -49,7 +52,8 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
       record_budget_(kDefaultRecordBudget),
       scan_(rt),
       radix_(rt) {
-  program_ = rt.programs().build("cluster_assign.cl", {{"LEAF_SIZE", std::to_string(leaf_size_) + "u"}});
+  program_ = rt.programs().build("cluster_assign.cl", {{"LEAF_SIZE", std::to_string(leaf_size_) + "u"},
+                                                      {"MORTON_AXIS_BITS", std::to_string(kMortonAxisBits) + "u"}});
   view_ = cl::Kernel(program_, "light_view");
   boxes_ = cl::Kernel(program_, "cluster_boxes");
   pixel_boxes_ = cl::Kernel(program_, "cluster_pixel_boxes");
@@ -145,6 +149,8 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
   const std::uint32_t clusters = clusters_;
   n_ = n;
   bvh_ = method_ == ClusterAssignMethod::Bvh;
+  n_leaves_ = 0;
+  levels_ = 0;
   if (clusters == 0) return 0;
   if (n > light_capacity_) {
     light_capacity_ = std::size_t(n) + n / 2;
@@ -153,7 +159,6 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
     ids_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
   }
   n_leaves_ = (n + leaf_size_ - 1) / leaf_size_;
-  levels_ = 0;
   if (n > 0) {
     view_.setArg(0, lights);
     view_.setArg(1, n);
@@ -186,7 +191,7 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
       morton_.setArg(3, codes_);
       morton_.setArg(4, ids_);
       q.enqueueNDRangeKernel(morton_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-morton"));
-      radix_.sort(q, codes_, &ids_, n, 30, timer);
+      radix_.sort(q, codes_, &ids_, n, 3 * kMortonAxisBits, timer);
     }
     packLeaves(q, n, bvh_, timer);
   }
@@ -199,16 +204,16 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
     rec_mask_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, record_capacity_ * 4);
   }
   setAssignArgs(count_k_);
-  count_k_.setArg(10, rec_leaf_);
-  count_k_.setArg(11, rec_mask_);
-  count_k_.setArg(12, slots_);
-  count_k_.setArg(13, hit_leaves_);
-  count_k_.setArg(14, counts_);
-  count_k_.setArg(15, order_ids_);
-  count_k_.setArg(16, cl_uint(use_order_));
+  count_k_.setArg(9, rec_leaf_);
+  count_k_.setArg(10, rec_mask_);
+  count_k_.setArg(11, slots_);
+  count_k_.setArg(12, hit_leaves_);
+  count_k_.setArg(13, counts_);
+  count_k_.setArg(14, order_ids_);
+  count_k_.setArg(15, cl_uint(use_order_));
   q.enqueueNDRangeKernel(count_k_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr,
                          ev("cluster-assign-count"));
-  return scan_.exclusiveTotal(q, counts_, offsets_, clusters, timer);
+  return scan_.exclusiveTotal(q, hit_leaves_, offsets_, clusters, timer);
 }
 
 void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer) {
@@ -302,10 +307,10 @@ void ClusterLightAssigner::orderClusters(cl::CommandQueue& q, std::uint32_t clus
   radix_.sort(q, order_codes_, &order_ids_, clusters, tile_bits + g.k_bits, timer);
 }
 
-std::uint64_t ClusterLightAssigner::hitLeaves(cl::CommandQueue& q) const {
+std::uint64_t ClusterLightAssigner::sumOver(cl::CommandQueue& q, const cl::Buffer& per_cluster) const {
   if (clusters_ == 0) return 0;
   std::vector<std::uint32_t> h(clusters_);
-  q.enqueueReadBuffer(hit_leaves_, CL_TRUE, 0, h.size() * 4, h.data());
+  q.enqueueReadBuffer(per_cluster, CL_TRUE, 0, h.size() * 4, h.data());
   std::uint64_t s = 0;
   for (auto v : h) s += v;
   return s;
@@ -313,36 +318,39 @@ std::uint64_t ClusterLightAssigner::hitLeaves(cl::CommandQueue& q) const {
 
 void ClusterLightAssigner::setAssignArgs(cl::Kernel& k) {
   k.setArg(0, soa_);
-  k.setArg(1, leaf_ids_);
-  k.setArg(2, n_leaves_);
-  k.setArg(3, node_soa_);
-  k.setArg(4, block_start_);
-  k.setArg(5, cl_uint(levels_));
-  k.setArg(6, cl_uint(bvh_ && levels_ > 0));
-  k.setArg(7, box_lo_);
-  k.setArg(8, box_hi_);
-  k.setArg(9, clusters_);
+  k.setArg(1, n_leaves_);
+  k.setArg(2, node_soa_);
+  k.setArg(3, block_start_);
+  k.setArg(4, cl_uint(levels_));
+  k.setArg(5, cl_uint(bvh_ && levels_ > 0));
+  k.setArg(6, box_lo_);
+  k.setArg(7, box_hi_);
+  k.setArg(8, clusters_);
 }
 
-void ClusterLightAssigner::fill(cl::CommandQueue& q, cl::Buffer& ranges, cl::Buffer& indices, ClPassTimer* timer) {
+void ClusterLightAssigner::fill(cl::CommandQueue& q, cl::Buffer& ranges, cl::Buffer& records, cl::Buffer& leaf_lights,
+                                ClPassTimer* timer) {
   if (clusters_ == 0) return;
   setAssignArgs(fill_k_);
-  fill_k_.setArg(10, rec_leaf_);
-  fill_k_.setArg(11, rec_mask_);
-  fill_k_.setArg(12, slots_);
-  fill_k_.setArg(13, hit_leaves_);
-  fill_k_.setArg(14, offsets_);
-  fill_k_.setArg(15, indices);
-  fill_k_.setArg(16, order_ids_);
-  fill_k_.setArg(17, cl_uint(use_order_));
+  fill_k_.setArg(9, rec_leaf_);
+  fill_k_.setArg(10, rec_mask_);
+  fill_k_.setArg(11, slots_);
+  fill_k_.setArg(12, hit_leaves_);
+  fill_k_.setArg(13, offsets_);
+  fill_k_.setArg(14, records);
+  fill_k_.setArg(15, order_ids_);
+  fill_k_.setArg(16, cl_uint(use_order_));
   q.enqueueNDRangeKernel(fill_k_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr,
                          timer ? timer->next("cluster-assign-fill") : nullptr);
   ranges_.setArg(0, offsets_);
-  ranges_.setArg(1, counts_);
+  ranges_.setArg(1, hit_leaves_);
   ranges_.setArg(2, clusters_);
   ranges_.setArg(3, ranges);
   q.enqueueNDRangeKernel(ranges_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr,
                          timer ? timer->next("cluster-ranges") : nullptr);
+  if (leafLightSlots() > 0)
+    q.enqueueCopyBuffer(leaf_ids_, leaf_lights, 0, 0, leafLightSlots() * 4, nullptr,
+                        timer ? timer->next("cluster-leaf-lights") : nullptr);
 }
 
 }  // namespace ml

@@ -3,10 +3,16 @@
 //
 //   ClusterLightAssigner a(rt, ClusterAssignMethod::Bvh);
 //   a.boxes(q, cam, grid, unique_keys, clusters, timer, &pixels);  // explicit bounds (null: sub-frustum)
-//   uint32_t total = a.assign(q, lights, n, cam);   // blocks for the total
-//   ... make `indices` hold >= total uints ...
-//   a.fill(q, ranges, indices);   // ranges: LightRange per cluster
+//   uint32_t records = a.assign(q, lights, n, cam);   // blocks for the total
+//   ... make `records` hold >= records uint2s, `leaf_lights` >= leafLightSlots() uints ...
+//   a.fill(q, ranges, records, leaf_lights);   // ranges: LightRange per cluster, in records
 // (count() = boxes() + assign().)
+//
+// A cluster's list is a run of hit records (slot, mask): bit b of mask set
+// means light leaf_lights[slot + b] reaches the cluster box. A record stands
+// for all the hits of one leaf (11 lights on average at 100k lights, 720p), so
+// the lists are several times smaller than index lists, and the device never
+// expands them: the shader walks the masks (gl/shaders/lookup_clustered.glsl).
 //
 // Lights are packed leafSize() to a leaf (structure of arrays) and tested a
 // leaf at a time into a hit mask. Brute: every cluster tests every leaf of the
@@ -18,7 +24,7 @@
 // taken in tile-Morton order so that consecutive walks share leaves. Both use the same leaf test, so their lists are the same sets
 // (BVH lists in Morton order, brute force ascending). Lists are count -> scan
 // -> fill and never truncate: count() records each cluster's hit leaves
-// (leaf, mask) in a bounded scratch, fill() expands them and walks again only
+// in a bounded scratch, fill() copies them into place and walks again only
 // for clusters whose hits did not fit. Not thread-safe.
 #include <CL/opencl.hpp>
 
@@ -66,11 +72,16 @@ class ClusterLightAssigner {
   // The clusters' boxes, once per frame whatever the assignment method.
   void boxes(cl::CommandQueue& q, const gpu::CameraParams& cam, const ClusterGrid& g, const cl::Buffer& unique_keys,
              std::uint32_t clusters, ClPassTimer* timer = nullptr, const ClusterPixels* pixels = nullptr);
-  // Lights -> the clusters of the last boxes(); returns the list total (blocks).
+  // Lights -> the clusters of the last boxes(); returns the records in all lists (blocks).
   std::uint32_t assign(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n, const gpu::CameraParams& cam,
                        ClPassTimer* timer = nullptr);
-  // Same frame as the preceding count(); writes `clusters` LightRanges.
-  void fill(cl::CommandQueue& q, cl::Buffer& ranges, cl::Buffer& indices, ClPassTimer* timer = nullptr);
+  // Same frame as the preceding assign(): `clusters` LightRanges (offset and
+  // count in records), the records (uint2: first leaf slot, hit mask) and the
+  // light index of every leaf slot (0xffffffff past the last light).
+  void fill(cl::CommandQueue& q, cl::Buffer& ranges, cl::Buffer& records, cl::Buffer& leaf_lights,
+            ClPassTimer* timer = nullptr);
+  // Leaf slots of the last assign() (lights rounded up to whole leaves).
+  std::size_t leafLightSlots() const { return std::size_t(n_leaves_) * leaf_size_; }
 
   ClusterAssignMethod method() const { return method_; }
   void setMethod(ClusterAssignMethod m) { method_ = m; }
@@ -80,9 +91,10 @@ class ClusterLightAssigner {
   const cl::Buffer& boxLo() const { return box_lo_; }
   const cl::Buffer& boxHi() const { return box_hi_; }
   std::size_t scratchBytes() const;
-  // Leaves with at least one hit, summed over the last count()'s clusters
-  // (blocks; for reports: list entries / this = lights per hit leaf).
-  std::uint64_t hitLeaves(cl::CommandQueue& q) const;
+  // Summed over the last assign()'s clusters (blocking; for reports and
+  // tests): records (leaves with at least one hit), and lights in the lists.
+  std::uint64_t hitLeaves(cl::CommandQueue& q) const { return sumOver(q, hit_leaves_); }
+  std::uint64_t listedLights(cl::CommandQueue& q) const { return sumOver(q, counts_); }
   // Hit-leaf records (8 bytes each) shared by all clusters (default 2^22);
   // clusters with more hit leaves than their share are walked again by fill().
   void setRecordBudget(std::size_t records) { record_budget_ = records; }
@@ -94,6 +106,7 @@ class ClusterLightAssigner {
   void packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer);
   void setAssignArgs(cl::Kernel& k);
   void orderClusters(cl::CommandQueue& q, std::uint32_t clusters, ClPassTimer* timer);
+  std::uint64_t sumOver(cl::CommandQueue& q, const cl::Buffer& per_cluster) const;
 
   ClRuntime& rt_;
   ClusterAssignMethod method_;

@@ -9,7 +9,8 @@ ClusteredAssigner::ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMe
                                      ClusterAssignMethod assign, ClusterBounds bounds)
     : rt_(rt), tile_size_(tile_size), bounds_(bounds), uniquer_(rt, unique), lights_(rt, assign) {
   ranges_ = std::make_unique<SharedBuffer>(rt, 4096 * sizeof(gpu::LightRange), "cluster light ranges");
-  indices_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(std::uint32_t), "cluster light indices");
+  records_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(cl_uint2), "cluster light records");
+  leaf_lights_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(std::uint32_t), "cluster leaf lights");
   map_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(std::uint32_t), "pixel cluster map");
 }
 
@@ -29,23 +30,23 @@ void ClusteredAssigner::assign(const FrameInputs& in) {
                 bounds_ == ClusterBounds::Pixels ? &pixels : nullptr);
   map_->releaseToGl(q);
   in.depth->releaseToGl(q);
-  const std::uint32_t total = lights_.assign(q, in.lights.cl(), in.light_count, in.camera_params, &in.cl_timer);
-  last_total_ = total;
+  const std::uint32_t records = lights_.assign(q, in.lights.cl(), in.light_count, in.camera_params, &in.cl_timer);
+  last_records_ = records;
   // GL owns the output buffers while they grow; CL takes them for the fill.
   ranges_->reserve(std::size_t(clusters_) * sizeof(gpu::LightRange));
-  indices_->reserve(std::size_t(total) * sizeof(std::uint32_t));
-  ranges_->acquireForCl(q, ClAccess::Write);
-  indices_->acquireForCl(q, ClAccess::Write);
-  lights_.fill(q, ranges_->cl(), indices_->cl(), &in.cl_timer);
-  indices_->releaseToGl(q);
-  ranges_->releaseToGl(q);
+  records_->reserve(std::size_t(records) * sizeof(cl_uint2));
+  leaf_lights_->reserve(lights_.leafLightSlots() * sizeof(std::uint32_t));
+  for (SharedBuffer* b : {ranges_.get(), records_.get(), leaf_lights_.get()}) b->acquireForCl(q, ClAccess::Write);
+  lights_.fill(q, ranges_->cl(), records_->cl(), leaf_lights_->cl(), &in.cl_timer);
+  for (SharedBuffer* b : {leaf_lights_.get(), records_.get(), ranges_.get()}) b->releaseToGl(q);
   in.lights.releaseToGl(q);
 }
 
 void ClusteredAssigner::bindForShading(const ShaderProgram& program) const {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, indices_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, records_->gl());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, ranges_->gl());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, map_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, leaf_lights_->gl());
   program.set("u_cluster_width", grid_.width);
   glCheck("binding the cluster buffers");
 }
@@ -80,14 +81,16 @@ std::vector<float> ClusteredAssigner::clusterViewRgba(const std::vector<std::uin
 }
 
 std::size_t ClusteredAssigner::memoryBytes() const {
-  return std::size_t(clusters_) * sizeof(gpu::LightRange) + std::size_t(last_total_) * sizeof(std::uint32_t) +
+  return std::size_t(clusters_) * sizeof(gpu::LightRange) + std::size_t(last_records_) * sizeof(cl_uint2) +
+         lights_.leafLightSlots() * sizeof(std::uint32_t) +
          std::size_t(grid_.width) * grid_.height * sizeof(std::uint32_t) + uniquer_.scratchBytes() +
          lights_.scratchBytes();
 }
 
 std::vector<std::pair<std::string, double>> ClusteredAssigner::stats() const {
   return {{"unique clusters", double(clusters_)},
-          {"cluster index entries", double(last_total_)},
+          {"cluster list records", double(last_records_)},
+          {"cluster list lights", double(lights_.listedLights(rt_.queue()))},
           {"cluster tile", double(grid_.tile_size)},
           {"pixel bounds", bounds_ == ClusterBounds::Pixels ? 1.0 : 0.0},
           {"depth slices", double(grid_.slices)},

@@ -5,10 +5,12 @@
 // --unique method) with the pixel -> cluster map written straight into a
 // shared buffer, per-cluster light lists (ClusterLightAssigner, --cluster-assign)
 // into shared buffers. Clusters are culled against the AABB of their pixels
-// (explicit bounds, the default) or of their sub-frustum (--cluster-bounds). lookup_clustered.glsl reads the fragment's cluster from
-// the map, then its (offset, count) range and the index list.
-// SSBOs: 1 light indices, 2 cluster ranges (LightRange per unique cluster),
-// 3 pixel -> cluster map (uint per pixel, 0xffffffff = sky).
+// (explicit bounds, the default) or of their sub-frustum (--cluster-bounds).
+// lookup_clustered.glsl reads the fragment's cluster from the map, then its
+// (offset, count) range of hit records and walks their masks.
+// SSBOs: 1 hit records (uvec2: leaf slot, mask), 2 cluster ranges (LightRange
+// per unique cluster, in records), 3 pixel -> cluster map (uint per pixel,
+// 0xffffffff = sky), 4 light index per leaf slot.
 #include <memory>
 
 #include "gl/SharedBuffer.hpp"
@@ -47,8 +49,8 @@ class ClusteredAssigner final : public LightAssigner {
   ClusterUniquer uniquer_;
   ClusterLightAssigner lights_;
   ClusterGrid grid_;
-  std::unique_ptr<SharedBuffer> ranges_, indices_, map_;
-  std::uint32_t clusters_ = 0, last_total_ = 0;
+  std::unique_ptr<SharedBuffer> ranges_, records_, leaf_lights_, map_;
+  std::uint32_t clusters_ = 0, last_records_ = 0;
 };
 
 }  // namespace ml
