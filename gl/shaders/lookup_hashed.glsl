@@ -7,11 +7,7 @@
 //   5 light-data slots (uvec4: key x | y << 16, z, offset, count).
 // An empty slot has 0xFFFFFFFF as its first word, so a key that is absent
 // never matches: it reads as "no lights".
-struct LightList {
-  uint offset;
-  uint count;
-};
-layout(std430, binding = 1) readonly buffer HashedIndexList { uint hs_light_indices[]; };
+#include "index_list.glsl"
 layout(std430, binding = 2) readonly buffer HashedHeader {
   vec4 hs_origin_scale;  // octree origin (xyz), cells per world unit (w)
   uvec4 hs_info;         // depth, start depth, layer count, unused
@@ -58,10 +54,3 @@ LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {
   return none;
 }
 
-bool nextLight(inout LightList list, out uint light_index) {
-  light_index = 0u;
-  if (list.count == 0u) return false;
-  light_index = hs_light_indices[list.offset++];
-  --list.count;
-  return true;
-}
