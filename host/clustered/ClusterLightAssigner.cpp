@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "host/cl/KernelArgs.hpp"
 #include "host/cl/ProgramBuilder.hpp"
 #include "host/util/Error.hpp"
 
@@ -84,6 +85,13 @@ std::size_t ClusterLightAssigner::scratchBytes() const {
          cluster_capacity_ * (32 + 12) + bounds_capacity_ * 4 + record_capacity_ * 8;
 }
 
+// The arguments assign_count and assign_fill share (the tree, the boxes), then `rest`.
+template <typename... Rest>
+void ClusterLightAssigner::setAssignArgs(cl::Kernel& k, const Rest&... rest) {
+  setArgs(k, soa_, n_leaves_, node_soa_, block_start_, cl_uint(levels_), cl_uint(bvh_ && levels_ > 0), box_lo_, box_hi_,
+          clusters_, rest...);
+}
+
 std::uint32_t ClusterLightAssigner::count(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n,
                                           const gpu::CameraParams& cam, const ClusterGrid& g,
                                           const cl::Buffer& unique_keys, std::uint32_t clusters,
@@ -118,26 +126,13 @@ void ClusterLightAssigner::boxes(cl::CommandQueue& q, const gpu::CameraParams& c
     const cl_uint n_tiles = g.tiles_x * g.tiles_y;
     q.enqueueFillBuffer(box_lo_, cl_float4{{kInf, kInf, kInf, kInf}}, 0, std::size_t(clusters) * 16);
     q.enqueueFillBuffer(box_hi_, cl_float4{{-kInf, -kInf, -kInf, -kInf}}, 0, std::size_t(clusters) * 16);
-    pixel_boxes_.setArg(0, pixels->depth);
-    pixel_boxes_.setArg(1, pixels->cluster_of);
-    pixel_boxes_.setArg(2, cam);
-    pixel_boxes_.setArg(3, cl_uint(g.tile_size));
-    pixel_boxes_.setArg(4, cl_uint(g.tiles_x));
-    pixel_boxes_.setArg(5, n_tiles);
-    pixel_boxes_.setArg(6, box_lo_);
-    pixel_boxes_.setArg(7, box_hi_);
+    setArgs(pixel_boxes_, pixels->depth, pixels->cluster_of, cam, cl_uint(g.tile_size), cl_uint(g.tiles_x), n_tiles,
+            box_lo_, box_hi_);
     q.enqueueNDRangeKernel(pixel_boxes_, cl::NullRange, cl::NDRange(n_tiles), cl::NullRange, nullptr,
                            ev("cluster-boxes"));
   } else {
-    boxes_.setArg(0, unique_keys);
-    boxes_.setArg(1, cl_uint(clusters));
-    boxes_.setArg(2, cam);
-    boxes_.setArg(3, bounds_);
-    boxes_.setArg(4, cl_uint(g.tile_size));
-    boxes_.setArg(5, cl_uint(g.x_bits));
-    boxes_.setArg(6, cl_uint(g.k_bits));
-    boxes_.setArg(7, box_lo_);
-    boxes_.setArg(8, box_hi_);
+    setArgs(boxes_, unique_keys, cl_uint(clusters), cam, bounds_, cl_uint(g.tile_size), cl_uint(g.x_bits),
+            cl_uint(g.k_bits), box_lo_, box_hi_);
     q.enqueueNDRangeKernel(boxes_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr, ev("cluster-boxes"));
   }
 }
@@ -160,10 +155,7 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
   }
   n_leaves_ = (n + leaf_size_ - 1) / leaf_size_;
   if (n > 0) {
-    view_.setArg(0, lights);
-    view_.setArg(1, n);
-    view_.setArg(2, cam);
-    view_.setArg(3, spheres_);
+    setArgs(view_, lights, n, cam, spheres_);
     q.enqueueNDRangeKernel(view_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-light-view"));
     if (bvh_) {
       // Morton frame: the bounding cube of the light centres, on the device.
@@ -173,23 +165,13 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
         part_lo_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, part_capacity_ * 16);
         part_hi_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, part_capacity_ * 16);
       }
-      bounds_part_.setArg(0, spheres_);
-      bounds_part_.setArg(1, n);
-      bounds_part_.setArg(2, part_lo_);
-      bounds_part_.setArg(3, part_hi_);
+      setArgs(bounds_part_, spheres_, n, part_lo_, part_hi_);
       q.enqueueNDRangeKernel(bounds_part_, cl::NullRange, cl::NDRange(parts), cl::NullRange, nullptr,
                              ev("cluster-light-bounds"));
-      bounds_final_.setArg(0, part_lo_);
-      bounds_final_.setArg(1, part_hi_);
-      bounds_final_.setArg(2, parts);
-      bounds_final_.setArg(3, frame_);
+      setArgs(bounds_final_, part_lo_, part_hi_, parts, frame_);
       q.enqueueNDRangeKernel(bounds_final_, cl::NullRange, cl::NDRange(1), cl::NullRange, nullptr,
                              ev("cluster-light-bounds"));
-      morton_.setArg(0, spheres_);
-      morton_.setArg(1, n);
-      morton_.setArg(2, frame_);
-      morton_.setArg(3, codes_);
-      morton_.setArg(4, ids_);
+      setArgs(morton_, spheres_, n, frame_, codes_, ids_);
       q.enqueueNDRangeKernel(morton_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-morton"));
       radix_.sort(q, codes_, &ids_, n, 3 * kMortonAxisBits, timer);
     }
@@ -203,14 +185,7 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
     rec_leaf_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, record_capacity_ * 4);
     rec_mask_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, record_capacity_ * 4);
   }
-  setAssignArgs(count_k_);
-  count_k_.setArg(9, rec_leaf_);
-  count_k_.setArg(10, rec_mask_);
-  count_k_.setArg(11, slots_);
-  count_k_.setArg(12, hit_leaves_);
-  count_k_.setArg(13, counts_);
-  count_k_.setArg(14, order_ids_);
-  count_k_.setArg(15, cl_uint(use_order_));
+  setAssignArgs(count_k_, rec_leaf_, rec_mask_, slots_, hit_leaves_, counts_, order_ids_, cl_uint(use_order_));
   q.enqueueNDRangeKernel(count_k_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr,
                          ev("cluster-assign-count"));
   return scan_.exclusiveTotal(q, hit_leaves_, offsets_, clusters, timer);
@@ -251,36 +226,16 @@ void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool
     }
     q.enqueueWriteBuffer(block_start_, CL_TRUE, 0, levels_ * 4, block_start.data());
   }
-  pack_.setArg(0, spheres_);
-  pack_.setArg(1, ids_);
-  pack_.setArg(2, cl_uint(bvh));
-  pack_.setArg(3, n);
-  pack_.setArg(4, soa_);
-  pack_.setArg(5, leaf_ids_);
-  pack_.setArg(6, node_lo_);
-  pack_.setArg(7, node_hi_);
-  pack_.setArg(8, node_sph_);
-  pack_.setArg(9, cl_uint(bvh));
+  setArgs(pack_, spheres_, ids_, cl_uint(bvh), n, soa_, leaf_ids_, node_lo_, node_hi_, node_sph_, cl_uint(bvh));
   q.enqueueNDRangeKernel(pack_, cl::NullRange, cl::NDRange(n_leaves), cl::NullRange, nullptr,
                          ev(bvh ? "cluster-bvh-leaves" : "cluster-pack-leaves"));
   for (unsigned l = 1; l < levels_; ++l) {
-    level_.setArg(0, node_lo_);
-    level_.setArg(1, node_hi_);
-    level_.setArg(2, node_sph_);
-    level_.setArg(3, start[l - 1]);
-    level_.setArg(4, count[l - 1]);
-    level_.setArg(5, start[l]);
+    setArgs(level_, node_lo_, node_hi_, node_sph_, start[l - 1], count[l - 1], start[l]);
     q.enqueueNDRangeKernel(level_, cl::NullRange, cl::NDRange(count[l]), cl::NullRange, nullptr, ev("cluster-bvh-level"));
   }
   for (unsigned l = 0; l < levels_; ++l) {
     const std::uint32_t n_blocks = (count[l] + kBranch - 1) / kBranch;
-    blocks_.setArg(0, node_lo_);
-    blocks_.setArg(1, node_hi_);
-    blocks_.setArg(2, node_sph_);
-    blocks_.setArg(3, start[l]);
-    blocks_.setArg(4, count[l]);
-    blocks_.setArg(5, block_start[l]);
-    blocks_.setArg(6, node_soa_);
+    setArgs(blocks_, node_lo_, node_hi_, node_sph_, start[l], count[l], block_start[l], node_soa_);
     q.enqueueNDRangeKernel(blocks_, cl::NullRange, cl::NDRange(n_blocks), cl::NullRange, nullptr,
                            ev("cluster-bvh-blocks"));
   }
@@ -296,12 +251,7 @@ void ClusterLightAssigner::orderClusters(cl::CommandQueue& q, std::uint32_t clus
     order_codes_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, order_capacity_ * 4);
     order_ids_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, order_capacity_ * 4);
   }
-  order_k_.setArg(0, order_keys_);
-  order_k_.setArg(1, clusters);
-  order_k_.setArg(2, cl_uint(g.x_bits));
-  order_k_.setArg(3, cl_uint(g.k_bits));
-  order_k_.setArg(4, order_codes_);
-  order_k_.setArg(5, order_ids_);
+  setArgs(order_k_, order_keys_, clusters, cl_uint(g.x_bits), cl_uint(g.k_bits), order_codes_, order_ids_);
   q.enqueueNDRangeKernel(order_k_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr,
                          timer ? timer->next("cluster-order") : nullptr);
   radix_.sort(q, order_codes_, &order_ids_, clusters, tile_bits + g.k_bits, timer);
@@ -316,36 +266,14 @@ std::uint64_t ClusterLightAssigner::sumOver(cl::CommandQueue& q, const cl::Buffe
   return s;
 }
 
-void ClusterLightAssigner::setAssignArgs(cl::Kernel& k) {
-  k.setArg(0, soa_);
-  k.setArg(1, n_leaves_);
-  k.setArg(2, node_soa_);
-  k.setArg(3, block_start_);
-  k.setArg(4, cl_uint(levels_));
-  k.setArg(5, cl_uint(bvh_ && levels_ > 0));
-  k.setArg(6, box_lo_);
-  k.setArg(7, box_hi_);
-  k.setArg(8, clusters_);
-}
-
 void ClusterLightAssigner::fill(cl::CommandQueue& q, cl::Buffer& ranges, cl::Buffer& records, cl::Buffer& leaf_lights,
                                 ClPassTimer* timer) {
   if (clusters_ == 0) return;
-  setAssignArgs(fill_k_);
-  fill_k_.setArg(9, rec_leaf_);
-  fill_k_.setArg(10, rec_mask_);
-  fill_k_.setArg(11, slots_);
-  fill_k_.setArg(12, hit_leaves_);
-  fill_k_.setArg(13, offsets_);
-  fill_k_.setArg(14, records);
-  fill_k_.setArg(15, order_ids_);
-  fill_k_.setArg(16, cl_uint(use_order_));
+  setAssignArgs(fill_k_, rec_leaf_, rec_mask_, slots_, hit_leaves_, offsets_, records, order_ids_,
+                cl_uint(use_order_));
   q.enqueueNDRangeKernel(fill_k_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr,
                          timer ? timer->next("cluster-assign-fill") : nullptr);
-  ranges_.setArg(0, offsets_);
-  ranges_.setArg(1, hit_leaves_);
-  ranges_.setArg(2, clusters_);
-  ranges_.setArg(3, ranges);
+  setArgs(ranges_, offsets_, hit_leaves_, clusters_, ranges);
   q.enqueueNDRangeKernel(ranges_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr,
                          timer ? timer->next("cluster-ranges") : nullptr);
   if (leafLightSlots() > 0)

@@ -104,7 +104,8 @@ class ClusterLightAssigner {
 
  private:
   void packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer);
-  void setAssignArgs(cl::Kernel& k);
+  template <typename... Rest>
+  void setAssignArgs(cl::Kernel& k, const Rest&... rest);
   void orderClusters(cl::CommandQueue& q, std::uint32_t clusters, ClPassTimer* timer);
   std::uint64_t sumOver(cl::CommandQueue& q, const cl::Buffer& per_cluster) const;
 

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "host/cl/ClPassTimer.hpp"
+#include "host/cl/KernelArgs.hpp"
 #include "host/compute/ComputeEnv.hpp"
 
 namespace ml::compute::detail {
@@ -54,11 +55,7 @@ class Scratch {
 void launch(cl::CommandQueue& q, const cl::Kernel& k, std::size_t global, std::size_t local, ClPassTimer* timer,
             const char* name);
 
-template <typename... Args>
-void setArgs(cl::Kernel& k, const Args&... args) {
-  cl_uint i = 0;
-  (k.setArg(i++, args), ...);
-}
+using ml::setArgs;
 
 // Builds kernels/<file> with the shape defines; returns the program.
 cl::Program buildShaped(const ComputeEnv& env, const Tuning& t, const char* file, Defines extra = {});
