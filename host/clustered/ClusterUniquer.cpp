@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "host/cl/KernelArgs.hpp"
 #include "host/cl/ProgramBuilder.hpp"
 #include "host/util/Error.hpp"
 
@@ -64,14 +65,8 @@ void ClusterUniquer::keys(cl::CommandQueue& q, const cl::Buffer& depth, const gp
     bounds_ = cl::Buffer(rt_.context(), CL_MEM_READ_ONLY, bounds_capacity_ * 4);
   }
   q.enqueueWriteBuffer(bounds_, CL_FALSE, 0, g.slice_bounds.size() * 4, g.slice_bounds.data());
-  keys_k_.setArg(0, depth);
-  keys_k_.setArg(1, cam);
-  keys_k_.setArg(2, bounds_);
-  keys_k_.setArg(3, cl_uint(g.slices));
-  keys_k_.setArg(4, cl_uint(g.tile_size));
-  keys_k_.setArg(5, cl_uint(g.x_bits));
-  keys_k_.setArg(6, cl_uint(g.k_bits));
-  keys_k_.setArg(7, keys_);
+  setArgs(keys_k_, depth, cam, bounds_, cl_uint(g.slices), cl_uint(g.tile_size), cl_uint(g.x_bits), cl_uint(g.k_bits),
+          keys_);
   q.enqueueNDRangeKernel(keys_k_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr,
                          timer ? timer->next("cluster-keys") : nullptr);
 }
@@ -110,10 +105,7 @@ std::uint32_t ClusterUniquer::uniquePageTable(cl::CommandQueue& q, const Cluster
     phys_to_virt_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n_pages * 4);
   }
   q.enqueueFillBuffer(marks_, cl_uint(0), 0, n_pages * 4);
-  mark_.setArg(0, keys_);
-  mark_.setArg(1, cl_uint(n));
-  mark_.setArg(2, cl_uint(pb));
-  mark_.setArg(3, marks_);
+  setArgs(mark_, keys_, cl_uint(n), cl_uint(pb), marks_);
   q.enqueueNDRangeKernel(mark_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-page-mark"));
   const std::uint32_t used_pages = scan_.exclusiveTotal(q, marks_, page_table_, n_pages, timer);
   if (used_pages == 0) {
@@ -128,35 +120,18 @@ std::uint32_t ClusterUniquer::uniquePageTable(cl::CommandQueue& q, const Cluster
     used_slots_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, n_slots * 4);
   }
   q.enqueueFillBuffer(slots_, cl_uint(0), 0, n_slots * 4);
-  store_.setArg(0, keys_);
-  store_.setArg(1, cl_uint(n));
-  store_.setArg(2, cl_uint(pb));
-  store_.setArg(3, page_table_);
-  store_.setArg(4, slots_);
+  setArgs(store_, keys_, cl_uint(n), cl_uint(pb), page_table_, slots_);
   q.enqueueNDRangeKernel(store_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-page-store"));
-  inverse_.setArg(0, marks_);
-  inverse_.setArg(1, page_table_);
-  inverse_.setArg(2, cl_uint(n_pages));
-  inverse_.setArg(3, phys_to_virt_);
+  setArgs(inverse_, marks_, page_table_, cl_uint(n_pages), phys_to_virt_);
   q.enqueueNDRangeKernel(inverse_, cl::NullRange, cl::NDRange(n_pages), cl::NullRange, nullptr,
                          ev("cluster-page-inverse"));
   const auto count = std::uint32_t(compact_.compactIndices(q, slots_, used_slots_, n_slots, timer));
   if (count > 0) {
-    page_unique_.setArg(0, used_slots_);
-    page_unique_.setArg(1, cl_uint(count));
-    page_unique_.setArg(2, cl_uint(pb));
-    page_unique_.setArg(3, phys_to_virt_);
-    page_unique_.setArg(4, unique_keys_);
-    page_unique_.setArg(5, slots_);
+    setArgs(page_unique_, used_slots_, cl_uint(count), cl_uint(pb), phys_to_virt_, unique_keys_, slots_);
     q.enqueueNDRangeKernel(page_unique_, cl::NullRange, cl::NDRange(count), cl::NullRange, nullptr,
                            ev("cluster-page-unique"));
   }
-  page_map_.setArg(0, keys_);
-  page_map_.setArg(1, cl_uint(n));
-  page_map_.setArg(2, cl_uint(pb));
-  page_map_.setArg(3, page_table_);
-  page_map_.setArg(4, slots_);
-  page_map_.setArg(5, map);
+  setArgs(page_map_, keys_, cl_uint(n), cl_uint(pb), page_table_, slots_, map);
   q.enqueueNDRangeKernel(page_map_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-page-map"));
   return count;
 }
@@ -178,37 +153,20 @@ std::uint32_t ClusterUniquer::uniqueSorted(cl::CommandQueue& q, const ClusterGri
       offsets_for_h_ = g.height;
       offsets_for_tile_ = g.tile_size;
     }
-    gather_.setArg(0, keys_);
-    gather_.setArg(1, cl_uint(g.width));
-    gather_.setArg(2, cl_uint(g.height));
-    gather_.setArg(3, cl_uint(g.tile_size));
-    gather_.setArg(4, cl_uint(g.tiles_x));
-    gather_.setArg(5, tile_offsets_);
-    gather_.setArg(6, sort_keys_);
-    gather_.setArg(7, sort_vals_);
+    setArgs(gather_, keys_, cl_uint(g.width), cl_uint(g.height), cl_uint(g.tile_size), cl_uint(g.tiles_x),
+            tile_offsets_, sort_keys_, sort_vals_);
     q.enqueueNDRangeKernel(gather_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-tile-gather"));
     segsort_.sort(q, sort_keys_, &sort_vals_, n, tile_offsets_, n_tiles, timer);
   } else {
-    sort_init_.setArg(0, keys_);
-    sort_init_.setArg(1, cl_uint(n));
-    sort_init_.setArg(2, sort_keys_);
-    sort_init_.setArg(3, sort_vals_);
+    setArgs(sort_init_, keys_, cl_uint(n), sort_keys_, sort_vals_);
     q.enqueueNDRangeKernel(sort_init_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-sort-init"));
     // One bit above the key so that sky (all ones) sorts after every cluster.
     radix_.sort(q, sort_keys_, &sort_vals_, n, std::min(32u, g.keyBits() + 1), timer);
   }
-  heads_.setArg(0, sort_keys_);
-  heads_.setArg(1, cl_uint(n));
-  heads_.setArg(2, flags_);
+  setArgs(heads_, sort_keys_, cl_uint(n), flags_);
   q.enqueueNDRangeKernel(heads_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-heads"));
   const std::uint32_t count = scan_.exclusiveTotal(q, flags_, rank_, n, timer);
-  scatter_.setArg(0, sort_keys_);
-  scatter_.setArg(1, sort_vals_);
-  scatter_.setArg(2, cl_uint(n));
-  scatter_.setArg(3, flags_);
-  scatter_.setArg(4, rank_);
-  scatter_.setArg(5, unique_keys_);
-  scatter_.setArg(6, map);
+  setArgs(scatter_, sort_keys_, sort_vals_, cl_uint(n), flags_, rank_, unique_keys_, map);
   q.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-scatter"));
   return count;
 }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "host/cl/KernelArgs.hpp"
 #include "host/cl/ProgramBuilder.hpp"
 #include "host/util/Error.hpp"
 
@@ -58,12 +59,7 @@ std::uint32_t TileLightCuller::count(cl::CommandQueue& q, const cl::Buffer& ligh
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
 
   if (mode_ != TileDepthMode::None) {
-    bounds_.setArg(0, *depth);
-    bounds_.setArg(1, cam);
-    bounds_.setArg(2, tiles_x);
-    bounds_.setArg(3, tiles_y);
-    bounds_.setArg(4, tile_bounds_);
-    bounds_.setArg(5, tile_masks_);
+    setArgs(bounds_, *depth, cam, tiles_x, tiles_y, tile_bounds_, tile_masks_);
     if (gpu_shape_) {
       const std::size_t local = std::min<std::size_t>(
           {std::size_t(grid_.tile_size) * grid_.tile_size, rt_.info().max_work_group_size, 256});
@@ -82,28 +78,14 @@ std::uint32_t TileLightCuller::count(cl::CommandQueue& q, const cl::Buffer& ligh
       mask_words_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, light_capacity_ * 4);
       mask_offsets_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, light_capacity_ * 4);
     }
-    rects_k_.setArg(0, lights);
-    rects_k_.setArg(1, n);
-    rects_k_.setArg(2, cam);
-    rects_k_.setArg(3, tiles_x);
-    rects_k_.setArg(4, tiles_y);
-    rects_k_.setArg(5, rects_);
-    rects_k_.setArg(6, mask_words_);
+    setArgs(rects_k_, lights, n, cam, tiles_x, tiles_y, rects_, mask_words_);
     q.enqueueNDRangeKernel(rects_k_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("tile-light-rects"));
     const std::uint32_t words = scan_.exclusiveTotal(q, mask_words_, mask_offsets_, n, timer);
     if (words > mask_capacity_) {
       mask_capacity_ = std::size_t(words) + words / 2;
       hit_masks_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, mask_capacity_ * 4));
     }
-    mark_.setArg(0, rects_);
-    mark_.setArg(1, n);
-    mark_.setArg(2, cam);
-    mark_.setArg(3, tiles_x);
-    mark_.setArg(4, tile_bounds_);
-    mark_.setArg(5, tile_masks_);
-    mark_.setArg(6, mask_offsets_);
-    mark_.setArg(7, hit_masks_);
-    mark_.setArg(8, counts_);
+    setArgs(mark_, rects_, n, cam, tiles_x, tile_bounds_, tile_masks_, mask_offsets_, hit_masks_, counts_);
     q.enqueueNDRangeKernel(mark_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("tile-cull"));
   }
   return scan_.exclusiveTotal(q, counts_, offsets_, n_tiles, timer);
@@ -117,20 +99,10 @@ void TileLightCuller::fill(cl::CommandQueue& q, const cl::Buffer& lights, std::u
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
   if (n > 0) {
     q.enqueueFillBuffer(cursor_, cl_uint(0), 0, std::size_t(n_tiles) * sizeof(cl_uint));
-    scatter_.setArg(0, rects_);
-    scatter_.setArg(1, n);
-    scatter_.setArg(2, tiles_x);
-    scatter_.setArg(3, mask_offsets_);
-    scatter_.setArg(4, hit_masks_);
-    scatter_.setArg(5, offsets_);
-    scatter_.setArg(6, cursor_);
-    scatter_.setArg(7, indices);
+    setArgs(scatter_, rects_, n, tiles_x, mask_offsets_, hit_masks_, offsets_, cursor_, indices);
     q.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("tile-scatter"));
   }
-  write_grid_.setArg(0, offsets_);
-  write_grid_.setArg(1, counts_);
-  write_grid_.setArg(2, n_tiles);
-  write_grid_.setArg(3, grid);
+  setArgs(write_grid_, offsets_, counts_, n_tiles, grid);
   q.enqueueNDRangeKernel(write_grid_, cl::NullRange, cl::NDRange(n_tiles), cl::NullRange, nullptr, ev("tile-grid"));
 }
 
