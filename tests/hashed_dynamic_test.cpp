@@ -113,6 +113,32 @@ TEST(HashedDynamic, RandomEditsEqualAFreshBuild) {
   }
 }
 
+// Updates that edit by computed coverage (no octrees) leave the cached
+// octrees of the changed lights outdated; an update that needs them (here
+// the parallel edit, which walks the old versions' octrees) rebuilds them
+// first. Alternating the two stays equal to a fresh build.
+TEST(HashedDynamic, AlternatingCellAndOctreeEditsEqualAFreshBuild) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  auto lights = randomLights(rng, 300, kBox, 1.0, 3.0, false);
+  HashedConfig cfg;
+  cfg.node_size = "0.5";
+  cfg.start_depth = 3;
+  cfg.max_incremental_fraction = 1.0;
+  HashedStructure hs(cfg);
+  hs.build(lights, boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, cfg.start_depth));
+  for (int round = 0; round < 8; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    hs.config().parallel_tree_edits = round % 2 == 1;
+    randomEdits(rng, lights, 0.2, 3.0);
+    const UpdateStats& st = hs.update(lights);
+    EXPECT_FALSE(st.full_rebuild) << st.reason;
+    expectSameAsFreshBuild(hs, nullptr, rng, {});
+    if (HasFailure()) return;
+  }
+}
+
 // Batches large enough for the parallel paths: octrees built while the
 // edits consume them, the per-key derivation and the per-table writes in
 // parallel, and compactions of a light index list past 16K entries.
@@ -146,21 +172,13 @@ TEST(HashedDynamic, LargeRandomBatchesEqualAFreshBuild) {
   EXPECT_GT(hs.linkless().pool().list().size(), 16384u);
 }
 
+// With geometry-tight light sets the updates edit by light octrees; without
+// them, by computed coverage under the mask's merge rule.
 TEST(HashedDynamic, RandomEditsWithGeometryMaskEqualAFreshBuild) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
   const Scene scene = loadGltfScene(dataPath("default/scene.glb"));
-  // Lights inside the default scene's main hall and rooms.
-  std::vector<gpu::PointLight> lights = loadLightsJson(dataPath("default/lights.json"));
-  lights.resize(300);
-  HashedConfig cfg;
-  cfg.node_size = "0.5r";
-  cfg.geometry_mask = true;
-  cfg.bounds_padding = 0.2;
-  cfg.max_incremental_fraction = 1.0;
-  HashedStructure hs(cfg, &scene);
-  hs.build(lights);
   std::vector<glm::vec3> surface;
   for (int i = 0; i < 3000; ++i) {
     const std::size_t t = rng() % (scene.indices.size() / 3);
@@ -170,21 +188,35 @@ TEST(HashedDynamic, RandomEditsWithGeometryMaskEqualAFreshBuild) {
         c(scene.vertices[scene.indices[3 * t + 2]].position);
     surface.push_back(glm::vec3(a + u * (b - a) + v * (c - a)));
   }
-  int incremental = 0;
-  for (int round = 0; round < 8; ++round) {
-    for (int e = 0; e < 30; ++e) {
-      auto& l = lights[rng() % lights.size()];
-      l.position_radius.x += float(uni(rng, -0.8, 0.8));
-      l.position_radius.z += float(uni(rng, -0.8, 0.8));
-      l.position_radius.w *= float(uni(rng, 0.8, 1.2));
+  for (const bool tight : {true, false}) {
+    SCOPED_TRACE(tight ? "tight sets" : "plain sets");
+    // Lights inside the default scene's main hall and rooms.
+    std::vector<gpu::PointLight> lights = loadLightsJson(dataPath("default/lights.json"));
+    lights.resize(300);
+    HashedConfig cfg;
+    cfg.node_size = "0.5r";
+    cfg.geometry_mask = true;
+    cfg.geometry_tight_sets = tight;
+    cfg.bounds_padding = 0.2;
+    cfg.max_incremental_fraction = 1.0;
+    HashedStructure hs(cfg, &scene);
+    hs.build(lights);
+    int incremental = 0;
+    for (int round = 0; round < 8; ++round) {
+      for (int e = 0; e < 30; ++e) {
+        auto& l = lights[rng() % lights.size()];
+        l.position_radius.x += float(uni(rng, -0.8, 0.8));
+        l.position_radius.z += float(uni(rng, -0.8, 0.8));
+        l.position_radius.w *= float(uni(rng, 0.8, 1.2));
+      }
+      const UpdateStats& st = hs.update(lights);
+      if (st.full_rebuild) continue;  // a light left the padded bounds: nothing incremental to check
+      ++incremental;
+      expectSameAsFreshBuild(hs, &scene, rng, surface);
+      if (HasFailure()) return;
     }
-    const UpdateStats& st = hs.update(lights);
-    if (st.full_rebuild) continue;  // a light left the padded bounds: nothing incremental to check
-    ++incremental;
-    expectSameAsFreshBuild(hs, &scene, rng, surface);
-    if (HasFailure()) return;
+    EXPECT_GE(incremental, 3);
   }
-  EXPECT_GE(incremental, 3);
 }
 
 TEST(HashedDynamic, LazyRemovalIsASupersetUntilItsFlush) {

@@ -11,6 +11,7 @@
 
 #include "hashed_support.hpp"
 #include "host/hashed/LightOctreeBuilder.hpp"
+#include "host/hashed/SceneOctree.hpp"
 #include "host/scene/Scene.hpp"
 #include "host/util/DataPaths.hpp"
 #include "support/TestDevice.hpp"
@@ -105,6 +106,46 @@ TEST(HashedOctree, LightOctreesMatchTheCellOverlapTest) {
     }
     EXPECT_LE(lo_tree.root_count, 8u);
   }
+}
+
+// LightCells, the update's coverage per node without an octree, says what
+// the light's octree says of every node it has (and of the 2x2x2 cells below
+// each node above the cells, in one mask), and sees part of the light in
+// every ancestor of a root.
+TEST(HashedOctree, LightCellsAgreeWithTheLightOctree) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const auto lights = randomLights(rng, 300, 50.0, 0.5, 6.0, true);
+  HashedConfig cfg;
+  cfg.node_size = "0.7";
+  const OctreeBounds b = computeBounds(lights, cfg);
+  LightGridScratch scratch;
+  for (std::uint32_t i = 0; i < lights.size(); ++i) {
+    const LightOctree o = buildLightOctree(lights[i], i, b, scratch);
+    const LightCells cells(lights[i], b);
+    const LightNode* cur = nullptr;
+    std::function<void(unsigned, const glm::uvec3&)> walk = [&](unsigned t, const glm::uvec3& c) {
+      const LightNode type = *cur++;
+      ASSERT_EQ(cells.cover(t, c), type) << "light " << i << " depth " << t;
+      if (t + 1 == b.depth) {
+        unsigned want = type == LightNode::Full ? 0xFFu : 0u;
+        for (unsigned k = 0; k < 8 && type == LightNode::Branch; ++k) want |= unsigned(cur[k] == LightNode::Full) << k;
+        EXPECT_EQ(unsigned(cells.cellMask(c)), want) << "light " << i;
+      }
+      if (type != LightNode::Branch) return;
+      for (unsigned k = 0; k < 8; ++k) walk(t + 1, childCoord(c, k));
+    };
+    for (unsigned r = 0; r < o.root_count; ++r) {
+      cur = o.nodes.data() + o.root_start[r];
+      walk(o.root_depth, o.roots[r]);
+      if (HasFailure()) return;
+      for (unsigned t = 0; t < o.root_depth; ++t)
+        EXPECT_NE(cells.cover(t, o.roots[r] >> (o.root_depth - t)), LightNode::Empty) << "light " << i;
+    }
+  }
+  EXPECT_EQ(LightCells().cover(0, glm::uvec3(0)), LightNode::Empty);
+  EXPECT_EQ(LightCells().cellMask(glm::uvec3(0)), 0u);
 }
 
 struct Case {

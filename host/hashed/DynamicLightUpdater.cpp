@@ -137,6 +137,67 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   if (double(edits) > s.cfg_.max_incremental_fraction * double(std::max(n_old, n_new)))
     return rebuild("most lights changed");
 
+  auto t = Clock::now();
+  // The previous update's garbage in the light index list is repacked while
+  // this one edits the tree (on another thread when one is free).
+  tbb::task_group compaction;
+  bool compacted = false;
+  if (s.linkless_->pool().wantsCompaction()) compaction.run([&] { compacted = s.linkless_->compactIfWanted(); });
+  SceneOctree& tree = *s.tree_;
+  tree.setRecording(true);
+  // Lazy versions left from earlier updates are octrees: their clean-up needs them.
+  const bool by_cells = !s.lightGeometry() && !s.cfg_.lazy_removal && !s.cfg_.parallel_tree_edits && s.stale_.empty();
+  const double waited_ms = by_cells ? (editByCells(s, lights, moved), 0.0) : editByOctrees(s, lights, moved, st);
+  tree.normalize();
+  const std::vector<std::uint64_t> touched = tree.takeTouched();
+  tree.setRecording(false);
+  // Building the octrees overlaps the edits: what the edits waited for it
+  // (or built it themselves) counts as octree time, the rest as tree time.
+  st.light_octrees_ms = waited_ms;
+  st.tree_ms = msSince(t) - waited_ms;
+
+  t = Clock::now();
+  compaction.wait();
+  st.sync.compacted = compacted;
+  s.linkless_->applyTouched(tree, touched, st.sync);
+  st.sync_ms = msSince(t);
+
+  s.lights_ = lights;
+  st.stale_lights = s.stale_.size();
+  st.total_ms = msSince(t0);
+}
+
+void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                                      const std::vector<std::uint32_t>& moved) {
+  const auto& old = s.lights_;
+  const std::size_t n_old = old.size(), n_new = lights.size();
+  const OctreeBounds& b = s.bounds_;
+  SceneOctree& tree = *s.tree_;
+  auto& outdated = s.octree_outdated_;
+  outdated.resize(n_old, 0);
+  for (const auto i : moved) {
+    tree.replace(LightCells(old[i], b), LightCells(lights[i], b), i);
+    outdated[i] = 1;
+  }
+  for (std::size_t i = n_new; i < n_old; ++i) tree.replace(LightCells(old[i], b), LightCells(), std::uint32_t(i));
+  for (std::size_t i = n_old; i < n_new; ++i) tree.replace(LightCells(), LightCells(lights[i], b), std::uint32_t(i));
+  s.octrees_.resize(n_new);
+  outdated.resize(n_new, 1);
+}
+
+void DynamicLightUpdater::refreshOctrees(HashedStructure& s) {
+  auto& outdated = s.octree_outdated_;
+  LightGridScratch scratch;
+  for (std::size_t i = 0; i < outdated.size(); ++i)
+    if (outdated[i])
+      s.octrees_[i] = buildLightOctree(s.lights_[i], std::uint32_t(i), s.bounds_, scratch, s.lightGeometry());
+  outdated.clear();
+}
+
+double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                                          const std::vector<std::uint32_t>& moved, UpdateStats& st) {
+  refreshOctrees(s);
+  const std::size_t n_old = s.lights_.size(), n_new = lights.size();
   // Old versions come from the octree cache; only new versions are built.
   std::vector<LightOctree> to_remove;
   std::vector<LightOctree> replaced;  // old versions of moved lights (exact mode)
@@ -169,16 +230,9 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
     st.flushed = true;
   }
 
-  auto t = Clock::now();
-  // The previous update's garbage in the light index list is repacked while
-  // this one edits the tree (on another thread when one is free).
-  tbb::task_group compaction;
-  bool compacted = false;
-  if (s.linkless_->pool().wantsCompaction()) compaction.run([&] { compacted = s.linkless_->compactIfWanted(); });
   Batch batch(to_insert, replaced, s.bounds_, s.lightGeometry());
   auto& new_octrees = batch.octrees;
   SceneOctree& tree = *s.tree_;
-  tree.setRecording(true);
   for (const auto& o : to_remove) tree.remove(o);
   for (const auto i : reinsert) tree.remove(cache[i]);
   // Moved lights come first in to_insert: their old versions are replaced
@@ -204,24 +258,8 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   }
   batch.finish();
   for (const auto i : reinsert) tree.insert(cache[i]);
-  tree.normalize();
-  const std::vector<std::uint64_t> touched = tree.takeTouched();
-  tree.setRecording(false);
-  // Building the octrees overlaps the edits: what the edits waited for it
-  // (or built it themselves) counts as octree time, the rest as tree time.
-  st.light_octrees_ms = waited_ms;
-  st.tree_ms = msSince(t) - waited_ms;
   for (std::size_t k = 0; k < to_insert.size(); ++k) cache[to_insert[k].first] = std::move(new_octrees[k]);
-
-  t = Clock::now();
-  compaction.wait();
-  st.sync.compacted = compacted;
-  s.linkless_->applyTouched(tree, touched, st.sync);
-  st.sync_ms = msSince(t);
-
-  s.lights_ = lights;
-  st.stale_lights = s.stale_.size();
-  st.total_ms = msSince(t0);
+  return waited_ms;
 }
 
 }  // namespace ml::hashed

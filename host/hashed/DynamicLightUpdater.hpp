@@ -10,15 +10,19 @@
 //     octree, adding and removing its index only where they differ (Tables
 //     8.1/8.2); removed lights are removed, added ones inserted (Table 7.1).
 //     Then what became mergeable is merged: the tree is again canonical,
-//     i.e. exactly what a fresh build would produce.
+//     i.e. exactly what a fresh build would produce. In exact mode without
+//     geometry-tight sets the walk computes each version's coverage per
+//     node instead (LightCells), and no octree is built; the octree cache
+//     is brought up to date only when a later update needs it.
 //  3. Re-derive the hash entries of the touched nodes and edit the tables in
 //     place; a table is rehashed only when an insert cannot be placed even by
 //     re-offsetting its group (see PerfectSpatialHash).
-//  Threads: the tree edits (step 2) are sequential; the new octrees are built
-//  on the other threads while the edits consume them in order, and the
-//  previous update's light index list garbage is compacted meanwhile. With
-//  HashedConfig::parallel_tree_edits the moved lights' edits instead run per
-//  depth-2 subtree in parallel once their octrees are built (same result). Step 3
+//  Threads: the tree edits (step 2) are sequential; where octrees are needed
+//  the new ones are built on the other threads while the edits consume them
+//  in order, and the previous update's light index list garbage is
+//  compacted meanwhile. With HashedConfig::parallel_tree_edits the moved
+//  lights' edits instead run per depth-2 subtree in parallel once their
+//  octrees are built (same result). Step 3
 //  derives the touched keys in parallel, interns the light sets in key order,
 //  then edits each table in its own task. The result does not depend on the
 //  thread count.
@@ -26,6 +30,7 @@
 //  lights, leaving harmless extra indices, until the stale fraction calls for
 //  an exact clean-up; lookups are then a superset of a fresh build's until
 //  that flush.
+#include <cstdint>
 #include <vector>
 
 #include "host/hashed/HashedStructure.hpp"
@@ -35,6 +40,21 @@ namespace ml::hashed {
 class DynamicLightUpdater {
  public:
   static void apply(HashedStructure& s, const std::vector<gpu::PointLight>& lights, UpdateStats& stats);
+
+ private:
+  // Step 2 in exact mode without geometry-tight sets (and without parallel
+  // edits): each changed light's old and new cells are compared per node as
+  // LightCells, so no octree is built (building the new octrees and their
+  // subtree ends was ~35% of an update); the cached octrees of the changed
+  // lights are marked outdated instead.
+  static void editByCells(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                          const std::vector<std::uint32_t>& moved);
+  // Step 2 with light octrees, every other mode; the outdated cached octrees
+  // are rebuilt first. Returns the ms spent waiting for new octrees.
+  static double editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                              const std::vector<std::uint32_t>& moved, UpdateStats& stats);
+  // Rebuilds the cached octrees marked outdated, from the current lights.
+  static void refreshOctrees(HashedStructure& s);
 };
 
 }  // namespace ml::hashed

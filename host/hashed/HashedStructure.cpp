@@ -56,6 +56,7 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
 
   auto t = Clock::now();
   octrees_.clear();
+  octree_outdated_.clear();
   octrees_ = buildLightOctrees(lights, bounds_, lightGeometry());
   const auto& octrees = octrees_;
   st.light_octrees_ms = msSince(t);

@@ -87,6 +87,9 @@ class HashedStructure {
   // Each light's octree, kept (the thesis's option 3) so that an update only
   // builds the octrees of the lights' new versions.
   std::vector<LightOctree> octrees_;
+  // Per light, 1 where octrees_ predates the light's current version (an
+  // update that needed no octrees); empty when none does.
+  std::vector<std::uint8_t> octree_outdated_;
   // Lazy removal: octrees of earlier versions of a light whose cells may
   // still list it.
   std::unordered_map<std::uint32_t, std::vector<LightOctree>> stale_;

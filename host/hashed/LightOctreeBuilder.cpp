@@ -37,32 +37,10 @@ struct TreeBuilder {
 
   // The node with min corner `rlo` and edge `size` (cells).
   void nodeAt(const glm::ivec3& rlo, int size) {
-    const glm::ivec3 rhi = rlo + (size - 1);
-    const glm::ivec3 ilo = glm::max(rlo, grid.lo), ihi = glm::min(rhi, ghi);
-    if (ilo.x > ihi.x || ilo.y > ihi.y || ilo.z > ihi.z) {
-      out.push_back(LightNode::Empty);
-      return;
-    }
-    // Closest cell: per axis the one nearest the centre (distances add up per axis).
-    const glm::ivec3 closest = glm::clamp(centre_cell, ilo, ihi);
-    if (!grid.filled(closest)) {
-      out.push_back(LightNode::Empty);
-      return;
-    }
-    if (size == 1) {
-      out.push_back(LightNode::Full);
-      return;
-    }
-    if (ilo == rlo && ihi == rhi) {
-      // Farthest: per axis the end whose far face is farther from the centre.
-      glm::ivec3 farthest;
-      for (int a = 0; a < 3; ++a) farthest[a] = twice_centre[a] >= double(ilo[a] + ihi[a] + 1) ? ilo[a] : ihi[a];
-      if (grid.filled(farthest)) {
-        out.push_back(LightNode::Full);
-        return;
-      }
-    }
-    out.push_back(LightNode::Branch);
+    const LightNode type = classifyNode(rlo, size, grid.lo, ghi, centre_cell, twice_centre,
+                                        [this](const glm::ivec3& p) { return grid.filled(p); });
+    out.push_back(type);
+    if (type != LightNode::Branch) return;
     const int half = size / 2;
     for (int k = 0; k < 8; ++k) {
       const glm::ivec3 clo = rlo + glm::ivec3(k & 1, (k >> 1) & 1, (k >> 2) & 1) * half;
@@ -233,6 +211,25 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
   TreeBuilder tb{g, centre_cell, 2.0 * c, b.depth, lo.nodes, box.hi};
   forEachRoot(box, b.depth, lo, [&](const glm::ivec3& root) { tb.node(lo.root_depth, root); });
   return lo;
+}
+
+LightCells::LightCells(const gpu::PointLight& light, const OctreeBounds& b)
+    : box_(lightCellBox(light, b)), depth_(b.depth) {
+  if (box_.empty()) return;
+  // As buildLightOctree() derives them.
+  const glm::dvec3 c = b.toCells({light.position_radius.x, light.position_radius.y, light.position_radius.z});
+  const double r = b.radiusCells(light.position_radius.w), eps = b.eps_cells;
+  twice_centre_ = 2.0 * c;
+  r2_ = r * r;
+  centre_cell_ = glm::ivec3(glm::clamp(glm::floor(c), glm::dvec3(box_.lo), glm::dvec3(box_.hi)));
+  const glm::ivec3 n = box_.hi - box_.lo + 1;
+  axis_off_ = glm::ivec3(0, n.x, n.x + n.y);
+  axis_d2_.resize(std::size_t(n.x + n.y + n.z));
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < n[a]; ++i) {
+      const int x = box_.lo[a] + i;
+      axis_d2_[std::size_t(axis_off_[a] + i)] = axisGap2(c[a], x, x, eps);
+    }
 }
 
 std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b,

@@ -46,6 +46,83 @@ struct LightOctree {
   bool empty() const { return root_count == 0; }
 };
 
+// The decision tree above for the node with min corner `rlo` and edge
+// `size` (cells), against a light whose cells are those of its cell box
+// [glo, ghi] for which `filled` holds (a convex set). Shared by the builder
+// (filled: its grid) and LightCells (filled: the overlap test itself).
+// Always inlined, as it was in the builder before it was shared: a call per
+// node made the full build a few percent slower.
+template <class Filled>
+[[gnu::always_inline]] inline LightNode classifyNode(const glm::ivec3& rlo, int size, const glm::ivec3& glo,
+                                                     const glm::ivec3& ghi, const glm::ivec3& centre_cell,
+                                                     const glm::dvec3& twice_centre, const Filled& filled) {
+  const glm::ivec3 rhi = rlo + (size - 1);
+  const glm::ivec3 ilo = glm::max(rlo, glo), ihi = glm::min(rhi, ghi);
+  if (ilo.x > ihi.x || ilo.y > ihi.y || ilo.z > ihi.z) return LightNode::Empty;
+  // Closest cell: per axis the one nearest the centre (distances add up per axis).
+  const glm::ivec3 closest = glm::clamp(centre_cell, ilo, ihi);
+  if (!filled(closest)) return LightNode::Empty;
+  if (size == 1) return LightNode::Full;
+  if (ilo == rlo && ihi == rhi) {
+    // Farthest: per axis the end whose far face is farther from the centre.
+    glm::ivec3 farthest;
+    for (int a = 0; a < 3; ++a) farthest[a] = twice_centre[a] >= double(ilo[a] + ihi[a] + 1) ? ilo[a] : ihi[a];
+    if (filled(farthest)) return LightNode::Full;
+  }
+  return LightNode::Branch;
+}
+
+// A light's cells as buildLightOctree() without geometry has them, node by
+// node, without building its grid or octree: cover(t, c) is Empty when the
+// light fills none of node (t, c)'s cells, Full when it fills all, else
+// Branch. Where the light's octree has node (t, c), it says the same; above
+// its roots a node may read Full where the octree has full roots. Exact:
+// the builder's flood fill leaves filled exactly the box cells that pass
+// sphereOverlapsCells(), which cover() evaluates (summing the same per-axis
+// terms in the same order) under the builder's own decision tree. A
+// default-constructed one fills nothing (a light added or removed).
+class LightCells {
+ public:
+  LightCells() = default;
+  LightCells(const gpu::PointLight& light, const OctreeBounds& bounds);
+  LightNode cover(unsigned t, const glm::uvec3& c) const {
+    const int shift = int(depth_ - t);
+    return classifyNode(glm::ivec3(c) << shift, 1 << shift, box_.lo, box_.hi, centre_cell_, twice_centre_,
+                        [this](const glm::ivec3& p) { return filled(p); });
+  }
+
+  // Bit k: cover() of child k of the node (depth - 1, c), i.e. of its 2x2x2
+  // cells: Full (1) or Empty (0). Branch-free: the update walk asks this of
+  // every node above the cells on both versions' surfaces.
+  std::uint8_t cellMask(const glm::uvec3& c) const {
+    double d[3][2];
+    for (int a = 0; a < 3; ++a)
+      for (int j = 0; j < 2; ++j) {
+        const int x = int(2 * c[a]) + j, i = x - box_.lo[a];
+        d[a][j] = x >= box_.lo[a] && x <= box_.hi[a] ? axis_d2_[std::size_t(axis_off_[a] + i)] : kFar;
+      }
+    unsigned m = 0;
+    for (unsigned k = 0; k < 8; ++k) m |= unsigned(d[0][k & 1] + d[1][(k >> 1) & 1] + d[2][k >> 2] < r2_) << k;
+    return std::uint8_t(m);
+  }
+
+ private:
+  static constexpr double kFar = 1e300;  // outside the box: never within the radius
+  // sphereOverlapsCells(p, p) for a cell p of the box, from per-axis squared
+  // distances summed in the same order (the same double, bit for bit).
+  bool filled(const glm::ivec3& p) const {
+    const double* d = axis_d2_.data();
+    return d[p.x - box_.lo.x] + d[axis_off_.y + p.y - box_.lo.y] + d[axis_off_.z + p.z - box_.lo.z] < r2_;
+  }
+  CellBox box_;
+  glm::ivec3 centre_cell_{0};  // floor(centre), clamped to the box
+  glm::dvec3 twice_centre_{0.0};
+  double r2_ = 0.0;
+  unsigned depth_ = 0;
+  glm::ivec3 axis_off_{0};        // where each axis starts in axis_d2_
+  std::vector<double> axis_d2_;  // per axis and box cell: squared distance from the centre
+};
+
 // Scratch space reused across lights by one thread (the grid).
 struct LightGridScratch {
   std::vector<std::uint8_t> grid;

@@ -108,11 +108,7 @@ CellBox lightCellBox(const gpu::PointLight& light, const OctreeBounds& b) {
 
 bool sphereOverlapsCells(const glm::dvec3& c, double r, const glm::ivec3& lo, const glm::ivec3& hi, double eps) {
   double d2 = 0.0;
-  for (int a = 0; a < 3; ++a) {
-    const double mn = double(lo[a]) - eps, mx = double(hi[a]) + 1.0 + eps;
-    const double v = c[a] < mn ? mn - c[a] : (c[a] > mx ? c[a] - mx : 0.0);
-    d2 += v * v;
-  }
+  for (int a = 0; a < 3; ++a) d2 += axisGap2(c[a], lo[a], hi[a], eps);
   return d2 < r * r;
 }
 

@@ -133,5 +133,12 @@ CellBox lightCellBox(const gpu::PointLight& light, const OctreeBounds& b);
 // [lo, hi + 1) widened by eps, compared with r^2: the node-light overlap test
 // of thesis Listing 7 (as its prose states it: closest point closer than r).
 bool sphereOverlapsCells(const glm::dvec3& c, double r, const glm::ivec3& lo, const glm::ivec3& hi, double eps);
+// Its term for one axis: the squared distance from `c` to [lo - eps, hi + 1 + eps]
+// (the test sums the three terms in axis order).
+inline double axisGap2(double c, int lo, int hi, double eps) {
+  const double mn = double(lo) - eps, mx = double(hi) + 1.0 + eps;
+  const double v = c < mn ? mn - c : (c > mx ? c - mx : 0.0);
+  return v * v;
+}
 
 }  // namespace ml::hashed

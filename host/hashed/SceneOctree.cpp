@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
 #include <stdexcept>
 
 #include "host/hashed/KeySort.hpp"
@@ -352,6 +353,51 @@ void SceneOctree::replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uv
     const Cover ca = childCover(ka, sa, above_a[k]), cb = childCover(kb, sb, above_b[k]);
     if (ca == cb && (ca == Cover::Empty || ca == Cover::Full)) continue;  // unchanged here
     replaceRec(ln, ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
+  }
+}
+
+void SceneOctree::replace(const LightCells& a, const LightCells& b, std::uint32_t l) {
+  const glm::uvec3 root(0);
+  replaceCellsRec(0, 0, root, a.cover(0, root), a, b.cover(0, root), b, l);
+}
+
+// replaceRec() with computed coverage (Branch: partly covered).
+void SceneOctree::replaceCellsRec(std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
+                                  LightNode kb, const LightCells& b, std::uint32_t l) {
+  const bool pa = ka == LightNode::Branch, pb = kb == LightNode::Branch;
+  if (!care(t, c) || (!pa && !pb && ka == kb)) return;  // nothing stored here, or no change
+  if (!pa && !pb) {  // whole node gained or lost the light
+    if (kb == LightNode::Full) addFull(main_, n, t, c, l);
+    else removeAll(main_, n, t, c, l);
+    return;
+  }
+  nodes_[n].dirty = true;
+  if (isLeaf(n)) {
+    if (!pb) {  // the new version covers this leaf entirely or not at all
+      if (kb == LightNode::Full) addFull(main_, n, t, c, l);
+      else if (eraseFromSet(n, l)) record(main_, t, c);
+      return;
+    }
+    split(main_, n, t, c);  // Table 8.1: the new version covers part of the leaf
+  }
+  const std::int32_t ch = nodes_[n].child;
+  if (t + 1 == b_.depth) {  // the children are cells: Full or Empty
+    const unsigned ma = pa ? a.cellMask(c) : (ka == LightNode::Full ? 0xFFu : 0u);
+    const unsigned mb = pb ? b.cellMask(c) : (kb == LightNode::Full ? 0xFFu : 0u);
+    for (unsigned diff = ma ^ mb; diff != 0; diff &= diff - 1) {
+      const unsigned k = unsigned(std::countr_zero(diff));
+      const glm::uvec3 cc = childCoord(c, k);
+      if (!care(t + 1, cc)) continue;
+      if ((mb >> k) & 1u) addFull(main_, ch + std::int32_t(k), t + 1, cc, l);
+      else removeAll(main_, ch + std::int32_t(k), t + 1, cc, l);
+    }
+    return;
+  }
+  for (unsigned k = 0; k < 8; ++k) {
+    const glm::uvec3 cc = childCoord(c, k);
+    const LightNode ca = pa ? a.cover(t + 1, cc) : ka, cb = pb ? b.cover(t + 1, cc) : kb;
+    if (ca == cb && ca != LightNode::Branch) continue;  // unchanged here
+    replaceCellsRec(ch + std::int32_t(k), t + 1, cc, ca, a, cb, b, l);
   }
 }
 

@@ -54,6 +54,12 @@ class SceneOctree {
   void replace(const LightOctree& old_version, const LightOctree& new_version,
                const std::vector<std::uint32_t>* old_ends = nullptr,
                const std::vector<std::uint32_t>* new_ends = nullptr);
+  // The same for a light without geometry-tight sets, its versions given as
+  // LightCells: each node's coverage is computed instead of read from an
+  // octree, so that no octree is built (a default LightCells stands for no
+  // version: an added or removed light). The tree after normalize() is the
+  // same as with octrees.
+  void replace(const LightCells& old_version, const LightCells& new_version, std::uint32_t light);
   // Many lights' replacements at once, with the same result as replace() on
   // each: the subtrees at depth min(2, start depth) are disjoint, so each is
   // edited by its own task (TBB) with the lights whose old or new version
@@ -154,6 +160,8 @@ class SceneOctree {
   std::vector<std::uint32_t> end_a_, end_b_;  // replace()'s scratch
   void replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
                   Stream& sb, std::uint32_t l);
+  void replaceCellsRec(std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
+                       LightNode kb, const LightCells& b, std::uint32_t l);
   // A version's coverage of the node (t, c) with the stream positioned as
   // replaceRec() expects it there (t must not exceed the version's depth).
   static Cover coverAt(Stream& s, unsigned t, const glm::uvec3& c);
