@@ -31,7 +31,8 @@ typedef struct PointLight {
 ML_STATIC_ASSERT(sizeof(PointLight) == 32, "PointLight must be 32 bytes (std430 vec4 pair)");
 ML_STATIC_ASSERT(alignof(PointLight) == 16, "PointLight must be 16-byte aligned");
 
-/* One light-grid / cluster-list entry: a range in the light index list. */
+/* One tile's or cluster's list: a range of entries (tiled: light indices;
+ * clustered: hit records, see kernels/cluster_assign.cl). */
 typedef struct LightRange {
   ml_uint offset;
   ml_uint count;
