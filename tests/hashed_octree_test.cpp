@@ -52,14 +52,28 @@ struct IndexedLightOctree {
   }
 };
 
+// 300 random lights (some huge, some tiny, some at the bounds) and their
+// octree bounds at node size 0.7: the per-light octree tests' input.
+struct LightSetCase {
+  std::vector<gpu::PointLight> lights;
+  OctreeBounds bounds;
+  static LightSetCase random(std::mt19937_64& rng) {
+    LightSetCase c;
+    c.lights = randomLights(rng, 300, 50.0, 0.5, 6.0, true);
+    HashedConfig cfg;
+    cfg.node_size = "0.7";
+    c.bounds = computeBounds(c.lights, cfg);
+    return c;
+  }
+};
+
 TEST(HashedOctree, LightOctreesMatchTheCellOverlapTest) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  const auto lights = randomLights(rng, 300, 50.0, 0.5, 6.0, true);
-  HashedConfig cfg;
-  cfg.node_size = "0.7";
-  const OctreeBounds b = computeBounds(lights, cfg);
+  const LightSetCase lc = LightSetCase::random(rng);
+  const auto& lights = lc.lights;
+  const OctreeBounds& b = lc.bounds;
   LightGridScratch scratch;
   for (std::uint32_t i = 0; i < lights.size(); ++i) {
     const LightOctree lo_tree = buildLightOctree(lights[i], i, b, scratch);
@@ -116,10 +130,9 @@ TEST(HashedOctree, LightCellsAgreeWithTheLightOctree) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  const auto lights = randomLights(rng, 300, 50.0, 0.5, 6.0, true);
-  HashedConfig cfg;
-  cfg.node_size = "0.7";
-  const OctreeBounds b = computeBounds(lights, cfg);
+  const LightSetCase lc = LightSetCase::random(rng);
+  const auto& lights = lc.lights;
+  const OctreeBounds& b = lc.bounds;
   LightGridScratch scratch;
   for (std::uint32_t i = 0; i < lights.size(); ++i) {
     const LightOctree o = buildLightOctree(lights[i], i, b, scratch);
