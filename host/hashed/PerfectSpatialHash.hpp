@@ -91,13 +91,13 @@ class PerfectSpatialHash {
 
   // --- lookup, exactly as lookup_hashed.glsl ---
   std::uint32_t offsetIndex(const glm::uvec3& p) const {
-    const glm::uvec3 o = p % r_;
+    const glm::uvec3 o = mod(p, r_, fr_);
     return o.x + r_.x * (o.y + r_.y * o.z);
   }
   std::uint32_t slot(const glm::uvec3& p) const {
     const std::uint32_t phi = offsets_[offsetIndex(p)];
     const glm::uvec3 off(phi & 0xFFu, (phi >> 8) & 0xFFu, (phi >> 16) & 0xFFu);
-    const glm::uvec3 h = (p % m_ + off) % m_;
+    const glm::uvec3 h = mod(mod(p, m_, fm_) + off, m_, fm_);
     return h.x + m_.x * (h.y + m_.y * h.z);
   }
   static bool keyMatches(const std::uint32_t* w, const glm::uvec3& p) {
@@ -171,9 +171,23 @@ class PerfectSpatialHash {
   }
 
  private:
+  // p % d per axis by Lemire's fastmod (exact for every 32-bit p): host
+  // lookups and builds run these in their inner loops, where 9 divisions
+  // per lookup were most of a dynamic update's table work.
+  static std::uint64_t fastModConstant(std::uint32_t d) { return ~std::uint64_t(0) / d + 1; }
+  static glm::uvec3 mod(const glm::uvec3& p, const glm::uvec3& d, const std::uint64_t* f) {
+    glm::uvec3 o;
+    for (int a = 0; a < 3; ++a)
+      o[a] = std::uint32_t((static_cast<unsigned __int128>(f[a] * p[a]) * d[a]) >> 64);
+    return o;
+  }
   void reset(const glm::uvec3& m, const glm::uvec3& r) {
     m_ = m;
     r_ = r;
+    for (int a = 0; a < 3; ++a) {
+      fm_[a] = fastModConstant(m[a]);
+      fr_[a] = fastModConstant(r[a]);
+    }
     table_.assign(slots() * kWords, 0);
     for (std::size_t s = 0; s < slots(); ++s) table_[s * kWords] = kEmptyKeyWord;
     offsets_.assign(offsetCount(), 0);
@@ -210,7 +224,7 @@ class PerfectSpatialHash {
   static std::uint32_t packOffset(const glm::uvec3& o) { return o.x | (o.y << 8) | (o.z << 16); }
   static glm::uvec3 unpackOffset(std::uint32_t phi) { return {phi & 0xFFu, (phi >> 8) & 0xFFu, (phi >> 16) & 0xFFu}; }
   std::uint32_t slotWith(const glm::uvec3& h0, const glm::uvec3& off) const {
-    const glm::uvec3 h = (h0 + off) % m_;
+    const glm::uvec3 h = mod(h0 + off, m_, fm_);
     return h.x + m_.x * (h.y + m_.y * h.z);
   }
   // Offset candidates from the 6 neighbours of Phi entry `o` (wrapping).
@@ -226,6 +240,7 @@ class PerfectSpatialHash {
   void ensureMembers();
 
   glm::uvec3 m_{1}, r_{1};
+  std::uint64_t fm_[3] = {0, 0, 0}, fr_[3] = {0, 0, 0};  // fastModConstant(m_), (r_); 0 is d = 1's
   std::vector<std::uint32_t> table_;
   std::vector<std::uint32_t> offsets_;
   std::size_t size_ = 0;
