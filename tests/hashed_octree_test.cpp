@@ -1,8 +1,9 @@
 // The hashed-shading structure on the host: light octrees equal the per-cell
 // overlap test, and the linkless octree's lookup (the GLSL's mirror) returns
-// for random points exactly the lights that overlap the point's cell: a
-// superset of the lights whose sphere contains the point (conservative) and
-// nothing beyond the node's reach. Also: minimal (canonical) merging, start
+// for random points exactly the lights that overlap the point's cell, or in
+// a deepest leaf with octant masks the point's octant of it: a superset of
+// the lights whose sphere contains the point (conservative) and nothing
+// beyond the node's reach. Also: minimal (canonical) merging, start
 // depths, the geometry mask, and empty light sets.
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 
 #include "hashed_support.hpp"
 #include "host/hashed/LightOctreeBuilder.hpp"
+#include "host/hashed/OctantMask.hpp"
 #include "host/hashed/SceneOctree.hpp"
 #include "host/scene/Scene.hpp"
 #include "host/util/DataPaths.hpp"
@@ -165,15 +167,18 @@ struct Case {
   const char* node_size;
   unsigned start_depth;
   std::size_t lights;
+  bool octant_masks = true;
 };
 
-TEST(HashedOctree, LookupsListExactlyTheLightsReachingTheCell) {
+TEST(HashedOctree, LookupsListExactlyTheLightsReachingTheCellOrOctant) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
+  std::size_t octant_leaves = 0;
   for (const Case& cs : {Case{"0.5r", 3, 400}, Case{"0.25r", 0, 150}, Case{"2r", 1, 400}, Case{"1.3", 20, 250},
-                         Case{"0.9r", 4, 1}}) {
-    SCOPED_TRACE(std::string(cs.node_size) + " start depth " + std::to_string(cs.start_depth));
+                         Case{"0.9r", 4, 1}, Case{"0.5r", 2, 300, false}}) {
+    SCOPED_TRACE(std::string(cs.node_size) + " start depth " + std::to_string(cs.start_depth) +
+                 (cs.octant_masks ? "" : ", no octant masks"));
     // Relative sizes scale the median radius: "0.5r" with huge lights would be coarse,
     // so the huge ones only appear with absolute sizes.
     const bool absolute = cs.node_size[std::string(cs.node_size).size() - 1] != 'r';
@@ -181,6 +186,7 @@ TEST(HashedOctree, LookupsListExactlyTheLightsReachingTheCell) {
     HashedConfig cfg;
     cfg.node_size = cs.node_size;
     cfg.start_depth = cs.start_depth;
+    cfg.octant_masks = cs.octant_masks;
     HashedStructure hs(cfg);
     hs.build(lights);
     const OctreeBounds& b = hs.bounds();
@@ -202,10 +208,14 @@ TEST(HashedOctree, LookupsListExactlyTheLightsReachingTheCell) {
         EXPECT_TRUE(got.empty());
         continue;
       }
-      const auto want = lightsOverlappingCell(lights, b, cell);
-      ASSERT_EQ(got, want) << "point " << p.x << "," << p.y << "," << p.z;
+      const auto in_cell = lightsOverlappingCell(lights, b, cell);
       // The CPU tree agrees with its hashed form.
-      EXPECT_EQ(hs.tree().lightsAtCell(cell), want);
+      EXPECT_EQ(hs.tree().lightsAtCell(cell), in_cell);
+      const auto leaf = hs.tree().find(b.depth, cell);
+      const bool by_octant = cs.octant_masks && leaf.exists && leaf.leaf;
+      octant_leaves += by_octant && !in_cell.empty();
+      const auto want = by_octant ? lightsReachingOctant(lights, b, cell, octantOf(b.cellCoordF(p))) : in_cell;
+      ASSERT_EQ(got, want) << "point " << p.x << "," << p.y << "," << p.z;
       // Conservative in the plain sense: every sphere containing p is listed.
       for (std::uint32_t li = 0; li < lights.size(); ++li) {
         const auto& l = lights[li];
@@ -223,6 +233,7 @@ TEST(HashedOctree, LookupsListExactlyTheLightsReachingTheCell) {
     EXPECT_EQ(hs.linkless().lookup(glm::vec3(b.origin + b.side() * 1.01)).count, 0u);
     if (HasFailure()) return;
   }
+  EXPECT_GT(octant_leaves, 1000u);  // the octant path was exercised
 }
 
 TEST(HashedOctree, SceneOctreeIsCanonical) {
@@ -291,6 +302,10 @@ TEST(HashedOctree, GeometryMaskKeepsSurfacePointsAndSavesMemory) {
       SCOPED_TRACE(std::string(size) + (tight ? " tight" : " relaxed merge only"));
       HashedConfig cfg;
       cfg.node_size = size;
+      // Relaxed merging alone must list what the plain tree lists; octant
+      // masks would differ wherever it merged deepest leaves (they keep
+      // masks only at the deepest depth), so they are off for that check.
+      cfg.octant_masks = tight;
       HashedStructure plain(cfg);
       plain.build(lights);
       cfg.geometry_mask = true;

@@ -95,7 +95,7 @@ TEST(HashedRender, GlslCountsEqualTheCpuLookup) {
       if (dz >= 1.0f) continue;
       ++covered;
       const glm::vec4 w = inv * glm::vec4((x + 0.5f) / kW * 2 - 1, (y + 0.5f) / kH * 2 - 1, dz * 2 - 1, 1);
-      cpu += hf.structure()->linkless().lookup(glm::vec3(w) / w.w).count;
+      cpu += hf.structure()->linkless().lightsAt(glm::vec3(w) / w.w).size();
     }
   EXPECT_EQ(covered, f.result.covered_pixels);
   // Reconstructed points differ from the interpolated ones by rounding, which

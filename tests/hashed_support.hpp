@@ -47,6 +47,24 @@ inline std::vector<std::uint32_t> lightsOverlappingCell(const std::vector<gpu::P
   return out;
 }
 
+// Of those, the ones whose sphere reaches octant `k` (x + 2y + 4z) of the
+// cell, i.e. its half-size sub-cell widened by eps: what a deepest leaf's
+// octant masks let through (reference: the clamped closest point).
+inline std::vector<std::uint32_t> lightsReachingOctant(const std::vector<gpu::PointLight>& lights,
+                                                       const OctreeBounds& b, const glm::uvec3& c, unsigned k) {
+  const glm::dvec3 lo = glm::dvec3(c) + 0.5 * glm::dvec3(k & 1u, (k >> 1) & 1u, (k >> 2) & 1u) - b.eps_cells;
+  const glm::dvec3 hi = lo + 0.5 + 2.0 * b.eps_cells;
+  std::vector<std::uint32_t> out;
+  for (const auto i : lightsOverlappingCell(lights, b, c)) {
+    const auto& l = lights[i];
+    const glm::dvec3 lc = b.toCells({l.position_radius.x, l.position_radius.y, l.position_radius.z});
+    const glm::dvec3 d = glm::clamp(lc, lo, hi) - lc;
+    const double r = b.radiusCells(l.position_radius.w);
+    if (glm::dot(d, d) < r * r) out.push_back(i);
+  }
+  return out;
+}
+
 inline glm::vec3 randomPointIn(std::mt19937_64& rng, const OctreeBounds& b) {
   const double s = b.side();
   return glm::vec3(b.origin + glm::dvec3(uni(rng, 0, s), uni(rng, 0, s), uni(rng, 0, s)));

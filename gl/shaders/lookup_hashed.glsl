@@ -6,8 +6,26 @@
 //   4 description slots (uvec2: key x | y << 16, z | leaf << 16 | filled << 24),
 //   5 light-data slots (uvec4: key x | y << 16, z, offset, count).
 // An empty slot has 0xFFFFFFFF as its first word, so a key that is absent
-// never matches: it reads as "no lights".
-#include "index_list.glsl"
+// never matches: it reads as "no lights". Index list entries are
+// light | octant mask << 24 (host/hashed/OctantMask.hpp): a light is
+// evaluated only if it reaches the point's octant of its leaf cell.
+struct LightList {
+  uint offset;
+  uint end;
+  uint octant_bit;  // 1 << (24 + the point's octant)
+};
+layout(std430, binding = 1) readonly buffer LightIndexBuffer { uint light_indices[]; };
+bool nextLight(inout LightList list, out uint light_index) {
+  while (list.offset < list.end) {
+    uint e = light_indices[list.offset++];
+    if ((e & list.octant_bit) != 0u) {
+      light_index = e & 0xFFFFFFu;
+      return true;
+    }
+  }
+  light_index = 0u;
+  return false;
+}
 layout(std430, binding = 2) readonly buffer HashedHeader {
   vec4 hs_origin_scale;  // octree origin (xyz), cells per world unit (w)
   uvec4 hs_info;         // depth, start depth, layer count, unused
@@ -29,7 +47,7 @@ uint hsSlot(uvec3 p, uvec4 m, uvec4 r) {
 }
 
 LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {
-  LightList none = LightList(0u, 0u);
+  LightList none = LightList(0u, 0u, 0u);
   vec3 q = (world_pos - hs_origin_scale.xyz) * hs_origin_scale.w;
   uint depth = hs_info.x;
   float n = float(1u << depth);
@@ -46,7 +64,10 @@ LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {
     if (((e.y >> (16u + bit)) & 1u) != 0u) {      // the child is a leaf
       if (((e.y >> (24u + bit)) & 1u) != 0u) {    // ... with lights
         uvec4 dt = hs_data[hsSlot(nxt, hs_tables[4u * i + 2u], hs_tables[4u * i + 3u])];
-        if (dt.x == (nxt.x | (nxt.y << 16)) && (dt.y & 0xFFFFu) == nxt.z) return LightList(dt.z, dt.w);
+        if (dt.x == (nxt.x | (nxt.y << 16)) && (dt.y & 0xFFFFu) == nxt.z) {
+          uvec3 h = uvec3(q * 2.0) & 1u;  // the octant (exact: doubling is exact)
+          return LightList(dt.z, dt.z + dt.w, 1u << (24u + h.x + 2u * h.y + 4u * h.z));
+        }
       }
       return none;
     }

@@ -1,6 +1,17 @@
 // Tiled shading: the fragment's screen tile holds (offset, count) into the
 // light index list (built by kernels/tiled_light_culling.cl).
-#include "index_list.glsl"
+struct LightList {
+  uint offset;
+  uint count;
+};
+layout(std430, binding = 1) readonly buffer LightIndexBuffer { uint light_indices[]; };
+bool nextLight(inout LightList list, out uint light_index) {
+  light_index = 0u;
+  if (list.count == 0u) return false;
+  light_index = light_indices[list.offset++];
+  --list.count;
+  return true;
+}
 layout(std430, binding = 2) readonly buffer TileGridBuffer { uvec2 tile_grid[]; };
 uniform uint u_tiles_x;
 LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {

@@ -144,7 +144,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       "  tile, tile_depth (none|minmax|mask)              tiled techniques\n"
       "  cluster_tile (pixels | auto), unique (pagetable|sort|tile-sort), cluster_assign (bvh|brute),\n"
       "  cluster_bounds (pixels|frustum)                                               clustered\n"
-      "  node_size (2.0 | 0.5r), start_depth, geometry_mask (on|off)                  hashed\n"
+      "  node_size (2.0 | 0.5r), start_depth, geometry_mask (on|off), octant_masks (on|off)  hashed\n"
       "Light sets (--lights, comma list): JSON files; names under the suite's lights/; 'thesis' (the thesis's set\n"
       "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).");
   cmd->add_option("--suite,--scene", a.scene.suite,

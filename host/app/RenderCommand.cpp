@@ -88,6 +88,8 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
       ->capture_default_str();
   cmd->add_option("--start-depth", a.params.start_depth, "hashed: octree start depth")->capture_default_str();
   cmd->add_flag("--geometry-mask", a.params.geometry_mask, "hashed: keep only nodes that contain geometry");
+  cmd->add_flag("--octant-masks,!--no-octant-masks", a.params.octant_masks,
+                "hashed: skip lights that miss the point's octant of its deepest cell (default on)");
   cmd->add_option("--animate", g_animate,
                   "move this fraction of the lights (0..1) before every timed frame (hashed: incremental update)");
   cmd->add_option("--animate-speed", g_animate_speed,

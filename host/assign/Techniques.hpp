@@ -21,10 +21,11 @@ struct TechniqueParams {
   std::string unique_method = "pagetable";  // pagetable | sort | tile-sort
   std::string cluster_assign = "bvh";       // bvh | brute
   std::string cluster_bounds = "pixels";    // pixels (explicit, AABB of the cluster's pixels) | frustum (implicit)
-  // Hashed shading (--node-size, --start-depth, --geometry-mask)
+  // Hashed shading (--node-size, --start-depth, --geometry-mask, --no-octant-masks)
   std::string node_size = "0.5r";  // absolute world units ("2.0") or relative to the median light radius ("0.5r")
   unsigned start_depth = 3;
   bool geometry_mask = false;
+  bool octant_masks = true;
 };
 
 struct TechniqueInfo {

@@ -124,7 +124,7 @@ nlohmann::ordered_json toJson(const Summary& s) {
 const std::vector<std::string>& techniqueParamKeys() {
   static const std::vector<std::string> keys = {"tile",           "tile_depth",  "cluster_tile", "unique",
                                                 "cluster_assign", "cluster_bounds", "node_size", "start_depth",
-                                                "geometry_mask"};
+                                                "geometry_mask", "octant_masks"};
   return keys;
 }
 
@@ -133,7 +133,7 @@ std::vector<std::string> paramKeysUsedBy(const std::string& technique) {
   auto has = [&](const char* s) { return technique.find(s) != std::string::npos; };
   if (has("tiled")) keys.insert(keys.end(), {"tile", "tile_depth"});
   if (has("clustered")) keys.insert(keys.end(), {"cluster_tile", "unique", "cluster_assign", "cluster_bounds"});
-  if (has("hashed")) keys.insert(keys.end(), {"node_size", "start_depth", "geometry_mask"});
+  if (has("hashed")) keys.insert(keys.end(), {"node_size", "start_depth", "geometry_mask", "octant_masks"});
   return keys;
 }
 
@@ -180,9 +180,10 @@ void setTechniqueParam(TechniqueParams& p, const std::string& key, const std::st
   } else if (key == "start_depth") {
     if (!parseUnsigned(value, u) || u > 16) throw bad("expected an octree depth 0..16");
     p.start_depth = u;
-  } else if (key == "geometry_mask") {
-    if (value == "1" || value == "true" || value == "on") p.geometry_mask = true;
-    else if (value == "0" || value == "false" || value == "off") p.geometry_mask = false;
+  } else if (key == "geometry_mask" || key == "octant_masks") {
+    bool& dst = key == "geometry_mask" ? p.geometry_mask : p.octant_masks;
+    if (value == "1" || value == "true" || value == "on") dst = true;
+    else if (value == "0" || value == "false" || value == "off") dst = false;
     else throw bad("expected on|off");
   } else {
     std::string list;

@@ -52,11 +52,11 @@ double percentile(const std::vector<double>& sorted, double q);
 nlohmann::ordered_json toJson(const Summary& s);
 
 // Technique parameters a sweep may vary, by key. Keys: tile, tile_depth,
-// cluster_tile, unique, cluster_assign, node_size, start_depth, geometry_mask.
+// cluster_tile, unique, cluster_assign, node_size, start_depth, geometry_mask, octant_masks.
 const std::vector<std::string>& techniqueParamKeys();
 // The keys a technique reads, judged by its registered name ("tiled" ->
 // tile, tile_depth; "clustered" -> cluster_tile, unique, cluster_assign;
-// "hashed" -> node_size, start_depth, geometry_mask). Sweeping a key a
+// "hashed" -> node_size, start_depth, geometry_mask, octant_masks). Sweeping a key a
 // technique does not read would only repeat identical runs, so it is not swept
 // for that technique.
 std::vector<std::string> paramKeysUsedBy(const std::string& technique);

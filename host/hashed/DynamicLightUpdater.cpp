@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "host/hashed/LightOctreeBuilder.hpp"
+#include "host/hashed/OctantMask.hpp"
 
 namespace ml::hashed {
 namespace {
@@ -138,11 +139,20 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
     return rebuild("most lights changed");
 
   auto t = Clock::now();
-  // The previous update's garbage in the light index list is repacked while
-  // this one edits the tree (on another thread when one is free).
-  tbb::task_group compaction;
+  // While this thread edits the tree (sequential), another one repacks the
+  // previous update's garbage in the light index list, then finds the moved
+  // lights' octant masks that change in place: their whole surface, not
+  // only where their sets change. Neither reads the tree.
+  tbb::task_group background;
   bool compacted = false;
-  if (s.linkless_->pool().wantsCompaction()) compaction.run([&] { compacted = s.linkless_->compactIfWanted(); });
+  std::vector<OctantRewrite> rewrites;
+  background.run([&] {
+    if (s.linkless_->pool().wantsCompaction()) compacted = s.linkless_->compactIfWanted();
+    if (!s.linkless_->octantMasks()) return;
+    std::vector<OctantChange> changes;
+    for (const auto i : moved) appendOctantChanges(&old[i], &lights[i], i, s.bounds_, changes);
+    rewrites = s.linkless_->findOctantRewrites(changes);
+  });
   SceneOctree& tree = *s.tree_;
   tree.setRecording(true);
   // Lazy versions left from earlier updates are octrees: their clean-up needs them.
@@ -157,9 +167,10 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   st.tree_ms = msSince(t) - waited_ms;
 
   t = Clock::now();
-  compaction.wait();
+  background.wait();
   st.sync.compacted = compacted;
-  s.linkless_->applyTouched(tree, touched, st.sync);
+  s.linkless_->applyOctantRewrites(rewrites, st.sync);
+  s.linkless_->applyTouched(tree, lights, touched, st.sync);
   st.sync_ms = msSince(t);
 
   s.lights_ = lights;

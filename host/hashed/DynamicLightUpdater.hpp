@@ -16,11 +16,14 @@
 //     is brought up to date only when a later update needs it.
 //  3. Re-derive the hash entries of the touched nodes and edit the tables in
 //     place; a table is rehashed only when an insert cannot be placed even by
-//     re-offsetting its group (see PerfectSpatialHash).
+//     re-offsetting its group (see PerfectSpatialHash). Then rewrite in place
+//     the octant masks of moved lights in the untouched deepest leaves
+//     (OctantMask.hpp): a moved light's masks change over its whole
+//     surface, not only where its sets did. They are found meanwhile step 2.
 //  Threads: the tree edits (step 2) are sequential; where octrees are needed
 //  the new ones are built on the other threads while the edits consume them
 //  in order, and the previous update's light index list garbage is
-//  compacted meanwhile. With HashedConfig::parallel_tree_edits the moved
+//  compacted and the octant rewrites are found meanwhile. With HashedConfig::parallel_tree_edits the moved
 //  lights' edits instead run per depth-2 subtree in parallel once their
 //  octrees are built (same result). Step 3
 //  derives the touched keys in parallel, interns the light sets in key order,

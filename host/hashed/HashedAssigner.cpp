@@ -16,6 +16,7 @@ hashed::HashedConfig configFrom(const TechniqueParams& p) {
   c.node_size = p.node_size;
   c.start_depth = p.start_depth;
   c.geometry_mask = p.geometry_mask;
+  c.octant_masks = p.octant_masks;
   return c;
 }
 
@@ -159,15 +160,18 @@ void HashedAssigner::upload() {
       table(lo.data(i), data_.id, lo.dataSlotBase(i), lo.offsetBase(i, true));
     }
     const auto& list = lo.pool().list();
-    const auto d = lo.pool().takeDirty();
+    auto d = lo.pool().takeDirty();
     const std::size_t from = d.all ? 0 : std::min(d.from, list.size());
     if (list.size() * 4 > list_.capacity) {
       ensure(list_, list.size() * 4, true);
       if (!list.empty()) glNamedBufferSubData(list_.id, 0, GLsizeiptr(list.size() * 4), list.data());
       upload_bytes_ += list.size() * 4;
-    } else if (from < list.size()) {
-      glNamedBufferSubData(list_.id, GLintptr(from * 4), GLsizeiptr((list.size() - from) * 4), list.data() + from);
-      upload_bytes_ += (list.size() - from) * 4;
+    } else {
+      if (from < list.size()) {
+        glNamedBufferSubData(list_.id, GLintptr(from * 4), GLsizeiptr((list.size() - from) * 4), list.data() + from);
+        upload_bytes_ += (list.size() - from) * 4;
+      }
+      upload_bytes_ += uploadRuns(list_.id, 0, 1, list, std::move(d.words));  // octant masks rewritten in place
     }
   }
   glCheck("uploading the hashed-shading tables");

@@ -8,7 +8,7 @@
 //  - GL buffers (plain GL: only GLSL reads them): binding 1 light index
 //    list, 2 header, 3 offset tables, 4 description slots, 5 light-data slots
 //    (layout: LinklessOctree.hpp, lookup_hashed.glsl). After an update only
-//    the edited slots, offsets and the list's new tail are uploaded, unless a
+//    the edited slots, offsets, list entries and the list's new tail are uploaded, unless a
 //    table was rehashed to a new size (then everything is).
 //  - The geometry mask needs the scene's triangles: call
 //    attachSceneGeometry() before the first frame (the render command does).

@@ -4,6 +4,7 @@
 
 #include "host/hashed/DynamicLightUpdater.hpp"
 #include "host/hashed/LightOctreeBuilder.hpp"
+#include "host/hashed/OctantMask.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml::hashed {
@@ -11,6 +12,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// Index list entries hold the light in their low bits (OctantMask.hpp).
+void checkLightCount(std::size_t n) {
+  if (n > kMaxHashedLights)
+    throw UserError("--lights: hashed shading addresses at most " + std::to_string(kMaxHashedLights) +
+                    " lights (24-bit light indices in its index list), got " + std::to_string(n));
+}
 
 }  // namespace
 
@@ -32,6 +40,7 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights) {
 }
 
 void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds) {
+  checkLightCount(lights.size());
   checkMemory(lights, bounds, cfg_.memory_limit, cfg_.node_size);
   if (cfg_.geometry_mask) {
     const double need = GeometryMask::estimateBytes(*scene_, bounds);
@@ -76,7 +85,7 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
 
   t = Clock::now();
   linkless_ = std::make_unique<LinklessOctree>(bounds_, cfg_);
-  linkless_->buildFrom(*tree_);
+  linkless_->buildFrom(*tree_, lights);
   st.hash_ms = msSince(t);
 
   st.scene_nodes = tree_->nodeCount();
@@ -97,6 +106,7 @@ std::size_t HashedStructure::lightOctreeBytes() const {
 }
 
 const UpdateStats& HashedStructure::update(const std::vector<gpu::PointLight>& lights) {
+  checkLightCount(lights.size());
   UpdateStats st;
   DynamicLightUpdater::apply(*this, lights, st);
   update_stats_ = st;

@@ -5,11 +5,42 @@
 // coordinate bits rarely vary), then dropping repeats. Contract: `keys` ends
 // up sorted ascending without duplicates, exactly as std::sort + std::unique
 // would leave it; `scratch` is reused storage (contents unspecified).
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
 namespace ml::hashed {
 
 void sortUniqueKeys(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& scratch);
+
+// Records sorted by their `key` member the same way, stably (records with
+// equal keys keep their order), repeats kept.
+template <class T>
+void sortByKeyStable(std::vector<T>& items, std::vector<T>& scratch) {
+  if (items.size() < 512) {
+    std::stable_sort(items.begin(), items.end(), [](const T& a, const T& b) { return a.key < b.key; });
+    return;
+  }
+  constexpr unsigned kBits = 11, kPasses = (64 + kBits - 1) / kBits;
+  constexpr std::size_t kBuckets = std::size_t(1) << kBits;
+  std::vector<std::array<std::uint32_t, kBuckets>> count(kPasses);
+  for (auto& c : count) c.fill(0);
+  for (const T& t : items)
+    for (unsigned p = 0; p < kPasses; ++p) ++count[p][(t.key >> (p * kBits)) & (kBuckets - 1)];
+  scratch.resize(items.size());
+  for (unsigned p = 0; p < kPasses; ++p) {
+    auto& c = count[p];
+    if (c[(items[0].key >> (p * kBits)) & (kBuckets - 1)] == items.size()) continue;
+    std::uint32_t sum = 0;
+    for (auto& x : c) {
+      const std::uint32_t n = x;
+      x = sum;
+      sum += n;
+    }
+    for (const T& t : items) scratch[c[(t.key >> (p * kBits)) & (kBuckets - 1)]++] = t;
+    items.swap(scratch);
+  }
+}
 
 }  // namespace ml::hashed

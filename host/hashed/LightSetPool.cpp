@@ -16,7 +16,7 @@ void LightSetPool::rebuildIndex(std::size_t capacity) {
   while (cap < capacity) cap *= 2;
   index_.assign(cap, 0);
   for (std::uint32_t r = 0; r < recs_.size(); ++r)
-    if (recs_[r].count > 0) indexInsert(r);
+    if (recs_[r].capacity > 0 && !recs_[r].own) indexInsert(r);
 }
 
 void LightSetPool::indexInsert(std::uint32_t rec) {
@@ -35,15 +35,30 @@ std::uint32_t LightSetPool::acquire(const std::vector<std::uint32_t>& set, std::
     for (std::size_t i = h & mask; index_[i] != 0; i = (i + 1) & mask) {
       Rec& r = recs_[index_[i] - 1];
       if (r.hash == h && r.count == set.size() && std::equal(set.begin(), set.end(), list_.begin() + r.offset)) {
-        if (r.refs == 0) garbage_ -= r.count;  // revived
+        if (r.refs == 0) garbage_ -= r.capacity;  // revived
         ++r.refs;
         return r.offset;
       }
     }
   }
+  return append(set, h, false);
+}
+
+std::uint32_t LightSetPool::acquireOwn(const std::vector<std::uint32_t>& set) {
+  if (set.empty()) throw std::logic_error("light set pool: empty sets have no range");
+  return append(set, 0, true);
+}
+
+namespace {
+constexpr std::uint32_t kPadWord = 0;  // past a range's count: never read
+}
+
+std::uint32_t LightSetPool::append(const std::vector<std::uint32_t>& set, std::uint64_t h, bool own) {
   const std::uint32_t off = std::uint32_t(list_.size());
-  if (list_.size() + set.size() > 0xFFFFFFF0ull) throw std::length_error("light index list exceeds 2^32 entries");
+  const std::uint32_t cap = own ? ownCapacity(set.size()) : std::uint32_t(set.size());
+  if (list_.size() + cap > 0xFFFFFFF0ull) throw std::length_error("light index list exceeds 2^32 entries");
   list_.insert(list_.end(), set.begin(), set.end());
+  list_.resize(list_.size() + (cap - set.size()), kPadWord);
   std::uint32_t id;
   if (!free_recs_.empty()) {
     id = free_recs_.back();
@@ -52,9 +67,10 @@ std::uint32_t LightSetPool::acquire(const std::vector<std::uint32_t>& set, std::
     id = std::uint32_t(recs_.size());
     recs_.emplace_back();
   }
-  recs_[id] = Rec{off, std::uint32_t(set.size()), 1, h};
+  recs_[id] = Rec{off, std::uint32_t(set.size()), cap, 1, own, h};
   rec_at_.resize(list_.size());
   rec_at_[off] = id;
+  if (own) return off;
   if (2 * (recs_.size() - free_recs_.size()) >= index_.size()) rebuildIndex(4 * recs_.size());
   else indexInsert(id);
   return off;
@@ -63,7 +79,7 @@ std::uint32_t LightSetPool::acquire(const std::vector<std::uint32_t>& set, std::
 void LightSetPool::release(std::uint32_t offset) {
   Rec& r = recs_.at(rec_at_.at(offset));
   if (r.refs == 0 || r.offset != offset) throw std::logic_error("light set released more often than acquired");
-  if (--r.refs == 0) garbage_ += r.count;
+  if (--r.refs == 0) garbage_ += r.capacity;
 }
 
 void LightSetPool::clear() {
@@ -74,6 +90,7 @@ void LightSetPool::clear() {
   index_.clear();
   garbage_ = 0;
   all_dirty_ = true;
+  dirty_words_.clear();
 }
 
 const std::vector<std::uint32_t>& LightSetPool::compact() {
@@ -94,7 +111,7 @@ const std::vector<std::uint32_t>& LightSetPool::compact() {
   // range instead chains two cache misses per range).
   for (std::uint32_t id = 0; id < recs_.size(); ++id) {
     Rec& r = recs_[id];
-    if (r.count == 0) continue;  // a free record
+    if (r.capacity == 0) continue;  // a free record
     if (r.refs == 0) {
       r = Rec{};
       free_recs_.push_back(id);
@@ -102,6 +119,10 @@ const std::vector<std::uint32_t>& LightSetPool::compact() {
     }
     const std::uint32_t n = std::uint32_t(list.size());
     list.insert(list.end(), list_.begin() + std::ptrdiff_t(r.offset), list_.begin() + std::ptrdiff_t(r.offset + r.count));
+    if (r.own) {  // fresh room to grow
+      r.capacity = ownCapacity(r.count);
+      list.resize(list.size() + (r.capacity - r.count), kPadWord);
+    }
     remap[r.offset] = n;
     r.offset = n;
     rec_at.resize(list.size());  // within the reserve
@@ -111,12 +132,15 @@ const std::vector<std::uint32_t>& LightSetPool::compact() {
   rec_at_.swap(rec_at);
   garbage_ = 0;
   all_dirty_ = true;
+  dirty_words_.clear();
   rebuildIndex(4 * (recs_.size() - free_recs_.size()));
   return remap;
 }
 
 LightSetPool::Dirty LightSetPool::takeDirty() {
-  Dirty d{all_dirty_, all_dirty_ ? 0 : dirty_from_};
+  Dirty d{all_dirty_, all_dirty_ ? 0 : dirty_from_, {}};
+  if (!all_dirty_) d.words.swap(dirty_words_);
+  dirty_words_.clear();
   all_dirty_ = false;
   dirty_from_ = list_.size();
   return d;

@@ -6,9 +6,15 @@
 //    if it is new, and takes a reference; release(offset) drops one. A range
 //    without references is garbage (it is revived if its set comes back)
 //    until compact() repacks the live ranges and returns, per old offset, the
-//    new one, which callers apply to every data entry. Sets are sorted light
-//    indices, so equal sets are equal ranges.
-//  - Appends and compactions are recorded for partial uploads.
+//    new one, which callers apply to every data entry. Sets are index list
+//    entries in light order, so equal sets are equal ranges.
+//  - acquireOwn(set) appends a range that is never shared (not indexed),
+//    with room to grow (ownCapacity()), so that its owner may rewrite() its
+//    words and resizeOwn() it in place: deepest leaves' entries, whose octant
+//    masks change when a light moves and whose sets mostly change by a light
+//    or two. Words past a range's count are unspecified.
+//  - Appends, rewrites and compactions are recorded for partial uploads.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +25,15 @@ class LightSetPool {
   std::uint32_t acquire(const std::vector<std::uint32_t>& set) { return acquire(set, hashOf(set.data(), set.size())); }
   // The same with the set's hashOf() computed by the caller (e.g. in parallel).
   std::uint32_t acquire(const std::vector<std::uint32_t>& set, std::uint64_t hash);
+  std::uint32_t acquireOwn(const std::vector<std::uint32_t>& set);
+  static std::uint32_t ownCapacity(std::size_t n) { return std::uint32_t(n + std::max<std::size_t>(2, n / 8)); }
+  std::uint32_t capacityOf(std::uint32_t offset) const { return recs_[rec_at_[offset]].capacity; }
+  void resizeOwn(std::uint32_t offset, std::uint32_t count) { recs_[rec_at_[offset]].count = count; }
+  // Overwrites entry `at` of a range from acquireOwn().
+  void rewrite(std::size_t at, std::uint32_t word) {
+    list_[at] = word;
+    if (!all_dirty_ && at < dirty_from_) dirty_words_.push_back(std::uint32_t(at));
+  }
   // A set's hash is a function of the sum of its elements' hashes, so that
   // whoever edits a set one element at a time (SceneOctree) can keep the sum
   // and hash it in O(1): hashOf(p, n) == hashOfSum(sum of elementHash(p[i]), n).
@@ -49,19 +64,23 @@ class LightSetPool {
   // between compactions (no fresh pages to fault in on every call).
   const std::vector<std::uint32_t>& compact();
 
-  // First list index written since the last take (list size if none);
-  // `all` after clear() or compact().
+  // First list index appended since the last take (list size if none),
+  // the entries rewritten before it (unsorted, maybe repeated); `all` after
+  // clear() or compact().
   struct Dirty {
     bool all = false;
     std::size_t from = 0;
+    std::vector<std::uint32_t> words;
   };
   Dirty takeDirty();
 
  private:
   struct Rec {
-    std::uint32_t offset = 0, count = 0, refs = 0;
+    std::uint32_t offset = 0, count = 0, capacity = 0, refs = 0;  // capacity: count unless own
+    bool own = false;  // from acquireOwn(): not in the index
     std::uint64_t hash = 0;
   };
+  std::uint32_t append(const std::vector<std::uint32_t>& set, std::uint64_t hash, bool own);
   void indexInsert(std::uint32_t rec);
   void rebuildIndex(std::size_t capacity);
 
@@ -76,6 +95,7 @@ class LightSetPool {
   std::size_t garbage_ = 0;
   bool all_dirty_ = true;
   std::size_t dirty_from_ = 0;
+  std::vector<std::uint32_t> dirty_words_;
 };
 
 }  // namespace ml::hashed

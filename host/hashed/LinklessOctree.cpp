@@ -1,8 +1,12 @@
 #include "host/hashed/LinklessOctree.hpp"
 
+#include "host/hashed/KeySort.hpp"
+#include "host/hashed/OctantMask.hpp"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <optional>
 
 #include <bit>
@@ -28,20 +32,63 @@ LinklessOctree::LinklessOctree(const OctreeBounds& bounds, const HashedConfig& c
   computeBases();
 }
 
-void LinklessOctree::buildFrom(const SceneOctree& tree) {
+void LinklessOctree::entriesOf(unsigned t, const glm::uvec3& c, const std::vector<std::uint32_t>& set,
+                               const std::vector<gpu::PointLight>& lights, const OctantTables* tables,
+                               const Reuse* reuse, std::vector<std::uint32_t>& out) const {
+  out.resize(set.size());
+  if (!cfg_.octant_masks || t != b_.depth) {
+    for (std::size_t i = 0; i < set.size(); ++i) out[i] = packEntry(set[i], kAllOctants);
+    return;
+  }
+  const glm::ivec3 cell(c);
+  const std::uint32_t *old = reuse ? reuse->first : nullptr, *last = reuse ? reuse->last : nullptr;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    const std::uint32_t l = set[i];
+    while (old != last && entryLight(*old) < l) ++old;
+    if (old != last && entryLight(*old) == l) {
+      out[i] = *old;  // its mask is up to date (applyOctantRewrites())
+      continue;
+    }
+    out[i] = packEntry(l, tables ? tables->mask(l, cell) : LightOctants(lights[l], b_).mask(cell));
+  }
+}
+
+void LinklessOctree::buildFrom(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights) {
   const unsigned ds = b_.start_depth, layers = layerCount();
   std::vector<std::vector<DescHash::Entry>> desc_entries(layers);
   std::vector<std::vector<DataHash::Entry>> data_entries(layers);
-  pool_.clear();
+  struct Leaf {
+    unsigned t;
+    glm::uvec3 c;
+    const std::vector<std::uint32_t>* set;
+  };
+  std::vector<Leaf> leaves;
   tree.forEachNode([&](unsigned t, const glm::uvec3& c, const SceneOctree::NodeView& v) {
     if (!v.leaf) {
       if (t >= ds && t < b_.depth) desc_entries[t - ds].push_back({c, {v.leaf_mask, v.filled_mask}});
     } else if (!v.lights->empty()) {
       if (t <= ds) throw std::logic_error("scene octree: filled leaf at or above the start depth");
-      const std::uint32_t offset = pool_.acquire(*v.lights, LightSetPool::hashOfSum(v.set_sum, v.lights->size()));
-      data_entries[t - ds - 1].push_back({c, {offset, std::uint32_t(v.lights->size())}});
+      leaves.push_back({t, c, v.lights});
     }
   });
+  // Each leaf's entries (octant masks) and their hash in parallel, then the
+  // sets interned in tree order, so that offsets do not depend on threads.
+  std::optional<OctantTables> tables;
+  if (cfg_.octant_masks) tables.emplace(lights, b_);
+  std::vector<std::vector<std::uint32_t>> entries(leaves.size());
+  std::vector<std::uint64_t> hashes(leaves.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 256), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      entriesOf(leaves[j].t, leaves[j].c, *leaves[j].set, lights, tables ? &*tables : nullptr, nullptr, entries[j]);
+      if (!ownsRange(leaves[j].t)) hashes[j] = LightSetPool::hashOf(entries[j].data(), entries[j].size());
+    }
+  });
+  pool_.clear();
+  for (std::size_t j = 0; j < leaves.size(); ++j) {
+    const std::uint32_t offset =
+        ownsRange(leaves[j].t) ? pool_.acquireOwn(entries[j]) : pool_.acquire(entries[j], hashes[j]);
+    data_entries[leaves[j].t - ds - 1].push_back({leaves[j].c, {offset, std::uint32_t(entries[j].size())}});
+  }
   std::vector<PshBuildReport> reports(2 * layers);
   std::size_t keys = 0;
   for (unsigned i = 0; i < layers; ++i) keys += desc_entries[i].size() + data_entries[i].size();
@@ -135,7 +182,7 @@ LinklessOctree::Range LinklessOctree::lookup(const glm::vec3& world) const {
     if ((d->leaf >> bit) & 1u) {
       if ((d->filled >> bit) & 1u) {
         const auto r = data_[i].lookup(nxt);
-        if (r) return {r->offset, r->count};
+        if (r) return {r->offset, r->count, octantOf(q)};
       }
       return {};
     }
@@ -145,11 +192,16 @@ LinklessOctree::Range LinklessOctree::lookup(const glm::vec3& world) const {
 
 std::vector<std::uint32_t> LinklessOctree::lightsAt(const glm::vec3& world) const {
   const Range r = lookup(world);
-  return {pool_.list().begin() + r.offset, pool_.list().begin() + r.offset + r.count};
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t i = r.offset; i < r.offset + r.count; ++i) {
+    const std::uint32_t e = pool_.list()[i];
+    if ((entryMask(e) >> r.octant) & 1u) out.push_back(entryLight(e));
+  }
+  return out;
 }
 
-void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std::uint64_t>& touched,
-                                  SyncStats& st) {
+void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights,
+                                  const std::vector<std::uint64_t>& touched, SyncStats& st) {
   const unsigned ds = b_.start_depth, layers = layerCount();
   // 1. Per touched key, read-only (in parallel for many keys): what the
   //    tables hold against what the tree wants, and the hash of a wanted set.
@@ -158,8 +210,9 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std
     DescTraits::Payload dp{};
     bool has_data = false, data_want = false;
     std::optional<DataTraits::Payload> data_have;
-    const std::vector<std::uint32_t>* set = nullptr;
+    std::vector<std::uint32_t> entries;
     std::uint64_t set_hash = 0;
+    bool in_place = false;  // an own range with room for the entries: rewrite its words
   };
   std::vector<Derived> derived(touched.size());
   auto derive = [&](std::size_t j) {
@@ -186,8 +239,13 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std
       d.data_have = data_[t - ds - 1].lookup(c);
       d.data_want = v.exists && v.leaf && !v.lights->empty();
       if (d.data_want) {
-        d.set = v.lights;
-        d.set_hash = LightSetPool::hashOfSum(v.set_sum, v.lights->size());
+        Reuse reuse;
+        const bool reusing = ownsRange(t) && d.data_have;
+        if (reusing) reuse = {pool_.list().data() + d.data_have->offset,
+                              pool_.list().data() + d.data_have->offset + d.data_have->count};
+        entriesOf(t, c, *v.lights, lights, nullptr, reusing ? &reuse : nullptr, d.entries);
+        if (!ownsRange(t)) d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
+        else d.in_place = d.data_have && d.entries.size() <= pool_.capacityOf(d.data_have->offset);
       }
     }
   };
@@ -222,8 +280,17 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std
     if (!d.has_data) continue;
     const unsigned i = t - ds - 1;
     const auto& have = d.data_have;
-    if (d.data_want) {
-      const DataTraits::Payload p{pool_.acquire(*d.set, d.set_hash), std::uint32_t(d.set->size())};
+    if (d.in_place) {
+      for (std::size_t k = 0; k < d.entries.size(); ++k)
+        if (pool_.list()[have->offset + k] != d.entries[k]) pool_.rewrite(have->offset + k, d.entries[k]);
+      const std::uint32_t n = std::uint32_t(d.entries.size());
+      if (n != have->count) {
+        pool_.resizeOwn(have->offset, n);
+        data_ops[i].push_back({c, true, {have->offset, n}});
+      }
+    } else if (d.data_want) {
+      const std::uint32_t offset = ownsRange(t) ? pool_.acquireOwn(d.entries) : pool_.acquire(d.entries, d.set_hash);
+      const DataTraits::Payload p{offset, std::uint32_t(d.entries.size())};
       if (have && *have == p) {
         pool_.release(p.offset);
       } else {
@@ -314,6 +381,40 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<std
     computeBases();
     ++layout_version_;
   }
+}
+
+std::vector<OctantRewrite> LinklessOctree::findOctantRewrites(std::vector<OctantChange>& changes) const {
+  std::vector<OctantRewrite> out;
+  if (!cfg_.octant_masks) return out;
+  // Grouped by cell (lights ascending within a cell: the sort is stable), so
+  // that each cell is looked up once and its range walked once.
+  std::vector<OctantChange> scratch;
+  sortByKeyStable(changes, scratch);
+  const DataHash& data = data_[b_.depth - b_.start_depth - 1];
+  const auto& list = pool_.list();
+  for (std::size_t i = 0; i < changes.size();) {
+    std::size_t j = i + 1;
+    while (j < changes.size() && changes[j].key == changes[i].key) ++j;
+    const auto r = data.lookup(keyCoord(changes[i].key));
+    if (r) {  // a filled deepest leaf
+      const std::uint32_t *e = list.data() + r->offset, *last = e + r->count;
+      for (std::size_t k = i; k < j; ++k) {
+        const OctantChange& ch = changes[k];
+        while (e != last && entryLight(*e) < ch.light) ++e;
+        if (e == last) break;
+        if (entryLight(*e) != ch.light) continue;  // not listed here
+        const std::uint32_t w = packEntry(ch.light, ch.mask);
+        if (w != *e) out.push_back({ch.key, std::uint32_t(e - list.data()), w});
+      }
+    }
+    i = j;
+  }
+  return out;
+}
+
+void LinklessOctree::applyOctantRewrites(const std::vector<OctantRewrite>& rewrites, SyncStats& st) {
+  for (const OctantRewrite& rw : rewrites) pool_.rewrite(rw.at, rw.word);
+  st.mask_rewrites += rewrites.size();
 }
 
 bool LinklessOctree::compactIfWanted() {

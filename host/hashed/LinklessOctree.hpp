@@ -6,7 +6,8 @@
 //            hold no lights),
 //   data[i]: key = a filled leaf at depth start_depth + i + 1 -> its range in
 //            the light index list,
-// plus the light index list. Contract:
+// plus the light index list, whose entries carry octant masks (OctantMask.hpp).
+// Contract:
 //  - lookup() is lookup_hashed.glsl's lightListFor, in the same order and the
 //    same float expression for the cell; tests hold the GLSL to it through
 //    images and counts.
@@ -14,7 +15,10 @@
 //    parallel); applyTouched() re-derives only the given node keys and edits
 //    the hashes in place (rehashing a table only when an insert cannot be
 //    placed): afterwards every lookup equals that of buildFrom() on the same
-//    tree.
+//    tree and lights, provided applyOctantRewrites() preceded it with the
+//    moved lights' octant changes. Deepest leaves own their ranges when octant
+//    masks are on (LightSetPool::acquireOwn), so that a changed mask is a
+//    one-word rewrite; other ranges are shared between equal sets.
 //  - The GPU image: a header (origin, scale, depth, start depth, layer count,
 //    then per layer and table (desc, data) the hash table's dimensions and
 //    slot base, and the offset table's dimensions and offset base),
@@ -27,6 +31,7 @@
 #include <vector>
 
 #include "host/hashed/LightSetPool.hpp"
+#include "host/hashed/OctantMask.hpp"
 #include "host/hashed/OctreeBounds.hpp"
 #include "host/hashed/PerfectSpatialHash.hpp"
 #include "host/hashed/SceneOctree.hpp"
@@ -49,6 +54,7 @@ struct SyncStats {
   std::size_t inserts = 0, updates = 0, erases = 0;
   std::size_t in_place = 0, reoffsets = 0;  // how the inserts were placed
   std::size_t rehashed_tables = 0;
+  std::size_t mask_rewrites = 0;  // octant masks rewritten in place
   bool compacted = false;
 };
 
@@ -56,16 +62,30 @@ class LinklessOctree {
  public:
   LinklessOctree(const OctreeBounds& bounds, const HashedConfig& config);
 
-  void buildFrom(const SceneOctree& tree);
-  void applyTouched(const SceneOctree& tree, const std::vector<std::uint64_t>& touched, SyncStats& stats);
+  void buildFrom(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights);
+  // Octant masks in an update, before applyTouched(): find (read-only, e.g.
+  // while the tree is edited) the list words that the moved lights' octant
+  // changes alter, then rewrite them. `changes` must hold every deepest cell
+  // where a moved light's mask changed (appendOctantChanges()).
+  // (`changes` is sorted in the process.)
+  std::vector<OctantRewrite> findOctantRewrites(std::vector<OctantChange>& changes) const;
+  void applyOctantRewrites(const std::vector<OctantRewrite>& rewrites, SyncStats& stats);
+  // A touched deepest leaf keeps the words of the lights it listed already:
+  // with the rewrites above applied first, their masks are current.
+  void applyTouched(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights,
+                    const std::vector<std::uint64_t>& touched, SyncStats& stats);
+  bool octantMasks() const { return cfg_.octant_masks; }
   // Repacks the light index list when its garbage calls for it (and remaps
   // the data tables); lookups are unchanged. applyTouched() leaves this to
   // the caller, which may run it while it edits the scene octree for the
   // next update (neither touches the other's state). True if it compacted.
   bool compactIfWanted();
 
+  // The point's leaf entries and its octant (entries without that octant's
+  // bit are skipped); lightsAt() is the lights the shader evaluates.
   struct Range {
     std::uint32_t offset = 0, count = 0;
+    unsigned octant = 0;
   };
   Range lookup(const glm::vec3& world) const;
   std::vector<std::uint32_t> lightsAt(const glm::vec3& world) const;
@@ -95,6 +115,16 @@ class LinklessOctree {
 
  private:
   void computeBases();
+  bool ownsRange(unsigned t) const { return cfg_.octant_masks && t == b_.depth; }
+  // A leaf's index list entries: its lights with their octant masks, from
+  // `tables` when given, else from `lights`; with `reuse`, the
+  // entries of lights already in the leaf's range are copied from it.
+  struct Reuse {
+    const std::uint32_t *first = nullptr, *last = nullptr;
+  };
+  void entriesOf(unsigned t, const glm::uvec3& c, const std::vector<std::uint32_t>& set,
+                 const std::vector<gpu::PointLight>& lights, const OctantTables* tables, const Reuse* reuse,
+                 std::vector<std::uint32_t>& out) const;
   OctreeBounds b_;
   HashedConfig cfg_;
   std::vector<DescHash> desc_;

@@ -77,6 +77,10 @@ struct HashedConfig {
   // With the mask, list a light for a cell only when it reaches the geometry
   // inside the cell, not just the cell (beyond the thesis: tighter lists).
   bool geometry_tight_sets = true;
+  // Octant masks on the deepest leaves' index entries (OctantMask.hpp): the
+  // lookup skips lights that miss the point's octant of its cell. Off: every
+  // entry has all 8 bits (the thesis's lists), for comparison.
+  bool octant_masks = true;
 };
 
 struct OctreeBounds {

@@ -1,0 +1,81 @@
+#include "host/hashed/OctantMask.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+#include "host/hashed/SceneOctree.hpp"
+
+namespace ml::hashed {
+
+OctantTables::OctantTables(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b)
+    : lights_(lights.size()) {
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const CellBox box = lightCellBox(lights[i], b);
+    Light& l = lights_[i];
+    l.lo = box.lo;
+    l.n = box.empty() ? glm::ivec3(0) : box.hi - box.lo + 1;
+    l.at = total;
+    total += std::size_t(2 * (l.n.x + l.n.y + l.n.z));
+  }
+  terms_.resize(total);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lights.size(), 1024), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const LightOctants o(lights[i], b);
+      Light& l = lights_[i];
+      l.r2 = o.r2();
+      double* g = &terms_[l.at];
+      for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < l.n[a]; ++k)
+          for (int h = 0; h < 2; ++h) *g++ = halfCellGap2(o.centre()[a], l.lo[a] + k, h, o.eps());
+    }
+  });
+}
+
+void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLight* new_version,
+                         std::uint32_t light, const OctreeBounds& b, std::vector<OctantChange>& out) {
+  const CellBox ba = old_version ? lightCellBox(*old_version, b) : CellBox{};
+  const CellBox bb = new_version ? lightCellBox(*new_version, b) : CellBox{};
+  if (ba.empty() && bb.empty()) return;
+  const CellBox hull = ba.empty()   ? bb
+                       : bb.empty() ? ba
+                                    : CellBox{glm::min(ba.lo, bb.lo), glm::max(ba.hi, bb.hi)};
+  // Per version, axis and half cell of the hull, the terms of mask(): each
+  // cell's two masks are then 16 sums (the same doubles as mask() gives).
+  const glm::ivec3 n = hull.hi - hull.lo + 1;
+  const glm::ivec3 off(0, 2 * n.x, 2 * (n.x + n.y));
+  const std::size_t terms = std::size_t(2 * (n.x + n.y + n.z));
+  std::vector<double> g(2 * terms);
+  double r2[2];
+  for (int v = 0; v < 2; ++v) {
+    const gpu::PointLight* version = v == 0 ? old_version : new_version;
+    const LightOctants o = version ? LightOctants(*version, b) : LightOctants();
+    r2[v] = o.r2();
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < n[a]; ++i)
+        for (int h = 0; h < 2; ++h)
+          g[std::size_t(v) * terms + std::size_t(off[a] + 2 * i + h)] =
+              halfCellGap2(o.centre()[a], hull.lo[a] + i, h, o.eps());
+  }
+  const double* ga = g.data();
+  const double* gb = g.data() + terms;
+  auto rowMisses = [](const double* gv, std::size_t iy, std::size_t iz, double r) {
+    // Sums only grow with the x term (rounding is monotonic): all 0 bits.
+    return std::min(gv[iy], gv[iy + 1]) + std::min(gv[iz], gv[iz + 1]) >= r;
+  };
+  for (int z = 0; z < n.z; ++z)
+    for (int y = 0; y < n.y; ++y) {
+      const std::size_t iy = std::size_t(off.y + 2 * y), iz = std::size_t(off.z + 2 * z);
+      if (rowMisses(ga, iy, iz, r2[0]) && rowMisses(gb, iy, iz, r2[1])) continue;
+      for (int x = 0; x < n.x; ++x) {
+        const std::size_t ix = std::size_t(2 * x);
+        const std::uint8_t ma = octantBits(ga + ix, ga + iy, ga + iz, r2[0]);
+        const std::uint8_t mb = octantBits(gb + ix, gb + iy, gb + iz, r2[1]);
+        if (ma != mb) out.push_back({nodeKey(b.depth, glm::uvec3(hull.lo + glm::ivec3(x, y, z))), light, mb});
+      }
+    }
+}
+
+}  // namespace ml::hashed

@@ -1,0 +1,131 @@
+#pragma once
+// Octant masks: which eighths of a deepest cell a light reaches (beyond the
+// thesis). A leaf's light list is charged every light that reaches any part
+// of its cell; at the deepest depth each index list entry also carries the 8
+// bits saying which of the cell's octants (half-size cells) the light's
+// sphere overlaps, and the lookup skips entries whose bit for the point's
+// octant is clear. That gives the light counts of half the node size for the
+// index memory of the full one. Contract:
+//  - An entry is `light | mask << kEntryLightBits`: lights are limited to
+//    kMaxHashedLights (checked by HashedStructure).
+//  - The mask of a leaf at the deepest depth is octants().mask(cell); a
+//    shallower leaf (merged: every light in its set reaches each of its
+//    deepest cells, so each octant) gets kAllOctants, as does every leaf
+//    when masks are off. So a leaf's entries are a function of its key, its
+//    light set and the current lights, which is what keeps updates equal to
+//    fresh builds.
+//  - The point's octant is bit (2q) & 1 per axis of the float cell
+//    coordinate q (exact: doubling a float is exact), octant k = x + 2y + 4z;
+//    the overlap test widens each octant by the bounds' eps like the cell
+//    test, so float rounding of q never drops a light that contains the point.
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "host/hashed/OctreeBounds.hpp"
+
+namespace ml::hashed {
+
+constexpr unsigned kEntryLightBits = 24;
+constexpr std::uint32_t kMaxHashedLights = (1u << kEntryLightBits) - 1u;
+constexpr std::uint32_t kEntryLightMask = (1u << kEntryLightBits) - 1u;
+constexpr std::uint8_t kAllOctants = 0xFF;
+
+inline std::uint32_t packEntry(std::uint32_t light, std::uint8_t mask) {
+  return light | (std::uint32_t(mask) << kEntryLightBits);
+}
+inline std::uint32_t entryLight(std::uint32_t e) { return e & kEntryLightMask; }
+inline std::uint8_t entryMask(std::uint32_t e) { return std::uint8_t(e >> kEntryLightBits); }
+
+// The octant of a point given as its float cell coordinate (the lookups' q).
+inline unsigned octantOf(const glm::vec3& q) {
+  const glm::uvec3 h = glm::uvec3(q * 2.0f) & 1u;
+  return h.x + 2u * h.y + 4u * h.z;
+}
+
+// Squared distance from `c` to half cell h of cell `cell` on one axis,
+// [cell + h/2, cell + h/2 + 1/2] widened by eps. Every mask is made of these
+// terms summed in axis order, so any two ways of computing a mask agree.
+inline double halfCellGap2(double c, int cell, int h, double eps) {
+  const double lo = double(cell) + 0.5 * double(h) - eps, hi = lo + (0.5 + 2.0 * eps);
+  const double v = std::max(std::max(lo - c, c - hi), 0.0);
+  return v * v;
+}
+// The mask from per-axis terms gx/gy/gz[h] of one cell.
+inline std::uint8_t octantBits(const double* gx, const double* gy, const double* gz, double r2) {
+  const double xy[4] = {gx[0] + gy[0], gx[1] + gy[0], gx[0] + gy[1], gx[1] + gy[1]};  // (x + y) + z, as ever
+  unsigned m = 0;
+  for (unsigned k = 0; k < 8; ++k) m |= unsigned(xy[k & 3] + gz[k >> 2] < r2) << k;
+  return std::uint8_t(m);
+}
+
+// One light's octant masks over the deepest cells.
+class LightOctants {
+ public:
+  LightOctants() = default;  // reaches nothing
+  LightOctants(const gpu::PointLight& light, const OctreeBounds& bounds)
+      : c_(bounds.toCells({light.position_radius.x, light.position_radius.y, light.position_radius.z})),
+        r2_(bounds.radiusCells(light.position_radius.w) * bounds.radiusCells(light.position_radius.w)),
+        eps_(bounds.eps_cells) {}
+  // Bit k: the light's sphere overlaps octant k of `cell`, widened by eps
+  // (squared per-axis gaps summed in axis order, as sphereOverlapsCells()).
+  // Zero for every cell outside lightCellBox().
+  std::uint8_t mask(const glm::ivec3& cell) const {
+    double g[3][2];
+    for (int a = 0; a < 3; ++a)
+      for (int h = 0; h < 2; ++h) g[a][h] = halfCellGap2(c_[a], cell[a], h, eps_);
+    return octantBits(g[0], g[1], g[2], r2_);
+  }
+  const glm::dvec3& centre() const { return c_; }
+  double r2() const { return r2_; }
+  double eps() const { return eps_; }
+
+ private:
+  glm::dvec3 c_{0.0};  // centre, cells
+  double r2_ = -1.0, eps_ = 0.0;
+};
+
+// Every light's mask terms over its cell box, for the many (light, cell)
+// masks of a build: mask() is LightOctants::mask() for cells in the light's
+// box (the same terms in the same order) at a third of its cost.
+class OctantTables {
+ public:
+  OctantTables(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds);
+  std::uint8_t mask(std::uint32_t light, const glm::ivec3& cell) const {
+    const Light& l = lights_[light];
+    const glm::ivec3 i = cell - l.lo;
+    if (i.x < 0 || i.y < 0 || i.z < 0 || i.x >= l.n.x || i.y >= l.n.y || i.z >= l.n.z) return 0;
+    const double* g = &terms_[l.at];
+    return octantBits(g + 2 * i.x, g + 2 * (l.n.x + i.y), g + 2 * (l.n.x + l.n.y + i.z), l.r2);
+  }
+
+ private:
+  struct Light {
+    glm::ivec3 lo{0}, n{0};  // box
+    std::size_t at = 0;      // its terms: 2 per box cell and axis, x then y then z
+    double r2 = 0.0;
+  };
+  std::vector<Light> lights_;
+  std::vector<double> terms_;
+};
+
+// A deepest cell where a light's octant mask changed.
+struct OctantChange {
+  std::uint64_t key;  // nodeKey(depth, cell)
+  std::uint32_t light;
+  std::uint8_t mask;  // the new version's
+};
+// The light index list word that such a change rewrites.
+struct OctantRewrite {
+  std::uint64_t key;
+  std::uint32_t at, word;
+};
+
+// Appends the deepest cells whose mask for `light` differs between its old
+// and new versions (null: the light did not exist / no longer exists).
+void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLight* new_version,
+                         std::uint32_t light, const OctreeBounds& bounds, std::vector<OctantChange>& out);
+
+}  // namespace ml::hashed
