@@ -172,7 +172,8 @@ int run(int argc, char** argv) {
   }
 
   // --- 1. Build time, memory, table sizes vs node size and light count ---
-  std::printf("\n1. Build (default scene, generated lights; median of %d; times in ms; +g: geometry mask)\n", reps);
+  std::printf("\n1. Build (default scene, generated lights; median of %d; times in ms; +g: geometry mask; "
+              "-o: no octant masks)\n", reps);
   printBuildHeader();
   json builds = json::array();
   for (const auto& [label, lights] : light_sets)
@@ -181,12 +182,17 @@ int run(int argc, char** argv) {
       cfg.node_size = node;
       const BuildRecord r = timedBuild(lights, cfg, nullptr, reps);
       printBuild(label, node, r);
+      cfg.octant_masks = false;
+      const BuildRecord o = timedBuild(lights, cfg, nullptr, reps);
+      printBuild(label, node + "-o", o);
+      cfg.octant_masks = true;
       cfg.geometry_mask = true;
       const BuildRecord m = timedBuild(lights, cfg, &base.scene, reps);
       printBuild(label, node + "+g", m);
       builds.push_back({{"lights", lights.size()}, {"node_size", node}, {"plain", buildJson(r)},
-                        {"geometry_mask", buildJson(m)},
-                        {"geometry_mask_memory_ratio", double(m.gpu_bytes) / double(r.gpu_bytes)}});
+                        {"no_octant_masks", buildJson(o)}, {"geometry_mask", buildJson(m)},
+                        {"geometry_mask_memory_ratio", double(m.gpu_bytes) / double(r.gpu_bytes)},
+                        {"octant_masks_memory_ratio", double(r.gpu_bytes) / double(o.gpu_bytes)}});
     }
   out["builds"] = builds;
 
@@ -280,7 +286,7 @@ int run(int argc, char** argv) {
     auto gl = createHeadlessContext();
     const auto share = gl->shareHandles();
     auto rt = ClRuntime::create(DeviceChoice::resolve(device), &share);
-    std::printf("\n4. Light evaluations per covered pixel, deferred, %ux%u, %u camera frames\n%s\n%s\n", width, height,
+    std::printf("\n4. Light evaluations per covered pixel, deferred, %ux%u, %u camera frames; +g: geometry mask, -o: no octant masks\n%s\n%s\n", width, height,
                 camera_frames, rt->describe().c_str(), gl->describe().c_str());
     std::printf("%-8s %-24s %12s %12s %10s %10s %12s\n", "lights", "technique", "evals/px", "bound/px",
                 "x bound", "x tiled", "memory MiB");
@@ -303,12 +309,14 @@ int run(int argc, char** argv) {
         runs.emplace_back(t, p);
       }
       for (const auto& node : splitList(node_sizes))
-        for (const bool mask : {false, true}) {
-          TechniqueParams p;
-          p.node_size = node;
-          p.geometry_mask = mask;
-          runs.emplace_back("hashed-deferred " + node + (mask ? "+g" : ""), p);
-        }
+        for (const bool mask : {false, true})
+          for (const bool octants : {true, false}) {
+            TechniqueParams p;
+            p.node_size = node;
+            p.geometry_mask = mask;
+            p.octant_masks = octants;
+            runs.emplace_back("hashed-deferred " + node + (mask ? "+g" : "") + (octants ? "" : "-o"), p);
+          }
       double tiled_px = 0;
       for (const auto& [name, params] : runs) {
         const std::string tech = name.substr(0, std::min(name.find(' '), name.find('@')));
