@@ -133,7 +133,7 @@ int run(int argc, char** argv) {
   std::string update_fractions = "0.01,0.1,1";
   int reps = 3, update_reps = 5;
   unsigned camera_frames = 4;
-  bool no_render = false, lazy_removal = false, parallel_tree_edits = false;
+  bool no_render = false, lazy_removal = false, parallel_tree_edits = false, no_octant_masks = false;
   app.add_option("--json", json_path, "write records as JSON");
   app.add_option("--lights", light_counts, "generated light counts in the default scene")->capture_default_str();
   app.add_option("--node-sizes", node_sizes, "node sizes to sweep")->capture_default_str();
@@ -150,6 +150,7 @@ int run(int argc, char** argv) {
   app.add_flag("--no-render", no_render, "host-side sections only");
   app.add_flag("--parallel-tree-edits", parallel_tree_edits,
                "updates: edit the tree per depth-2 subtree in parallel (HashedConfig::parallel_tree_edits)");
+  app.add_flag("--no-octant-masks", no_octant_masks, "updates: the thesis's plain light lists (HashedConfig::octant_masks off)");
   app.add_flag("--lazy-removal", lazy_removal,
                "updates: leave moved lights' old indices until a flush (conservative superset lookups)");
   CLI11_PARSE(app, argc, argv);
@@ -202,7 +203,8 @@ int run(int argc, char** argv) {
   if (have_suite) update_sets.emplace_back("suite1890", loadLightsJson(suite_lights));
 
   // --- 2. Incremental updates vs full rebuild ---
-  std::printf("\n2. Updates (0.5r; lights move up to r/4; median of %d; ms; min ratio: fastest update / fastest rebuild)\n", update_reps);
+  std::printf("\n2. Updates (0.5r; lights move up to r/4; median of %d; ms; each update followed by a full build of the "
+              "same lights (rebuild); min ratio: fastest update / fastest rebuild)\n", update_reps);
   std::printf("%-9s %7s %10s %10s %8s %9s %9s %8s %8s %8s %9s %9s\n", "lights", "moving", "update", "rebuild", "ratio",
               "cpu ratio", "min ratio", "octrees", "tree", "sync", "rehashed", "re-offset");
   json updates = json::array();
@@ -212,16 +214,7 @@ int run(int argc, char** argv) {
     cfg.max_incremental_fraction = 1.0;  // measure the incremental path itself
     cfg.lazy_removal = lazy_removal;
     cfg.parallel_tree_edits = parallel_tree_edits;
-    std::vector<double> rebuild_ms, rebuild_cpu;
-    for (int i = 0; i < update_reps; ++i) {
-      hashed::HashedStructure hs(cfg);
-      const double c0 = cpuMs();
-      hs.build(lights0);
-      rebuild_cpu.push_back(cpuMs() - c0);
-      rebuild_ms.push_back(hs.lastBuild().total_ms);
-    }
-    const double rebuild = median(rebuild_ms), rebuild_c = median(rebuild_cpu);
-    const double rebuild_min = *std::min_element(rebuild_ms.begin(), rebuild_ms.end());
+    cfg.octant_masks = !no_octant_masks;
     for (const auto& fraction_text : splitList(update_fractions)) {
       const double fraction = std::stod(fraction_text);
       // The same motion as --animate: distinct lights, steps of up to r/4,
@@ -229,13 +222,23 @@ int run(int argc, char** argv) {
       LightAnimator anim(lights0, fraction);
       hashed::HashedStructure hs(cfg);
       hs.build(lights0);
-      std::vector<double> total, oct, tree, sync, cpu;
+      std::vector<double> total, oct, tree, sync, cpu, rebuild_ms, rebuild_cpu;
       std::size_t rehashed = 0, reoffset = 0, full = 0;
       for (int i = 0; i < update_reps; ++i) {
         const auto& lights = anim.step();
         const double c0 = cpuMs();
         const auto& st = hs.update(lights);
         cpu.push_back(cpuMs() - c0);
+        // Each update's peer: a full build of the same lights, right after
+        // it, so that both see the same machine (its speed here drifts by
+        // up to a third within seconds) and the same cold caches.
+        {
+          hashed::HashedStructure fresh(cfg);
+          const double r0 = cpuMs();
+          fresh.build(lights);
+          rebuild_cpu.push_back(cpuMs() - r0);
+          rebuild_ms.push_back(fresh.lastBuild().total_ms);
+        }
         full += st.full_rebuild;
         total.push_back(st.total_ms);
         oct.push_back(st.light_octrees_ms);
@@ -244,6 +247,8 @@ int run(int argc, char** argv) {
         rehashed += st.sync.rehashed_tables;
         reoffset += st.sync.reoffsets;
       }
+      const double rebuild = median(rebuild_ms), rebuild_c = median(rebuild_cpu);
+      const double rebuild_min = *std::min_element(rebuild_ms.begin(), rebuild_ms.end());
       const double upd = median(total), upd_c = median(cpu);
       const double upd_min = *std::min_element(total.begin(), total.end());
       std::printf("%-9s %6.0f%% %10.2f %10.2f %7.1f%% %8.1f%% %8.1f%% %8.2f %8.2f %8.2f %9zu %9zu%s\n", label.c_str(),
@@ -261,6 +266,7 @@ int run(int argc, char** argv) {
   out["updates"] = updates;
   out["updates_lazy_removal"] = lazy_removal;
   out["updates_parallel_tree_edits"] = parallel_tree_edits;
+  out["updates_octant_masks"] = !no_octant_masks;
 
   // --- 3. Thesis suite: the 1890-light Spaceship Indoor set ---
   std::printf("\n3. Thesis suite: Spaceship Indoor, 1890 lights\n");
