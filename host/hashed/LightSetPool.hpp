@@ -32,6 +32,12 @@ class LightSetPool {
   // Overwrites entry `at` of a range from acquireOwn().
   void rewrite(std::size_t at, std::uint32_t word) {
     list_[at] = word;
+    noteRewritten(at);
+  }
+  // rewrite() in two halves, for tasks rewriting distinct own ranges in
+  // parallel: each writes its words, then one thread notes them all.
+  std::uint32_t* ownWords(std::uint32_t offset) { return list_.data() + offset; }
+  void noteRewritten(std::size_t at) {
     if (!all_dirty_ && at < dirty_from_) dirty_words_.push_back(std::uint32_t(at));
   }
   // A set's hash is a function of the sum of its elements' hashes, so that

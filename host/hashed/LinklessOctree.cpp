@@ -4,6 +4,7 @@
 #include "host/hashed/OctantMask.hpp"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -203,18 +204,27 @@ std::vector<std::uint32_t> LinklessOctree::lightsAt(const glm::vec3& world) cons
 void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights,
                                   const std::vector<std::uint64_t>& touched, SyncStats& st) {
   const unsigned ds = b_.start_depth, layers = layerCount();
-  // 1. Per touched key, read-only (in parallel for many keys): what the
-  //    tables hold against what the tree wants, and the hash of a wanted set.
+  // 1. Per touched key (in parallel for many keys): what the tables hold
+  //    against what the tree wants, and the hash of a wanted set. Reads
+  //    only, except the in-place rewrites of own ranges (below).
   struct Derived {
     bool desc_op = false, desc_present = false;
     DescTraits::Payload dp{};
     bool has_data = false, data_want = false;
     std::optional<DataTraits::Payload> data_have;
-    std::vector<std::uint32_t> entries;
+    std::vector<std::uint32_t> entries;  // wanted, unless in place
     std::uint64_t set_hash = 0;
-    bool in_place = false;  // an own range with room for the entries: rewrite its words
+    bool in_place = false;  // an own range with room for the entries: its words rewritten here
+    std::uint32_t count = 0;  // entries, when in place
   };
   std::vector<Derived> derived(touched.size());
+  // In-place rewrites touch only their own range's words, so the derive
+  // tasks do them (noting the words per thread) instead of the sequential
+  // step: most deepest leaves end there.
+  struct Scratch {
+    std::vector<std::uint32_t> entries, rewritten;
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
   auto derive = [&](std::size_t j) {
     const std::uint64_t key = touched[j];
     const unsigned t = keyDepth(key);
@@ -239,13 +249,29 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
       d.data_have = data_[t - ds - 1].lookup(c);
       d.data_want = v.exists && v.leaf && !v.lights->empty();
       if (d.data_want) {
-        Reuse reuse;
-        const bool reusing = ownsRange(t) && d.data_have;
-        if (reusing) reuse = {pool_.list().data() + d.data_have->offset,
-                              pool_.list().data() + d.data_have->offset + d.data_have->count};
-        entriesOf(t, c, *v.lights, lights, nullptr, reusing ? &reuse : nullptr, d.entries);
-        if (!ownsRange(t)) d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
-        else d.in_place = d.data_have && d.entries.size() <= pool_.capacityOf(d.data_have->offset);
+        if (!ownsRange(t)) {
+          entriesOf(t, c, *v.lights, lights, nullptr, nullptr, d.entries);
+          d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
+        } else if (!d.data_have) {
+          entriesOf(t, c, *v.lights, lights, nullptr, nullptr, d.entries);
+        } else {
+          const Reuse reuse{pool_.list().data() + d.data_have->offset,
+                            pool_.list().data() + d.data_have->offset + d.data_have->count};
+          if (v.lights->size() <= pool_.capacityOf(d.data_have->offset)) {
+            Scratch& sc = scratch.local();
+            entriesOf(t, c, *v.lights, lights, nullptr, &reuse, sc.entries);
+            std::uint32_t* words = pool_.ownWords(d.data_have->offset);
+            for (std::size_t k = 0; k < sc.entries.size(); ++k)
+              if (words[k] != sc.entries[k]) {
+                words[k] = sc.entries[k];
+                sc.rewritten.push_back(d.data_have->offset + std::uint32_t(k));
+              }
+            d.in_place = true;
+            d.count = std::uint32_t(sc.entries.size());
+          } else {
+            entriesOf(t, c, *v.lights, lights, nullptr, &reuse, d.entries);
+          }
+        }
       }
     }
   };
@@ -272,6 +298,8 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
   std::vector<std::vector<DataOp>> data_ops(layers);
   std::vector<std::uint32_t> release;
   st.keys += touched.size();
+  for (const Scratch& sc : scratch)
+    for (const auto at : sc.rewritten) pool_.noteRewritten(at);
   for (std::size_t j = 0; j < touched.size(); ++j) {
     const Derived& d = derived[j];
     const unsigned t = keyDepth(touched[j]);
@@ -281,9 +309,7 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
     const unsigned i = t - ds - 1;
     const auto& have = d.data_have;
     if (d.in_place) {
-      for (std::size_t k = 0; k < d.entries.size(); ++k)
-        if (pool_.list()[have->offset + k] != d.entries[k]) pool_.rewrite(have->offset + k, d.entries[k]);
-      const std::uint32_t n = std::uint32_t(d.entries.size());
+      const std::uint32_t n = d.count;
       if (n != have->count) {
         pool_.resizeOwn(have->offset, n);
         data_ops[i].push_back({c, true, {have->offset, n}});
