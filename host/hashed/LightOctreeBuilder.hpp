@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "host/hashed/EightSums.hpp"
 #include "host/hashed/GeometryMask.hpp"
 #include "host/hashed/OctreeBounds.hpp"
 
@@ -91,6 +92,9 @@ class LightCells {
                         [this](const glm::ivec3& p) { return filled(p); });
   }
 
+  // The deepest cells the light may reach (empty: no version).
+  const CellBox& box() const { return box_; }
+
   // Bit k: cover() of child k of the node (depth - 1, c), i.e. of its 2x2x2
   // cells: Full (1) or Empty (0). Branch-free: the update walk asks this of
   // every node above the cells on both versions' surfaces.
@@ -101,9 +105,7 @@ class LightCells {
         const int x = int(2 * c[a]) + j, i = x - box_.lo[a];
         d[a][j] = x >= box_.lo[a] && x <= box_.hi[a] ? axis_d2_[std::size_t(axis_off_[a] + i)] : kFar;
       }
-    unsigned m = 0;
-    for (unsigned k = 0; k < 8; ++k) m |= unsigned(d[0][k & 1] + d[1][(k >> 1) & 1] + d[2][k >> 2] < r2_) << k;
-    return std::uint8_t(m);
+    return eightSumsBelow(d[0], d[1], d[2], r2_);
   }
 
  private:

@@ -24,6 +24,7 @@
 
 #include <glm/glm.hpp>
 
+#include "host/hashed/EightSums.hpp"
 #include "host/hashed/OctreeBounds.hpp"
 
 namespace ml::hashed {
@@ -55,10 +56,7 @@ inline double halfCellGap2(double c, int cell, int h, double eps) {
 }
 // The mask from per-axis terms gx/gy/gz[h] of one cell.
 inline std::uint8_t octantBits(const double* gx, const double* gy, const double* gz, double r2) {
-  const double xy[4] = {gx[0] + gy[0], gx[1] + gy[0], gx[0] + gy[1], gx[1] + gy[1]};  // (x + y) + z, as ever
-  unsigned m = 0;
-  for (unsigned k = 0; k < 8; ++k) m |= unsigned(xy[k & 3] + gz[k >> 2] < r2) << k;
-  return std::uint8_t(m);
+  return eightSumsBelow(gx, gy, gz, r2);
 }
 
 // One light's octant masks over the deepest cells.
