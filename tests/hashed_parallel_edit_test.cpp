@@ -1,9 +1,9 @@
 // The parallel tree edit (SceneOctree::replaceAll: one task per subtree at
 // depth 2) against one replace() at a time, with lights that span several
 // subtrees, sit on the subtrees' shared faces or touch the bounds; and whole
-// updates, sequential on 1 thread and parallel (HashedConfig::
-// parallel_tree_edits) on 1 and on 4 threads: identical light index lists
-// and hash tables, word for word.
+// updates by computed coverage (LightCells, the default) on 1 and 4 threads
+// and by light octrees (HashedConfig::parallel_tree_edits) on 1 and on 4
+// threads: identical light index lists and hash tables, word for word.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
@@ -112,6 +112,71 @@ TEST(HashedParallelEdit, ReplaceAllEqualsOneReplaceAtATime) {
   }
 }
 
+// The same for versions given as LightCells (the default update path), with
+// added and removed lights (no version); partitionStressLights()' large
+// lights have worst-case splits above the free blocks, so they wait for the
+// sequential pass after the parallel one.
+TEST(HashedParallelEdit, CellsReplaceAllEqualsOneReplaceAtATime) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const OctreeBounds b = boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, 3);
+  ASSERT_GE(b.start_depth, 2u);
+  auto lights = partitionStressLights(rng, b, true);
+  const std::size_t removed_from = lights.size() - 5;  // the last 5 are removed, 5 new ones added
+  LightGridScratch scratch;
+  for (int round = 0; round < 2; ++round) {
+    SceneOctree one(b, nullptr), par1(b, nullptr), parN(b, nullptr);
+    for (auto* t : {&one, &par1, &parN}) {
+      for (std::uint32_t i = 0; i < lights.size(); ++i) t->insert(buildLightOctree(lights[i], i, b, scratch));
+      t->normalize();
+    }
+    std::vector<LightCells> versions;
+    std::vector<std::uint32_t> which;
+    auto next = lights;
+    for (std::uint32_t i = 0; i < lights.size(); ++i) {
+      if (i < removed_from && rng() % 3) continue;
+      auto& l = next[i];
+      const double step = rng() % 4 == 0 ? kBox * 0.5 : l.position_radius.w * 0.5;
+      for (int a = 0; a < 3; ++a)
+        axis(l, a) = std::clamp(axis(l, a) + float(uni(rng, -step, step)), 0.0f, float(kBox));
+      if (rng() % 5 == 0) l.position_radius.w *= float(uni(rng, 0.5, 2.0));
+      which.push_back(i);
+    }
+    versions.reserve(2 * which.size() + 10);
+    std::vector<SceneOctree::CellsReplacement> batch;
+    for (const auto i : which) {
+      versions.emplace_back(lights[i], b);
+      const LightCells* old_version = &versions.back();
+      const bool removed = i >= removed_from;
+      if (!removed) versions.emplace_back(next[i], b);
+      batch.push_back({old_version, removed ? nullptr : &versions.back(), i});
+    }
+    next.resize(removed_from);
+    for (std::uint32_t k = 0; k < 5; ++k) {  // added at the removed ones' indices
+      next.push_back(makeLight(glm::vec3(uni(rng, 0, kBox), uni(rng, 0, kBox), uni(rng, 0, kBox)),
+                               float(uni(rng, 0.5, 3)), glm::vec3(1)));
+      versions.emplace_back(next.back(), b);
+      batch.push_back({nullptr, &versions.back(), std::uint32_t(removed_from + k)});
+    }
+    ASSERT_GE(batch.size(), 32u);  // replaceAll's parallel path
+    for (const auto& r : batch) one.replace(r.old_version ? *r.old_version : LightCells(),
+                                            r.new_version ? *r.new_version : LightCells(), r.light);
+    tbb::task_arena(1).execute([&] { par1.replaceAll(batch); });
+    tbb::task_arena(4).execute([&] { parN.replaceAll(batch); });
+    for (auto* t : {&one, &par1, &parN}) t->normalize();
+    const NodeDump want = dump(one);
+    EXPECT_TRUE(dump(par1) == want) << "round " << round << ", 1 thread";
+    EXPECT_TRUE(dump(parN) == want) << "round " << round << ", 4 threads";
+    lights = next;
+    SceneOctree fresh(b, nullptr);
+    for (std::uint32_t i = 0; i < lights.size(); ++i) fresh.insert(buildLightOctree(lights[i], i, b, scratch));
+    fresh.normalize();
+    EXPECT_TRUE(dump(fresh) == want) << "round " << round;
+    if (HasFailure()) return;
+  }
+}
+
 TEST(HashedParallelEdit, UpdatesDoNotDependOnTheThreadCount) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
@@ -121,14 +186,15 @@ TEST(HashedParallelEdit, UpdatesDoNotDependOnTheThreadCount) {
   cfg.max_incremental_fraction = 1.0;
   const OctreeBounds b = boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, cfg.start_depth);
   auto lights = partitionStressLights(rng, b, true);
-  // Sequential edits on 1 thread against parallel ones on 1 and 4 threads.
+  // Cell edits (the default path) on 1 and 4 threads against octree ones on 1 and 4.
   HashedConfig par_cfg = cfg;
   par_cfg.parallel_tree_edits = true;
-  HashedStructure one(cfg), par1(par_cfg), many(par_cfg);
+  HashedStructure one(cfg), par1(par_cfg), many(par_cfg), cells4(cfg);
   tbb::task_arena a1(1), a4(4);
   a1.execute([&] { one.build(lights, b); });
   a1.execute([&] { par1.build(lights, b); });
   a4.execute([&] { many.build(lights, b); });
+  a4.execute([&] { cells4.build(lights, b); });
   for (int round = 0; round < 6; ++round) {
     for (auto& l : lights) {
       if (rng() % 4) continue;
@@ -139,12 +205,14 @@ TEST(HashedParallelEdit, UpdatesDoNotDependOnTheThreadCount) {
     const UpdateStats s1 = a1.execute([&] { return one.update(lights); });
     const UpdateStats p1 = a1.execute([&] { return par1.update(lights); });
     const UpdateStats s4 = a4.execute([&] { return many.update(lights); });
+    const UpdateStats c4 = a4.execute([&] { return cells4.update(lights); });
+    ASSERT_FALSE(c4.full_rebuild) << c4.reason;
     ASSERT_FALSE(s1.full_rebuild) << s1.reason;
     ASSERT_FALSE(p1.full_rebuild) << p1.reason;
     ASSERT_FALSE(s4.full_rebuild) << s4.reason;
     EXPECT_GE(s1.moved, 32u);
     const LinklessOctree& x = one.linkless();
-    for (const LinklessOctree* y : {&par1.linkless(), &many.linkless()}) {
+    for (const LinklessOctree* y : {&par1.linkless(), &many.linkless(), &cells4.linkless()}) {
       EXPECT_EQ(x.pool().list(), y->pool().list()) << "round " << round;
       ASSERT_EQ(x.layerCount(), y->layerCount());
       for (unsigned i = 0; i < x.layerCount(); ++i) {

@@ -186,12 +186,26 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
   SceneOctree& tree = *s.tree_;
   auto& outdated = s.octree_outdated_;
   outdated.resize(n_old, 0);
-  for (const auto i : moved) {
-    tree.replace(LightCells(old[i], b), LightCells(lights[i], b), i);
-    outdated[i] = 1;
+  // Both versions of every changed light (no version: added or removed),
+  // then the edits per depth-2 subtree in parallel (SceneOctree::replaceAll).
+  std::vector<std::uint32_t> changed(moved);
+  for (std::size_t i = n_new; i < n_old; ++i) changed.push_back(std::uint32_t(i));
+  for (std::size_t i = n_old; i < n_new; ++i) changed.push_back(std::uint32_t(i));
+  std::vector<LightCells> versions(2 * changed.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, changed.size(), 64), [&](const auto& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const std::uint32_t i = changed[k];
+      if (i < n_old) versions[2 * k] = LightCells(old[i], b);
+      if (i < n_new) versions[2 * k + 1] = LightCells(lights[i], b);
+    }
+  });
+  std::vector<SceneOctree::CellsReplacement> batch(changed.size());
+  for (std::size_t k = 0; k < changed.size(); ++k) {
+    const std::uint32_t i = changed[k];
+    batch[k] = {i < n_old ? &versions[2 * k] : nullptr, i < n_new ? &versions[2 * k + 1] : nullptr, i};
   }
-  for (std::size_t i = n_new; i < n_old; ++i) tree.replace(LightCells(old[i], b), LightCells(), std::uint32_t(i));
-  for (std::size_t i = n_old; i < n_new; ++i) tree.replace(LightCells(), LightCells(lights[i], b), std::uint32_t(i));
+  tree.replaceAll(batch);
+  for (const auto i : moved) outdated[i] = 1;
   s.octrees_.resize(n_new);
   outdated.resize(n_new, 1);
 }

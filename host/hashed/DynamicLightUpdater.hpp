@@ -49,7 +49,8 @@ class DynamicLightUpdater {
   // edits): each changed light's old and new cells are compared per node as
   // LightCells, so no octree is built (building the new octrees and their
   // subtree ends was ~35% of an update); the cached octrees of the changed
-  // lights are marked outdated instead.
+  // lights are marked outdated instead. The edits run per depth-2 subtree
+  // in parallel (SceneOctree::replaceAll) when the batch is large enough.
   static void editByCells(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                           const std::vector<std::uint32_t>& moved);
   // Step 2 with light octrees, every other mode; the outdated cached octrees

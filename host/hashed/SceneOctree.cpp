@@ -55,6 +55,7 @@ std::int32_t SceneOctree::allocBlock(Lane& ln) {
     // Parallel edits take the blocks reserved beforehand (nodes_ must not grow).
     const std::size_t i = reserved_taken_.fetch_add(1, std::memory_order_relaxed);
     if (i >= free_blocks_.size()) throw std::logic_error("scene octree: parallel edits outgrew their reservation");
+    ++ln.taken;
     return free_blocks_[free_blocks_.size() - 1 - i];
   }
   if (!free_blocks_.empty()) {
@@ -358,27 +359,27 @@ void SceneOctree::replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uv
 
 void SceneOctree::replace(const LightCells& a, const LightCells& b, std::uint32_t l) {
   const glm::uvec3 root(0);
-  replaceCellsRec(0, 0, root, a.cover(0, root), a, b.cover(0, root), b, l);
+  replaceCellsRec(main_, 0, 0, root, a.cover(0, root), a, b.cover(0, root), b, l);
 }
 
 // replaceRec() with computed coverage (Branch: partly covered).
-void SceneOctree::replaceCellsRec(std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
+void SceneOctree::replaceCellsRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
                                   LightNode kb, const LightCells& b, std::uint32_t l) {
   const bool pa = ka == LightNode::Branch, pb = kb == LightNode::Branch;
   if (!care(t, c) || (!pa && !pb && ka == kb)) return;  // nothing stored here, or no change
   if (!pa && !pb) {  // whole node gained or lost the light
-    if (kb == LightNode::Full) addFull(main_, n, t, c, l);
-    else removeAll(main_, n, t, c, l);
+    if (kb == LightNode::Full) addFull(ln, n, t, c, l);
+    else removeAll(ln, n, t, c, l);
     return;
   }
   nodes_[n].dirty = true;
   if (isLeaf(n)) {
     if (!pb) {  // the new version covers this leaf entirely or not at all
-      if (kb == LightNode::Full) addFull(main_, n, t, c, l);
-      else if (eraseFromSet(n, l)) record(main_, t, c);
+      if (kb == LightNode::Full) addFull(ln, n, t, c, l);
+      else if (eraseFromSet(n, l)) record(ln, t, c);
       return;
     }
-    split(main_, n, t, c);  // Table 8.1: the new version covers part of the leaf
+    split(ln, n, t, c);  // Table 8.1: the new version covers part of the leaf
   }
   const std::int32_t ch = nodes_[n].child;
   if (t + 1 == b_.depth) {  // the children are cells: Full or Empty
@@ -388,8 +389,8 @@ void SceneOctree::replaceCellsRec(std::int32_t n, unsigned t, const glm::uvec3& 
       const unsigned k = unsigned(std::countr_zero(diff));
       const glm::uvec3 cc = childCoord(c, k);
       if (!care(t + 1, cc)) continue;
-      if ((mb >> k) & 1u) addFull(main_, ch + std::int32_t(k), t + 1, cc, l);
-      else removeAll(main_, ch + std::int32_t(k), t + 1, cc, l);
+      if ((mb >> k) & 1u) addFull(ln, ch + std::int32_t(k), t + 1, cc, l);
+      else removeAll(ln, ch + std::int32_t(k), t + 1, cc, l);
     }
     return;
   }
@@ -397,7 +398,7 @@ void SceneOctree::replaceCellsRec(std::int32_t n, unsigned t, const glm::uvec3& 
     const glm::uvec3 cc = childCoord(c, k);
     const LightNode ca = pa ? a.cover(t + 1, cc) : ka, cb = pb ? b.cover(t + 1, cc) : kb;
     if (ca == cb && ca != LightNode::Branch) continue;  // unchanged here
-    replaceCellsRec(ch + std::int32_t(k), t + 1, cc, ca, a, cb, b, l);
+    replaceCellsRec(ln, ch + std::int32_t(k), t + 1, cc, ca, a, cb, b, l);
   }
 }
 
@@ -470,13 +471,7 @@ std::size_t SceneOctree::splitBound(const LightOctree& o, unsigned start_depth) 
   return bound;
 }
 
-void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
-  const unsigned P = std::min(2u, b_.start_depth);
-  // Few lights or no room to partition: not worth the tasks.
-  if (P == 0 || batch.size() < 32) {
-    for (const auto& r : batch) replace(*r.old_version, *r.new_version, r.old_ends, r.new_ends);
-    return;
-  }
+std::vector<std::int32_t> SceneOctree::openTop(unsigned P) {
   // Every node above depth P becomes a branch (the tasks must not split
   // shared nodes); normalize() merges back the ones that stay empty.
   std::vector<std::int32_t> part(std::size_t(1) << (3 * P), -1);  // depth-P node per subtree
@@ -491,11 +486,74 @@ void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
     for (unsigned k = 0; k < 8; ++k) self(self, nodes_[n].child + std::int32_t(k), t + 1, childCoord(c, k), id * 8 + k);
   };
   open(open, 0, 0, glm::uvec3(0), 0);
-  auto partId = [&](const glm::uvec3& c) {  // depth-P coordinate -> index in `part`
-    std::size_t id = 0;
-    for (unsigned d = 0; d < P; ++d) id = id * 8 + childBit(c >> (P - d - 1));
-    return id;
+  return part;
+}
+
+std::size_t SceneOctree::partId(const glm::uvec3& c, unsigned P) {  // depth-P coordinate -> index in openTop()
+  std::size_t id = 0;
+  for (unsigned d = 0; d < P; ++d) id = id * 8 + childBit(c >> (P - d - 1));
+  return id;
+}
+
+void SceneOctree::reserveBlocks(std::size_t bound) {
+  if (free_blocks_.size() < bound) {
+    const std::size_t grow = bound - free_blocks_.size();
+    const std::int32_t first = std::int32_t(nodes_.size());
+    nodes_.resize(nodes_.size() + 8 * grow);
+    sets_.resize(sets_.size() + 8 * grow);
+    sums_.resize(sums_.size() + 8 * grow);
+    for (std::size_t i = grow; i-- > 0;) free_blocks_.push_back(first + std::int32_t(8 * i));
+  }
+  reserved_taken_.store(0, std::memory_order_relaxed);
+}
+
+template <class Edit>
+void SceneOctree::runLanes(unsigned P, const std::vector<std::int32_t>& part,
+                           const std::vector<std::vector<std::uint32_t>>& work, Edit&& edit) {
+  std::vector<std::size_t> busy;
+  for (std::size_t id = 0; id < part.size(); ++id)
+    if (!work[id].empty()) busy.push_back(id);
+  std::vector<Lane> lanes(busy.size());
+  std::vector<std::size_t> done(busy.size(), 0);  // per lane: items edited
+  auto coordOf = [&](std::size_t id) {
+    glm::uvec3 c(0);
+    for (unsigned d = 0; d < P; ++d) c = childCoord(c, unsigned(id >> (3 * (P - d - 1))) & 7u);
+    return c;
   };
+  tbb::parallel_for(std::size_t(0), busy.size(), [&](std::size_t i) {
+    const std::size_t id = busy[i];
+    Lane& ln = lanes[i];
+    ln.reserved = true;
+    const glm::uvec3 c = coordOf(id);
+    for (const auto j : work[id]) {
+      if (!edit(ln, part[id], c, j)) return;
+      ++done[i];
+    }
+  });
+  free_blocks_.resize(free_blocks_.size() - reserved_taken_.load(std::memory_order_relaxed));
+  for (auto& ln : lanes)
+    if (recording_) main_.touched.insert(main_.touched.end(), ln.touched.begin(), ln.touched.end());
+  // The items the reservation did not cover, in order, on the main lane.
+  for (std::size_t i = 0; i < busy.size(); ++i)
+    for (std::size_t k = done[i]; k < work[busy[i]].size(); ++k)
+      edit(main_, part[busy[i]], coordOf(busy[i]), work[busy[i]][k]);
+}
+
+bool SceneOctree::claimBlocks(std::size_t n) {
+  std::ptrdiff_t b = budget_.load(std::memory_order_relaxed);
+  while (b >= std::ptrdiff_t(n))
+    if (budget_.compare_exchange_weak(b, b - std::ptrdiff_t(n), std::memory_order_relaxed)) return true;
+  return false;
+}
+
+void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
+  const unsigned P = std::min(2u, b_.start_depth);
+  // Few lights or no room to partition: not worth the tasks.
+  if (P == 0 || batch.size() < 32) {
+    for (const auto& r : batch) replace(*r.old_version, *r.new_version, r.old_ends, r.new_ends);
+    return;
+  }
+  const std::vector<std::int32_t> part = openTop(P);
   // Route each light to the subtrees its versions reach, in batch order.
   std::vector<std::vector<std::uint32_t>> work(part.size());
   std::size_t bound = 0;
@@ -507,14 +565,14 @@ void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
     for (const LightOctree* o : {batch[j].old_version, batch[j].new_version})
       for (unsigned r = 0; r < o->root_count; ++r) {
         if (o->root_depth >= P) {
-          ids.push_back(partId(o->roots[r] >> (o->root_depth - P)));
+          ids.push_back(partId(o->roots[r] >> (o->root_depth - P), P));
           continue;
         }
         const unsigned shift = P - o->root_depth;  // the root spans 8^shift subtrees
         const glm::uvec3 base = o->roots[r] << shift;
         for (unsigned x = 0; x < (1u << shift); ++x)
           for (unsigned y = 0; y < (1u << shift); ++y)
-            for (unsigned z = 0; z < (1u << shift); ++z) ids.push_back(partId(base + glm::uvec3(x, y, z)));
+            for (unsigned z = 0; z < (1u << shift); ++z) ids.push_back(partId(base + glm::uvec3(x, y, z), P));
       }
     for (const auto id : ids)
       if (part[id] >= 0 && !seen[id]) {
@@ -523,38 +581,87 @@ void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
       }
     for (const auto id : ids) seen[id] = 0;
   }
-  // Reserve the blocks the tasks may split into, so that nodes_ stays put.
-  if (free_blocks_.size() < bound) {
-    const std::size_t grow = bound - free_blocks_.size();
-    const std::int32_t first = std::int32_t(nodes_.size());
-    nodes_.resize(nodes_.size() + 8 * grow);
-    sets_.resize(sets_.size() + 8 * grow);
-    sums_.resize(sums_.size() + 8 * grow);
-    for (std::size_t i = grow; i-- > 0;) free_blocks_.push_back(first + std::int32_t(8 * i));
-  }
-  reserved_taken_.store(0, std::memory_order_relaxed);
-  std::vector<std::size_t> busy;
-  for (std::size_t id = 0; id < part.size(); ++id)
-    if (!work[id].empty()) busy.push_back(id);
-  std::vector<Lane> lanes(busy.size());
-  tbb::parallel_for(std::size_t(0), busy.size(), [&](std::size_t i) {
-    const std::size_t id = busy[i];
-    Lane& ln = lanes[i];
-    ln.reserved = true;
-    glm::uvec3 c(0);
-    for (unsigned d = 0; d < P; ++d) c = childCoord(c, unsigned(id >> (3 * (P - d - 1))) & 7u);
-    for (const auto j : work[id]) {
-      const Replacement& r = batch[j];
-      Stream sa{*r.old_version, r.old_version->nodes.data(), r.old_ends->data()};
-      Stream sb{*r.new_version, r.new_version->nodes.data(), r.new_ends->data()};
-      const Cover ka = coverAt(sa, P, c), kb = coverAt(sb, P, c);
-      if (ka == kb && (ka == Cover::Empty || ka == Cover::Full)) continue;  // unchanged here
-      replaceRec(ln, part[id], P, c, ka, sa, kb, sb, r.new_version->light);
-    }
+  reserveBlocks(bound);
+  runLanes(P, part, work, [&](Lane& ln, std::int32_t n, const glm::uvec3& c, std::uint32_t j) {
+    const Replacement& r = batch[j];
+    Stream sa{*r.old_version, r.old_version->nodes.data(), r.old_ends->data()};
+    Stream sb{*r.new_version, r.new_version->nodes.data(), r.new_ends->data()};
+    const Cover ka = coverAt(sa, P, c), kb = coverAt(sb, P, c);
+    if (ka == kb && (ka == Cover::Empty || ka == Cover::Full)) return true;  // unchanged here
+    replaceRec(ln, n, P, c, ka, sa, kb, sb, r.new_version->light);
+    return true;  // the reservation covers every split
   });
-  free_blocks_.resize(free_blocks_.size() - reserved_taken_.load(std::memory_order_relaxed));
-  for (auto& ln : lanes)
-    if (recording_) main_.touched.insert(main_.touched.end(), ln.touched.begin(), ln.touched.end());
+}
+
+void SceneOctree::replaceAll(const std::vector<CellsReplacement>& batch) {
+  static const LightCells kNone;
+  const unsigned P = std::min(2u, b_.start_depth);
+  auto sequential = [&] {
+    for (const auto& r : batch)
+      replace(r.old_version ? *r.old_version : kNone, r.new_version ? *r.new_version : kNone, r.light);
+  };
+  if (P == 0 || batch.size() < 32) return sequential();
+  // The blocks a light's new version may split in a subtree: at most every
+  // node at depths P .. depth - 1 of the subtree that its cell box reaches
+  // (a partly covered leaf, or a full one at or above the start depth; each
+  // node splits once). Such bounds are far above the splits that happen, so
+  // instead of reserving their sum each lane claims a light's bound from
+  // a shared budget before editing it and returns what it did not take; a
+  // light whose bound no longer fits waits for the sequential pass.
+  const unsigned below = b_.depth - P;
+  auto splitBound = [&](const LightCells* v, const glm::uvec3& sub) {
+    if (!v || v->box().empty()) return std::size_t(0);
+    const glm::ivec3 slo(glm::ivec3(sub) << int(below)), shi = slo + ((1 << int(below)) - 1);
+    const glm::ivec3 lo = glm::max(v->box().lo, slo), hi = glm::min(v->box().hi, shi);
+    if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) return std::size_t(0);
+    std::size_t bound = 0;
+    for (unsigned t = P; t < b_.depth; ++t) {
+      const glm::ivec3 n = (hi >> int(b_.depth - t)) - (lo >> int(b_.depth - t)) + 1;
+      bound += std::size_t(n.x) * std::size_t(n.y) * std::size_t(n.z);
+    }
+    return bound;
+  };
+  const std::vector<std::int32_t> part = openTop(P);
+  std::vector<std::vector<std::uint32_t>> work(part.size());
+  std::vector<std::uint8_t> seen(part.size(), 0);
+  std::vector<std::size_t> ids;
+  for (std::uint32_t j = 0; j < batch.size(); ++j) {
+    ids.clear();
+    for (const LightCells* v : {batch[j].old_version, batch[j].new_version}) {
+      if (!v || v->box().empty()) continue;
+      const glm::ivec3 lo = v->box().lo >> int(below), hi = v->box().hi >> int(below);
+      for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+          for (int x = lo.x; x <= hi.x; ++x) ids.push_back(partId(glm::uvec3(glm::ivec3(x, y, z)), P));
+    }
+    for (const auto id : ids)
+      if (part[id] >= 0 && !seen[id]) {
+        seen[id] = 1;
+        work[id].push_back(j);
+      }
+    for (const auto id : ids) seen[id] = 0;
+  }
+  // Room for a few thousand splits at a time: free blocks are kept between
+  // updates (normalize() frees merged ones), so this grows the arrays once.
+  reserveBlocks(std::max<std::size_t>(free_blocks_.size(), 2048));
+  budget_.store(std::ptrdiff_t(free_blocks_.size()), std::memory_order_relaxed);
+  runLanes(P, part, work, [&](Lane& ln, std::int32_t n, const glm::uvec3& c, std::uint32_t j) {
+    const LightCells& a = batch[j].old_version ? *batch[j].old_version : kNone;
+    const LightCells& b = batch[j].new_version ? *batch[j].new_version : kNone;
+    // (A default LightCells may only be asked at the root.)
+    const LightNode ka = batch[j].old_version ? a.cover(P, c) : LightNode::Empty;
+    const LightNode kb = batch[j].new_version ? b.cover(P, c) : LightNode::Empty;
+    if (ka == kb && ka != LightNode::Branch) return true;  // unchanged here
+    std::size_t claimed = 0;
+    if (ln.reserved) {
+      claimed = splitBound(batch[j].new_version, c);
+      if (!claimBlocks(claimed)) return false;
+    }
+    const std::size_t taken = ln.taken;
+    replaceCellsRec(ln, n, P, c, ka, a, kb, b, batch[j].light);
+    if (ln.reserved) returnBlocks(claimed - (ln.taken - taken));
+    return true;
+  });
 }
 
 void SceneOctree::removeEverywhere(std::uint32_t l) { removeAll(main_, 0, 0, glm::uvec3(0), l); }

@@ -72,6 +72,17 @@ class SceneOctree {
     const std::vector<std::uint32_t>* new_ends;
   };
   void replaceAll(const std::vector<Replacement>& batch);
+  // The same for LightCells versions (null: none): each light goes to the
+  // subtrees its versions' cell boxes reach. A light whose worst-case splits
+  // do not fit the free node blocks left when its turn comes is edited
+  // after the parallel part, on this thread (the result is the same: edits
+  // of one subtree commute once normalized).
+  struct CellsReplacement {
+    const LightCells* old_version;
+    const LightCells* new_version;
+    std::uint32_t light;
+  };
+  void replaceAll(const std::vector<CellsReplacement>& batch);
   // Per node of `light`: one past its preorder subtree (what replace() walks by).
   static void subtreeEnds(const LightOctree& light, std::vector<std::uint32_t>& end);
   // Removes `light` from every leaf (e.g. a light whose old octree is unknown).
@@ -122,6 +133,7 @@ class SceneOctree {
     std::vector<std::uint64_t> touched;
     std::uint64_t last_parent = ~std::uint64_t(0);
     bool reserved = false;
+    std::size_t taken = 0;  // reserved blocks taken
   };
   void record(Lane& ln, unsigned t, const glm::uvec3& c);
   void recordChildren(Lane& ln, unsigned t, const glm::uvec3& c);
@@ -160,8 +172,25 @@ class SceneOctree {
   std::vector<std::uint32_t> end_a_, end_b_;  // replace()'s scratch
   void replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
                   Stream& sb, std::uint32_t l);
-  void replaceCellsRec(std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
+  void replaceCellsRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
                        LightNode kb, const LightCells& b, std::uint32_t l);
+  // Parallel edits of the subtrees at depth P: openTop() makes every node
+  // above P a branch and returns each subtree's node (-1: nothing stored
+  // there), reserveBlocks() keeps `bound` free blocks so that nodes_ stays
+  // put, runLanes() runs edit(lane, subtree node, coord, item) per subtree
+  // over its work items (in order) and collects the lanes' touched keys. An
+  // edit that returns false is not done: it and the rest of its subtree's
+  // items are then run one by one on this thread (which may grow nodes_).
+  std::vector<std::int32_t> openTop(unsigned P);
+  static std::size_t partId(const glm::uvec3& c, unsigned P);
+  void reserveBlocks(std::size_t bound);
+  template <class Edit>
+  void runLanes(unsigned P, const std::vector<std::int32_t>& part,
+                const std::vector<std::vector<std::uint32_t>>& work, Edit&& edit);
+  // Reserved blocks not yet promised to a lane's edit (replaceAll(cells)).
+  bool claimBlocks(std::size_t n);
+  void returnBlocks(std::size_t n) { budget_.fetch_add(std::ptrdiff_t(n), std::memory_order_relaxed); }
+  std::atomic<std::ptrdiff_t> budget_{0};
   // A version's coverage of the node (t, c) with the stream positioned as
   // replaceRec() expects it there (t must not exceed the version's depth).
   static Cover coverAt(Stream& s, unsigned t, const glm::uvec3& c);
