@@ -21,16 +21,21 @@ hashed::HashedConfig configFrom(const TechniqueParams& p) {
 }
 
 // Uploads the given element indices of `words` (elem_words per element) at
-// element base `base`, one call per run of consecutive indices.
+// element base `base`, one call per run of nearby indices: `words` is the
+// whole current buffer, so the elements in a gap may go along, and a gap of
+// up to 256 bytes costs less than another call: moved lights' octant masks
+// are rewritten a few words apart (default scene, 10% moving, llvmpipe:
+// 0.79 ms for 537 KB against 1.12 ms for 142 KB in exact runs).
 std::size_t uploadRuns(GLuint buffer, std::size_t base, unsigned elem_words, const std::vector<std::uint32_t>& words,
                        std::vector<std::uint32_t> idx) {
   std::sort(idx.begin(), idx.end());
   idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
+  const std::uint32_t max_gap = std::max(1u, 64u / elem_words);  // elements
   std::size_t bytes = 0;
   for (std::size_t i = 0; i < idx.size();) {
     std::size_t j = i + 1;
-    while (j < idx.size() && idx[j] == idx[j - 1] + 1) ++j;
-    const std::size_t first = idx[i], count = j - i;
+    while (j < idx.size() && idx[j] - idx[j - 1] <= max_gap) ++j;
+    const std::size_t first = idx[i], count = std::size_t(idx[j - 1] - idx[i]) + 1;
     const std::size_t len = count * elem_words * 4;
     glNamedBufferSubData(buffer, GLintptr((base + first) * elem_words * 4), GLsizeiptr(len),
                          words.data() + first * elem_words);
