@@ -57,13 +57,23 @@ std::vector<gpu::PointLight> partitionStressLights(std::mt19937_64& rng, const O
   return lights;
 }
 
+// A fresh seed, bounds with room for depth-2 subtrees below the start
+// depth, and partitionStressLights() in them.
+struct StressCase {
+  std::uint64_t seed;
+  std::mt19937_64 rng;
+  OctreeBounds b;
+  std::vector<gpu::PointLight> lights;
+  explicit StressCase(bool inside)
+      : seed(test::freshSeed()), rng(seed), b(boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, 3)),
+        lights(partitionStressLights(rng, b, inside)) {}
+};
+
 TEST(HashedParallelEdit, ReplaceAllEqualsOneReplaceAtATime) {
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed " + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  const OctreeBounds b = boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, 3);
-  ASSERT_GE(b.start_depth, 2u);
-  auto lights = partitionStressLights(rng, b, false);
+  StressCase sc(false);
+  SCOPED_TRACE("seed " + std::to_string(sc.seed));
+  ASSERT_GE(sc.b.start_depth, 2u);
+  auto& [seed, rng, b, lights] = sc;
   LightGridScratch scratch;
   std::vector<LightOctree> old_versions;
   for (std::uint32_t i = 0; i < lights.size(); ++i)
@@ -117,12 +127,10 @@ TEST(HashedParallelEdit, ReplaceAllEqualsOneReplaceAtATime) {
 // lights have worst-case splits above the free blocks, so they wait for the
 // sequential pass after the parallel one.
 TEST(HashedParallelEdit, CellsReplaceAllEqualsOneReplaceAtATime) {
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed " + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  const OctreeBounds b = boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, 3);
-  ASSERT_GE(b.start_depth, 2u);
-  auto lights = partitionStressLights(rng, b, true);
+  StressCase sc(true);
+  SCOPED_TRACE("seed " + std::to_string(sc.seed));
+  ASSERT_GE(sc.b.start_depth, 2u);
+  auto& [seed, rng, b, lights] = sc;
   const std::size_t removed_from = lights.size() - 5;  // the last 5 are removed, 5 new ones added
   LightGridScratch scratch;
   for (int round = 0; round < 2; ++round) {

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "hashed_support.hpp"
+#include "host/hashed/OctantMask.hpp"
 #include "host/util/Error.hpp"
 #include "support/RunCommand.hpp"
 
@@ -33,6 +34,14 @@ TEST(HashedParams, NodeSizeMustBeAPositiveNumber) {
   HashedConfig cfg;
   cfg.node_size = "0";
   EXPECT_NE(userErrorOf([&] { HashedStructure hs(cfg); }).find("--node-size"), std::string::npos);
+}
+
+// Light indices share a list word with the octant mask: 24 bits.
+TEST(HashedParams, MoreLightsThanTheEntryFormatHoldsAreRefused) {
+  EXPECT_EQ(userErrorOf([] { HashedStructure::checkLightCount(kMaxHashedLights); }), "(no UserError)");
+  const std::string msg = userErrorOf([] { HashedStructure::checkLightCount(std::size_t(kMaxHashedLights) + 1); });
+  EXPECT_NE(msg.find("--lights"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(std::to_string(kMaxHashedLights)), std::string::npos) << msg;
 }
 
 // Relative node sizes scale the median radius (the typical light), not the

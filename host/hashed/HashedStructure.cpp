@@ -13,14 +13,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-// Index list entries hold the light in their low bits (OctantMask.hpp).
-void checkLightCount(std::size_t n) {
+}  // namespace
+
+void HashedStructure::checkLightCount(std::size_t n) {
   if (n > kMaxHashedLights)
     throw UserError("--lights: hashed shading addresses at most " + std::to_string(kMaxHashedLights) +
                     " lights (24-bit light indices in its index list), got " + std::to_string(n));
 }
-
-}  // namespace
 
 HashedStructure::HashedStructure(const HashedConfig& config, const Scene* scene) : cfg_(config), scene_(scene) {
   parseNodeSize(cfg_.node_size);  // fail early on a bad flag

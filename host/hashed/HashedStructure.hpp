@@ -57,6 +57,9 @@ class HashedStructure {
   void build(const std::vector<gpu::PointLight>& lights);
   void build(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds);
   const UpdateStats& update(const std::vector<gpu::PointLight>& lights);
+  // Index list entries hold the light in 24 bits (OctantMask.hpp): more
+  // lights are a UserError naming --lights (build() and update() check).
+  static void checkLightCount(std::size_t lights);
 
   bool built() const { return linkless_ != nullptr; }
   const HashedConfig& config() const { return cfg_; }

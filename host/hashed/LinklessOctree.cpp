@@ -249,28 +249,27 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
       d.data_have = data_[t - ds - 1].lookup(c);
       d.data_want = v.exists && v.leaf && !v.lights->empty();
       if (d.data_want) {
-        if (!ownsRange(t)) {
-          entriesOf(t, c, *v.lights, lights, nullptr, nullptr, d.entries);
-          d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
-        } else if (!d.data_have) {
-          entriesOf(t, c, *v.lights, lights, nullptr, nullptr, d.entries);
+        // An own range that exists already lends its words and, with room
+        // for the set, takes the new ones in place.
+        const bool own = ownsRange(t);
+        std::optional<Reuse> reuse;
+        if (own && d.data_have)
+          reuse = Reuse{pool_.list().data() + d.data_have->offset,
+                        pool_.list().data() + d.data_have->offset + d.data_have->count};
+        if (reuse && v.lights->size() <= pool_.capacityOf(d.data_have->offset)) {
+          Scratch& sc = scratch.local();
+          entriesOf(t, c, *v.lights, lights, nullptr, &*reuse, sc.entries);
+          std::uint32_t* words = pool_.ownWords(d.data_have->offset);
+          for (std::size_t k = 0; k < sc.entries.size(); ++k)
+            if (words[k] != sc.entries[k]) {
+              words[k] = sc.entries[k];
+              sc.rewritten.push_back(d.data_have->offset + std::uint32_t(k));
+            }
+          d.in_place = true;
+          d.count = std::uint32_t(sc.entries.size());
         } else {
-          const Reuse reuse{pool_.list().data() + d.data_have->offset,
-                            pool_.list().data() + d.data_have->offset + d.data_have->count};
-          if (v.lights->size() <= pool_.capacityOf(d.data_have->offset)) {
-            Scratch& sc = scratch.local();
-            entriesOf(t, c, *v.lights, lights, nullptr, &reuse, sc.entries);
-            std::uint32_t* words = pool_.ownWords(d.data_have->offset);
-            for (std::size_t k = 0; k < sc.entries.size(); ++k)
-              if (words[k] != sc.entries[k]) {
-                words[k] = sc.entries[k];
-                sc.rewritten.push_back(d.data_have->offset + std::uint32_t(k));
-              }
-            d.in_place = true;
-            d.count = std::uint32_t(sc.entries.size());
-          } else {
-            entriesOf(t, c, *v.lights, lights, nullptr, &reuse, d.entries);
-          }
+          entriesOf(t, c, *v.lights, lights, nullptr, reuse ? &*reuse : nullptr, d.entries);
+          if (!own) d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
         }
       }
     }

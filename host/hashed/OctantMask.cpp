@@ -27,9 +27,10 @@ OctantTables::OctantTables(const std::vector<gpu::PointLight>& lights, const Oct
       Light& l = lights_[i];
       l.r2 = o.r2();
       double* g = &terms_[l.at];
-      for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < l.n[a]; ++k)
-          for (int h = 0; h < 2; ++h) *g++ = halfCellGap2(o.centre()[a], l.lo[a] + k, h, o.eps());
+      for (int a = 0; a < 3; ++a) {
+        o.axisTerms(a, l.lo[a], l.n[a], g);
+        g += 2 * l.n[a];
+      }
     }
   });
 }
@@ -53,11 +54,7 @@ void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLig
     const gpu::PointLight* version = v == 0 ? old_version : new_version;
     const LightOctants o = version ? LightOctants(*version, b) : LightOctants();
     r2[v] = o.r2();
-    for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < n[a]; ++i)
-        for (int h = 0; h < 2; ++h)
-          g[std::size_t(v) * terms + std::size_t(off[a] + 2 * i + h)] =
-              halfCellGap2(o.centre()[a], hull.lo[a] + i, h, o.eps());
+    for (int a = 0; a < 3; ++a) o.axisTerms(a, hull.lo[a], n[a], &g[std::size_t(v) * terms + std::size_t(off[a])]);
   }
   const double* ga = g.data();
   const double* gb = g.data() + terms;

@@ -72,13 +72,16 @@ class LightOctants {
   // Zero for every cell outside lightCellBox().
   std::uint8_t mask(const glm::ivec3& cell) const {
     double g[3][2];
-    for (int a = 0; a < 3; ++a)
-      for (int h = 0; h < 2; ++h) g[a][h] = halfCellGap2(c_[a], cell[a], h, eps_);
+    for (int a = 0; a < 3; ++a) axisTerms(a, cell[a], 1, g[a]);
     return octantBits(g[0], g[1], g[2], r2_);
   }
-  const glm::dvec3& centre() const { return c_; }
+  // mask()'s terms for `n` cells from `lo` along `axis`, 2 per cell: tables
+  // of them give the same masks for many cells.
+  void axisTerms(int axis, int lo, int n, double* out) const {
+    for (int k = 0; k < n; ++k)
+      for (int h = 0; h < 2; ++h) *out++ = halfCellGap2(c_[axis], lo + k, h, eps_);
+  }
   double r2() const { return r2_; }
-  double eps() const { return eps_; }
 
  private:
   glm::dvec3 c_{0.0};  // centre, cells

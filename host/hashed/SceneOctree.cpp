@@ -495,6 +495,16 @@ std::size_t SceneOctree::partId(const glm::uvec3& c, unsigned P) {  // depth-P c
   return id;
 }
 
+void SceneOctree::route(const std::vector<std::int32_t>& part, const std::vector<std::size_t>& ids, std::uint32_t item,
+                        std::vector<std::uint8_t>& seen, std::vector<std::vector<std::uint32_t>>& work) {
+  for (const auto id : ids)
+    if (part[id] >= 0 && !seen[id]) {
+      seen[id] = 1;
+      work[id].push_back(item);
+    }
+  for (const auto id : ids) seen[id] = 0;
+}
+
 void SceneOctree::reserveBlocks(std::size_t bound) {
   if (free_blocks_.size() < bound) {
     const std::size_t grow = bound - free_blocks_.size();
@@ -574,12 +584,7 @@ void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
           for (unsigned y = 0; y < (1u << shift); ++y)
             for (unsigned z = 0; z < (1u << shift); ++z) ids.push_back(partId(base + glm::uvec3(x, y, z), P));
       }
-    for (const auto id : ids)
-      if (part[id] >= 0 && !seen[id]) {
-        seen[id] = 1;
-        work[id].push_back(j);
-      }
-    for (const auto id : ids) seen[id] = 0;
+    route(part, ids, j, seen, work);
   }
   reserveBlocks(bound);
   runLanes(P, part, work, [&](Lane& ln, std::int32_t n, const glm::uvec3& c, std::uint32_t j) {
@@ -609,7 +614,7 @@ void SceneOctree::replaceAll(const std::vector<CellsReplacement>& batch) {
   // a shared budget before editing it and returns what it did not take; a
   // light whose bound no longer fits waits for the sequential pass.
   const unsigned below = b_.depth - P;
-  auto splitBound = [&](const LightCells* v, const glm::uvec3& sub) {
+  auto worstSplits = [&](const LightCells* v, const glm::uvec3& sub) {
     if (!v || v->box().empty()) return std::size_t(0);
     const glm::ivec3 slo(glm::ivec3(sub) << int(below)), shi = slo + ((1 << int(below)) - 1);
     const glm::ivec3 lo = glm::max(v->box().lo, slo), hi = glm::min(v->box().hi, shi);
@@ -634,12 +639,7 @@ void SceneOctree::replaceAll(const std::vector<CellsReplacement>& batch) {
         for (int y = lo.y; y <= hi.y; ++y)
           for (int x = lo.x; x <= hi.x; ++x) ids.push_back(partId(glm::uvec3(glm::ivec3(x, y, z)), P));
     }
-    for (const auto id : ids)
-      if (part[id] >= 0 && !seen[id]) {
-        seen[id] = 1;
-        work[id].push_back(j);
-      }
-    for (const auto id : ids) seen[id] = 0;
+    route(part, ids, j, seen, work);
   }
   // Room for a few thousand splits at a time: free blocks are kept between
   // updates (normalize() frees merged ones), so this grows the arrays once.
@@ -654,7 +654,7 @@ void SceneOctree::replaceAll(const std::vector<CellsReplacement>& batch) {
     if (ka == kb && ka != LightNode::Branch) return true;  // unchanged here
     std::size_t claimed = 0;
     if (ln.reserved) {
-      claimed = splitBound(batch[j].new_version, c);
+      claimed = worstSplits(batch[j].new_version, c);
       if (!claimBlocks(claimed)) return false;
     }
     const std::size_t taken = ln.taken;

@@ -183,6 +183,9 @@ class SceneOctree {
   // items are then run one by one on this thread (which may grow nodes_).
   std::vector<std::int32_t> openTop(unsigned P);
   static std::size_t partId(const glm::uvec3& c, unsigned P);
+  // Adds work item `item` to each subtree in `ids` that stores anything, once.
+  static void route(const std::vector<std::int32_t>& part, const std::vector<std::size_t>& ids, std::uint32_t item,
+                    std::vector<std::uint8_t>& seen, std::vector<std::vector<std::uint32_t>>& work);
   void reserveBlocks(std::size_t bound);
   template <class Edit>
   void runLanes(unsigned P, const std::vector<std::int32_t>& part,
@@ -208,7 +211,7 @@ class SceneOctree {
   std::vector<Node> nodes_;                      // nodes_[0] is the root
   std::vector<std::vector<std::uint32_t>> sets_; // per node; only leaves use theirs
   // Per node, LightSetPool::elementHash summed over sets_[n], kept with every
-  // edit so that the sync hashes a changed set in O(1) instead of reading it.
+  // edit, so that normalize() compares sibling sets in O(1) before reading them.
   std::vector<std::uint64_t> sums_;
   std::vector<std::int32_t> free_blocks_;
   bool recording_ = false;
