@@ -150,7 +150,10 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
     if (s.linkless_->pool().wantsCompaction()) compacted = s.linkless_->compactIfWanted();
     if (!s.linkless_->octantMasks()) return;
     std::vector<OctantChange> changes;
-    for (const auto i : moved) appendOctantChanges(&old[i], &lights[i], i, s.bounds_, changes);
+    // Where the cell test says the light is listed (Lazy removal may list
+    // an older version; geometry-tight sets list fewer cells): see there.
+    const bool both = !s.cfg_.lazy_removal && !s.lightGeometry();
+    for (const auto i : moved) appendOctantChanges(&old[i], &lights[i], i, s.bounds_, both, changes);
     rewrites = s.linkless_->findOctantRewrites(changes);
   });
   SceneOctree& tree = *s.tree_;

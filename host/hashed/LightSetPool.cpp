@@ -35,7 +35,7 @@ std::uint32_t LightSetPool::acquire(const std::vector<std::uint32_t>& set, std::
     for (std::size_t i = h & mask; index_[i] != 0; i = (i + 1) & mask) {
       Rec& r = recs_[index_[i] - 1];
       if (r.hash == h && r.count == set.size() && std::equal(set.begin(), set.end(), list_.begin() + r.offset)) {
-        if (r.refs == 0) garbage_ -= r.capacity;  // revived
+        if (r.refs == 0) garbage_ -= r.words();  // revived
         ++r.refs;
         return r.offset;
       }
@@ -54,9 +54,10 @@ constexpr std::uint32_t kPadWord = 0;  // past a range's count: never read
 }
 
 std::uint32_t LightSetPool::append(const std::vector<std::uint32_t>& set, std::uint64_t h, bool own) {
-  const std::uint32_t off = std::uint32_t(list_.size());
   const std::uint32_t cap = own ? ownCapacity(set.size()) : std::uint32_t(set.size());
-  if (list_.size() + cap > 0xFFFFFFF0ull) throw std::length_error("light index list exceeds 2^32 entries");
+  if (list_.size() + cap + 1 > 0xFFFFFFF0ull) throw std::length_error("light index list exceeds 2^32 entries");
+  if (own) list_.push_back(cap);  // the head: capacityOf()
+  const std::uint32_t off = std::uint32_t(list_.size());
   list_.insert(list_.end(), set.begin(), set.end());
   list_.resize(list_.size() + (cap - set.size()), kPadWord);
   std::uint32_t id;
@@ -79,7 +80,7 @@ std::uint32_t LightSetPool::append(const std::vector<std::uint32_t>& set, std::u
 void LightSetPool::release(std::uint32_t offset) {
   Rec& r = recs_.at(rec_at_.at(offset));
   if (r.refs == 0 || r.offset != offset) throw std::logic_error("light set released more often than acquired");
-  if (--r.refs == 0) garbage_ += r.capacity;
+  if (--r.refs == 0) garbage_ += r.words();
 }
 
 void LightSetPool::clear() {
@@ -117,12 +118,13 @@ const std::vector<std::uint32_t>& LightSetPool::compact() {
       free_recs_.push_back(id);
       continue;
     }
-    const std::uint32_t n = std::uint32_t(list.size());
-    list.insert(list.end(), list_.begin() + std::ptrdiff_t(r.offset), list_.begin() + std::ptrdiff_t(r.offset + r.count));
     if (r.own) {  // fresh room to grow
       r.capacity = ownCapacity(r.count);
-      list.resize(list.size() + (r.capacity - r.count), kPadWord);
+      list.push_back(r.capacity);
     }
+    const std::uint32_t n = std::uint32_t(list.size());
+    list.insert(list.end(), list_.begin() + std::ptrdiff_t(r.offset), list_.begin() + std::ptrdiff_t(r.offset + r.count));
+    if (r.own) list.resize(list.size() + (r.capacity - r.count), kPadWord);
     remap[r.offset] = n;
     r.offset = n;
     rec_at.resize(list.size());  // within the reserve

@@ -12,7 +12,10 @@
 //    with room to grow (ownCapacity()), so that its owner may rewrite() its
 //    words and resizeOwn() it in place: deepest leaves' entries, whose octant
 //    masks change when a light moves and whose sets mostly change by a light
-//    or two. Words past a range's count are unspecified.
+//    or two. Words past a range's count are unspecified. The word before an
+//    own range holds its capacity (never read by lookups): an update asks
+//    for it beside the range's words, where a side table costs two more
+//    cache misses per leaf.
 //  - Appends, rewrites and compactions are recorded for partial uploads.
 #include <algorithm>
 #include <cstdint>
@@ -27,7 +30,8 @@ class LightSetPool {
   std::uint32_t acquire(const std::vector<std::uint32_t>& set, std::uint64_t hash);
   std::uint32_t acquireOwn(const std::vector<std::uint32_t>& set);
   static std::uint32_t ownCapacity(std::size_t n) { return std::uint32_t(n + std::max<std::size_t>(2, n / 8)); }
-  std::uint32_t capacityOf(std::uint32_t offset) const { return recs_[rec_at_[offset]].capacity; }
+  // For a range from acquireOwn().
+  std::uint32_t capacityOf(std::uint32_t offset) const { return list_[offset - 1]; }
   void resizeOwn(std::uint32_t offset, std::uint32_t count) { recs_[rec_at_[offset]].count = count; }
   // Overwrites entry `at` of a range from acquireOwn().
   void rewrite(std::size_t at, std::uint32_t word) {
@@ -83,6 +87,7 @@ class LightSetPool {
  private:
   struct Rec {
     std::uint32_t offset = 0, count = 0, capacity = 0, refs = 0;  // capacity: count unless own
+    std::uint32_t words() const { return capacity + (own ? 1u : 0u); }  // with an own range's head
     bool own = false;  // from acquireOwn(): not in the index
     std::uint64_t hash = 0;
   };

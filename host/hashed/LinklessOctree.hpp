@@ -66,8 +66,8 @@ class LinklessOctree {
   // Octant masks in an update, before applyTouched(): find (read-only, e.g.
   // while the tree is edited) the list words that the moved lights' octant
   // changes alter, then rewrite them. `changes` must hold every deepest cell
-  // where a moved light's mask changed (appendOctantChanges()).
-  // (`changes` is sorted in the process.)
+  // where a moved light's mask changed and that does not become a touched
+  // key (appendOctantChanges()). (`changes` is sorted in the process.)
   std::vector<OctantRewrite> findOctantRewrites(std::vector<OctantChange>& changes) const;
   void applyOctantRewrites(const std::vector<OctantRewrite>& rewrites, SyncStats& stats);
   // A touched deepest leaf keeps the words of the lights it listed already:

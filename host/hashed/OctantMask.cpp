@@ -8,6 +8,9 @@
 #include "host/hashed/SceneOctree.hpp"
 
 namespace ml::hashed {
+namespace {
+constexpr double kFarTerm = 1e300;  // outside a version's box: never within its radius
+}  // namespace
 
 OctantTables::OctantTables(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b)
     : lights_(lights.size()) {
@@ -36,7 +39,8 @@ OctantTables::OctantTables(const std::vector<gpu::PointLight>& lights, const Oct
 }
 
 void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLight* new_version,
-                         std::uint32_t light, const OctreeBounds& b, std::vector<OctantChange>& out) {
+                         std::uint32_t light, const OctreeBounds& b, bool listed_in_both,
+                         std::vector<OctantChange>& out) {
   const CellBox ba = old_version ? lightCellBox(*old_version, b) : CellBox{};
   const CellBox bb = new_version ? lightCellBox(*new_version, b) : CellBox{};
   if (ba.empty() && bb.empty()) return;
@@ -48,16 +52,29 @@ void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLig
   const glm::ivec3 n = hull.hi - hull.lo + 1;
   const glm::ivec3 off(0, 2 * n.x, 2 * (n.x + n.y));
   const std::size_t terms = std::size_t(2 * (n.x + n.y + n.z));
-  std::vector<double> g(2 * terms);
+  // With listed_in_both, also the cell test's terms (kFar outside a version's box).
+  const std::size_t cterms = listed_in_both ? std::size_t(n.x + n.y + n.z) : 0;
+  std::vector<double> g(2 * terms + 2 * cterms);
   double r2[2];
   for (int v = 0; v < 2; ++v) {
     const gpu::PointLight* version = v == 0 ? old_version : new_version;
     const LightOctants o = version ? LightOctants(*version, b) : LightOctants();
     r2[v] = o.r2();
     for (int a = 0; a < 3; ++a) o.axisTerms(a, hull.lo[a], n[a], &g[std::size_t(v) * terms + std::size_t(off[a])]);
+    if (!listed_in_both) continue;
+    const CellBox& box = v == 0 ? ba : bb;
+    double* ct = &g[2 * terms + std::size_t(v) * cterms];
+    for (int a = 0; a < 3; ++a) {
+      o.cellTerms(a, hull.lo[a], n[a], ct);
+      for (int k = 0; k < n[a]; ++k)
+        if (hull.lo[a] + k < box.lo[a] || hull.lo[a] + k > box.hi[a]) ct[k] = kFarTerm;
+      ct += n[a];
+    }
   }
   const double* ga = g.data();
   const double* gb = g.data() + terms;
+  const double* ca = g.data() + 2 * terms;  // cell terms: x at 0, y at n.x, z at n.x + n.y
+  const double* cb = ca + cterms;
   auto rowMisses = [](const double* gv, std::size_t iy, std::size_t iz, double r) {
     // Sums only grow with the x term (rounding is monotonic): all 0 bits.
     return std::min(gv[iy], gv[iy + 1]) + std::min(gv[iz], gv[iz + 1]) >= r;
@@ -65,6 +82,20 @@ void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLig
   for (int z = 0; z < n.z; ++z)
     for (int y = 0; y < n.y; ++y) {
       const std::size_t iy = std::size_t(off.y + 2 * y), iz = std::size_t(off.z + 2 * z);
+      if (listed_in_both) {
+        // The cell test is the octant terms' sums over whole cells; a row
+        // that either version misses lists the light in no cell of it.
+        const std::size_t cy = std::size_t(n.x + y), cz = std::size_t(n.x + n.y + z);
+        if ((0.0 + ca[cy]) + ca[cz] >= r2[0] || (0.0 + cb[cy]) + cb[cz] >= r2[1]) continue;
+        for (int x = 0; x < n.x; ++x) {
+          if ((ca[x] + ca[cy]) + ca[cz] >= r2[0] || (cb[x] + cb[cy]) + cb[cz] >= r2[1]) continue;
+          const std::size_t ix = std::size_t(2 * x);
+          const std::uint8_t ma = octantBits(ga + ix, ga + iy, ga + iz, r2[0]);
+          const std::uint8_t mb = octantBits(gb + ix, gb + iy, gb + iz, r2[1]);
+          if (ma != mb) out.push_back({nodeKey(b.depth, glm::uvec3(hull.lo + glm::ivec3(x, y, z))), light, mb});
+        }
+        continue;
+      }
       if (rowMisses(ga, iy, iz, r2[0]) && rowMisses(gb, iy, iz, r2[1])) continue;
       for (int x = 0; x < n.x; ++x) {
         const std::size_t ix = std::size_t(2 * x);

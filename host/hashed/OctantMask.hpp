@@ -81,6 +81,11 @@ class LightOctants {
     for (int k = 0; k < n; ++k)
       for (int h = 0; h < 2; ++h) *out++ = halfCellGap2(c_[axis], lo + k, h, eps_);
   }
+  // sphereOverlapsCells()'s terms for `n` cells from `lo` along `axis`
+  // (the cell test: a light is listed in exactly the cells it passes).
+  void cellTerms(int axis, int lo, int n, double* out) const {
+    for (int k = 0; k < n; ++k) *out++ = axisGap2(c_[axis], lo + k, lo + k, eps_);
+  }
   double r2() const { return r2_; }
 
  private:
@@ -125,8 +130,13 @@ struct OctantRewrite {
 };
 
 // Appends the deepest cells whose mask for `light` differs between its old
-// and new versions (null: the light did not exist / no longer exists).
+// and new versions (null: the light did not exist / no longer exists). With
+// `listed_in_both`, only cells that both versions pass the cell test for:
+// where an exact update without geometry-tight sets adds or removes the
+// light (the cell test says where it is listed), the cell is a touched key
+// and its entries are derived afresh anyway.
 void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLight* new_version,
-                         std::uint32_t light, const OctreeBounds& bounds, std::vector<OctantChange>& out);
+                         std::uint32_t light, const OctreeBounds& bounds, bool listed_in_both,
+                         std::vector<OctantChange>& out);
 
 }  // namespace ml::hashed

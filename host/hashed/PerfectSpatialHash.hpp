@@ -103,11 +103,16 @@ class PerfectSpatialHash {
   static bool keyMatches(const std::uint32_t* w, const glm::uvec3& p) {
     return w[0] == (p.x | (p.y << 16)) && (w[1] & 0xFFFFu) == p.z;
   }
-  std::optional<Payload> lookup(const glm::uvec3& p) const {
-    const std::uint32_t* w = &table_[std::size_t(slot(p)) * kWords];
+  std::optional<Payload> lookup(const glm::uvec3& p) const { return lookupAt(slot(p), p); }
+  // lookup() in two steps, for callers with many keys: they take the slots
+  // of a batch and prefetch them before reading any (each read is a cache
+  // miss when the table is cold, as it is between frames).
+  std::optional<Payload> lookupAt(std::uint32_t s, const glm::uvec3& p) const {
+    const std::uint32_t* w = &table_[std::size_t(s) * kWords];
     if (!keyMatches(w, p)) return std::nullopt;
     return Traits::unpack(w);
   }
+  void prefetchSlot(std::uint32_t s) const { __builtin_prefetch(&table_[std::size_t(s) * kWords]); }
 
   // --- dynamic edits ---
   InsertResult insert(const glm::uvec3& key, const Payload& payload, SplitMix64& rng,

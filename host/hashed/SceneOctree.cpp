@@ -28,11 +28,14 @@ SceneOctree::SceneOctree(const OctreeBounds& bounds, const GeometryMask* mask) :
   sums_.push_back(0);
 }
 
-void SceneOctree::record(Lane& ln, unsigned t, const glm::uvec3& c) {
+void SceneOctree::record(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c) {
   if (!recording_) return;
   ln.touched.push_back(nodeKey(t, c));
-  // The parent's description (its children's leaf/filled bits) may change too.
-  if (t > 0) recordParent(ln, nodeKey(t - 1, c >> 1u));
+  // The parent's description (its children's leaf/filled bits) changes only
+  // when the leaf's set became or stopped being empty; a set of one or none
+  // covers both. Most edits leave a set non-empty, and most touched keys
+  // would otherwise be such parents, looked up for nothing.
+  if (t > 0 && sets_[n].size() <= 1) recordParent(ln, nodeKey(t - 1, c >> 1u));
 }
 
 void SceneOctree::recordChildren(Lane& ln, unsigned t, const glm::uvec3& c) {
@@ -163,7 +166,7 @@ void SceneOctree::addFull(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3
   nodes_[n].dirty = true;
   if (isLeaf(n)) {
     if (t > b_.start_depth) {
-      if (addToSet(n, l)) record(ln, t, c);
+      if (addToSet(n, l)) record(ln, n, t, c);
       return;
     }
     split(ln, n, t, c);  // no non-empty leaves at or above the start depth
@@ -186,7 +189,7 @@ void SceneOctree::remove(const LightOctree& lo) {
       if (isLeaf(n)) {
         if (eraseFromSet(n, lo.light)) {
           nodes_[n].dirty = true;
-          record(main_, t, c);
+          record(main_, n, t, c);
         }
         below = false;
         break;
@@ -216,7 +219,7 @@ void SceneOctree::removeRec(std::int32_t n, unsigned t, const glm::uvec3& c, con
   if (isLeaf(n)) {
     if (eraseFromSet(n, l)) {
       nodes_[n].dirty = true;
-      record(main_, t, c);
+      record(main_, n, t, c);
     }
     if (type == LightNode::Branch) skipChildren(cur);
     return;
@@ -234,7 +237,7 @@ void SceneOctree::removeAll(Lane& ln, std::int32_t n, unsigned t, const glm::uve
   if (isLeaf(n)) {
     if (eraseFromSet(n, l)) {
       nodes_[n].dirty = true;
-      record(ln, t, c);
+      record(ln, n, t, c);
     }
     return;
   }
@@ -340,7 +343,7 @@ void SceneOctree::replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uv
     if (!pb) {  // the new version covers this leaf entirely or not at all
       consume(ka, sa);
       if (kb == Cover::Full) addFull(ln, n, t, c, l);
-      else if (eraseFromSet(n, l)) record(ln, t, c);
+      else if (eraseFromSet(n, l)) record(ln, n, t, c);
       return;
     }
     split(ln, n, t, c);  // Table 8.1: the new version covers part of the leaf
@@ -376,7 +379,7 @@ void SceneOctree::replaceCellsRec(Lane& ln, std::int32_t n, unsigned t, const gl
   if (isLeaf(n)) {
     if (!pb) {  // the new version covers this leaf entirely or not at all
       if (kb == LightNode::Full) addFull(ln, n, t, c, l);
-      else if (eraseFromSet(n, l)) record(ln, t, c);
+      else if (eraseFromSet(n, l)) record(ln, n, t, c);
       return;
     }
     split(ln, n, t, c);  // Table 8.1: the new version covers part of the leaf

@@ -135,7 +135,8 @@ class SceneOctree {
     bool reserved = false;
     std::size_t taken = 0;  // reserved blocks taken
   };
-  void record(Lane& ln, unsigned t, const glm::uvec3& c);
+  // After leaf n's set changed.
+  void record(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c);
   void recordChildren(Lane& ln, unsigned t, const glm::uvec3& c);
   // Siblings change together: a parent just recorded is not pushed again
   // (takeTouched() would drop the duplicate anyway, after sorting it).
