@@ -55,8 +55,11 @@ constexpr std::uint32_t kPadWord = 0;  // past a range's count: never read
 
 std::uint32_t LightSetPool::append(const std::vector<std::uint32_t>& set, std::uint64_t h, bool own) {
   const std::uint32_t cap = own ? ownCapacity(set.size()) : std::uint32_t(set.size());
-  if (list_.size() + cap + 1 > 0xFFFFFFF0ull) throw std::length_error("light index list exceeds 2^32 entries");
-  if (own) list_.push_back(cap);  // the head: capacityOf()
+  if (list_.size() + cap + kOwnHead > 0xFFFFFFF0ull) throw std::length_error("light index list exceeds 2^32 entries");
+  if (own) {  // the head
+    list_.push_back(std::uint32_t(set.size()));
+    list_.push_back(cap);
+  }
   const std::uint32_t off = std::uint32_t(list_.size());
   list_.insert(list_.end(), set.begin(), set.end());
   list_.resize(list_.size() + (cap - set.size()), kPadWord);
@@ -119,7 +122,9 @@ const std::vector<std::uint32_t>& LightSetPool::compact() {
       continue;
     }
     if (r.own) {  // fresh room to grow
+      r.count = list_[r.offset - 2];
       r.capacity = ownCapacity(r.count);
+      list.push_back(r.count);
       list.push_back(r.capacity);
     }
     const std::uint32_t n = std::uint32_t(list.size());

@@ -12,10 +12,11 @@
 //    with room to grow (ownCapacity()), so that its owner may rewrite() its
 //    words and resizeOwn() it in place: deepest leaves' entries, whose octant
 //    masks change when a light moves and whose sets mostly change by a light
-//    or two. Words past a range's count are unspecified. The word before an
-//    own range holds its capacity (never read by lookups): an update asks
-//    for it beside the range's words, where a side table costs two more
-//    cache misses per leaf.
+//    or two. Words past a range's count are unspecified. The two words
+//    before an own range hold its count and capacity (never read by
+//    lookups): an update reads and writes them beside the range's words,
+//    where a side table cost two more cache misses per leaf.
+//    resizeOwn() and rewrite() of distinct own ranges may run in parallel.
 //  - Appends, rewrites and compactions are recorded for partial uploads.
 #include <algorithm>
 #include <cstdint>
@@ -32,7 +33,11 @@ class LightSetPool {
   static std::uint32_t ownCapacity(std::size_t n) { return std::uint32_t(n + std::max<std::size_t>(2, n / 8)); }
   // For a range from acquireOwn().
   std::uint32_t capacityOf(std::uint32_t offset) const { return list_[offset - 1]; }
-  void resizeOwn(std::uint32_t offset, std::uint32_t count) { recs_[rec_at_[offset]].count = count; }
+  // Returns the word it rewrote (the head's count), for noteRewritten().
+  std::uint32_t resizeOwn(std::uint32_t offset, std::uint32_t count) {
+    list_[offset - 2] = count;
+    return offset - 2;
+  }
   // Overwrites entry `at` of a range from acquireOwn().
   void rewrite(std::size_t at, std::uint32_t word) {
     list_[at] = word;
@@ -86,11 +91,13 @@ class LightSetPool {
 
  private:
   struct Rec {
-    std::uint32_t offset = 0, count = 0, capacity = 0, refs = 0;  // capacity: count unless own
-    std::uint32_t words() const { return capacity + (own ? 1u : 0u); }  // with an own range's head
+    // capacity: count unless own; an own range's count is in its head.
+    std::uint32_t offset = 0, count = 0, capacity = 0, refs = 0;
+    std::uint32_t words() const { return capacity + (own ? kOwnHead : 0u); }
     bool own = false;  // from acquireOwn(): not in the index
     std::uint64_t hash = 0;
   };
+  static constexpr std::uint32_t kOwnHead = 2;  // count, capacity
   std::uint32_t append(const std::vector<std::uint32_t>& set, std::uint64_t hash, bool own);
   void indexInsert(std::uint32_t rec);
   void rebuildIndex(std::size_t capacity);

@@ -267,6 +267,7 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
             }
           d.in_place = true;
           d.count = std::uint32_t(sc.entries.size());
+          if (d.count != d.data_have->count) sc.rewritten.push_back(pool_.resizeOwn(d.data_have->offset, d.count));
         } else {
           entriesOf(t, c, *v.lights, lights, nullptr, reuse ? &*reuse : nullptr, d.entries);
           if (!own) d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
@@ -309,10 +310,7 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
     const auto& have = d.data_have;
     if (d.in_place) {
       const std::uint32_t n = d.count;
-      if (n != have->count) {
-        pool_.resizeOwn(have->offset, n);
-        data_ops[i].push_back({c, true, {have->offset, n}});
-      }
+      if (n != have->count) data_ops[i].push_back({c, true, {have->offset, n}});  // resized in step 1
     } else if (d.data_want) {
       const std::uint32_t offset = ownsRange(t) ? pool_.acquireOwn(d.entries) : pool_.acquire(d.entries, d.set_hash);
       const DataTraits::Payload p{offset, std::uint32_t(d.entries.size())};
@@ -435,7 +433,9 @@ std::vector<OctantRewrite> LinklessOctree::findOctantRewrites(std::vector<Octant
     first[n] = std::uint32_t(i);
     for (std::size_t g = 0; g < n; ++g) {
       range[g] = data.lookupAt(slot[g], keyCoord(changes[first[g]].key));
-      if (range[g]) __builtin_prefetch(list.data() + range[g]->offset);
+      if (!range[g]) continue;
+      const std::uint32_t* w = list.data() + range[g]->offset;
+      for (std::uint32_t k = 0; k < range[g]->count; k += 16) __builtin_prefetch(w + k);
     }
     for (std::size_t g = 0; g < n; ++g) {
       const auto& r = range[g];
