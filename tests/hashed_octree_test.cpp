@@ -151,6 +151,31 @@ TEST(HashedOctree, LightCellsAgreeWithTheLightOctree) {
       if (type != LightNode::Branch) return;
       for (unsigned k = 0; k < 8; ++k) walk(t + 1, childCoord(c, k));
     };
+    // childCovers() is cover() of the 8 children, for every node above the
+    // cells' parents: on the light, around it and far from it.
+    auto expectChildCovers = [&](unsigned t, const glm::uvec3& c) {
+      std::uint8_t full = 0xA5, branch = 0x5A;  // poisoned
+      cells.childCovers(t, c, full, branch);
+      for (unsigned k = 0; k < 8; ++k) {
+        const LightNode want = cells.cover(t + 1, childCoord(c, k));
+        EXPECT_EQ((full >> k) & 1u, unsigned(want == LightNode::Full)) << "light " << i << " depth " << t << " child " << k;
+        EXPECT_EQ((branch >> k) & 1u, unsigned(want == LightNode::Branch)) << "light " << i << " depth " << t << " child " << k;
+      }
+    };
+    const CellBox box = cells.box();
+    const int cells_per_axis = 1 << b.depth;
+    for (unsigned t = 0; t + 2 <= b.depth; ++t)
+      for (int n = 0; n < 24; ++n) {
+        // The node of a cell near the light's box, or anywhere one time in four.
+        glm::ivec3 p;
+        for (int a = 0; a < 3; ++a) {
+          const bool anywhere = n % 4 == 0;
+          const int lo = anywhere ? 0 : std::max(0, box.lo[a] - 2);
+          const int hi = anywhere ? cells_per_axis - 1 : std::min(cells_per_axis - 1, box.hi[a] + 2);
+          p[a] = lo + int(rng() % std::uint64_t(hi - lo + 1));
+        }
+        expectChildCovers(t, glm::uvec3(p >> int(b.depth - t)));
+      }
     for (unsigned r = 0; r < o.root_count; ++r) {
       cur = o.nodes.data() + o.root_start[r];
       walk(o.root_depth, o.roots[r]);

@@ -24,6 +24,7 @@
 //    grid and merging bottom-up; the result is still a minimal octree.
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -90,6 +91,31 @@ class LightCells {
     const int shift = int(depth_ - t);
     return classifyNode(glm::ivec3(c) << shift, 1 << shift, box_.lo, box_.hi, centre_cell_, twice_centre_,
                         [this](const glm::ivec3& p) { return filled(p); });
+  }
+
+  // cover() of the 8 children of node (t, c), for children of at least 2
+  // cells a side: bit k of `full` / `branch` says child k is Full / Branch
+  // (neither: Empty). The same per-axis terms and decisions as cover(), per
+  // axis and child half, with the 8 sums at once (EightSums.hpp): the
+  // update walk asks this of every node it descends through.
+  void childCovers(unsigned t, const glm::uvec3& c, std::uint8_t& full, std::uint8_t& branch) const {
+    const int s = 1 << (depth_ - t - 1);
+    double near[3][2], far[3][2];
+    for (int a = 0; a < 3; ++a)
+      for (int j = 0; j < 2; ++j) {
+        const int rlo = (2 * int(c[a]) + j) * s, rhi = rlo + s - 1;
+        const int ilo = std::max(rlo, box_.lo[a]), ihi = std::min(rhi, box_.hi[a]);
+        if (ilo > ihi) {
+          near[a][j] = far[a][j] = kFar;
+          continue;
+        }
+        const double* d = axis_d2_.data() + axis_off_[a] - box_.lo[a];
+        near[a][j] = d[std::clamp(centre_cell_[a], ilo, ihi)];
+        far[a][j] = ilo == rlo && ihi == rhi ? d[twice_centre_[a] >= double(ilo + ihi + 1) ? ilo : ihi] : kFar;
+      }
+    const std::uint8_t filled = eightSumsBelow(near[0], near[1], near[2], r2_);
+    full = filled & eightSumsBelow(far[0], far[1], far[2], r2_);
+    branch = filled & std::uint8_t(~full);
   }
 
   // The deepest cells the light may reach (empty: no version).

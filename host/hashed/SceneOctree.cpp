@@ -397,11 +397,16 @@ void SceneOctree::replaceCellsRec(Lane& ln, std::int32_t n, unsigned t, const gl
     }
     return;
   }
-  for (unsigned k = 0; k < 8; ++k) {
-    const glm::uvec3 cc = childCoord(c, k);
-    const LightNode ca = pa ? a.cover(t + 1, cc) : ka, cb = pb ? b.cover(t + 1, cc) : kb;
-    if (ca == cb && ca != LightNode::Branch) continue;  // unchanged here
-    replaceCellsRec(ln, ch + std::int32_t(k), t + 1, cc, ca, a, cb, b, l);
+  std::uint8_t fa = ka == LightNode::Full ? 0xFF : 0, ba = 0, fb = kb == LightNode::Full ? 0xFF : 0, bb = 0;
+  if (pa) a.childCovers(t, c, fa, ba);
+  if (pb) b.childCovers(t, c, fb, bb);
+  auto kind = [](std::uint8_t full, std::uint8_t branch, unsigned k) {
+    return (branch >> k) & 1u ? LightNode::Branch : (full >> k) & 1u ? LightNode::Full : LightNode::Empty;
+  };
+  // Children that differ, or that both versions cut through; the rest are unchanged.
+  for (unsigned m = unsigned(fa ^ fb) | unsigned(ba ^ bb) | ba; m != 0; m &= m - 1) {
+    const unsigned k = unsigned(std::countr_zero(m));
+    replaceCellsRec(ln, ch + std::int32_t(k), t + 1, childCoord(c, k), kind(fa, ba, k), a, kind(fb, bb, k), b, l);
   }
 }
 
