@@ -94,7 +94,7 @@ void LightSetPool::clear() {
   index_.clear();
   garbage_ = 0;
   all_dirty_ = true;
-  dirty_words_.clear();
+  dirty_spans_.clear();
 }
 
 const std::vector<std::uint32_t>& LightSetPool::compact() {
@@ -139,15 +139,15 @@ const std::vector<std::uint32_t>& LightSetPool::compact() {
   rec_at_.swap(rec_at);
   garbage_ = 0;
   all_dirty_ = true;
-  dirty_words_.clear();
+  dirty_spans_.clear();
   rebuildIndex(4 * (recs_.size() - free_recs_.size()));
   return remap;
 }
 
 LightSetPool::Dirty LightSetPool::takeDirty() {
   Dirty d{all_dirty_, all_dirty_ ? 0 : dirty_from_, {}};
-  if (!all_dirty_) d.words.swap(dirty_words_);
-  dirty_words_.clear();
+  if (!all_dirty_) d.spans.swap(dirty_spans_);
+  dirty_spans_.clear();
   all_dirty_ = false;
   dirty_from_ = list_.size();
   return d;

@@ -44,10 +44,13 @@ class LightSetPool {
     noteRewritten(at);
   }
   // rewrite() in two halves, for tasks rewriting distinct own ranges in
-  // parallel: each writes its words, then one thread notes them all.
+  // parallel: each writes its words, then one thread notes them all, as
+  // spans [first, end) (an in-place edit shifts every word after it).
   std::uint32_t* ownWords(std::uint32_t offset) { return list_.data() + offset; }
-  void noteRewritten(std::size_t at) {
-    if (!all_dirty_ && at < dirty_from_) dirty_words_.push_back(std::uint32_t(at));
+  void noteRewritten(std::size_t at) { noteRewritten(at, at + 1); }
+  void noteRewritten(std::size_t first, std::size_t end) {
+    if (!all_dirty_ && first < dirty_from_)
+      dirty_spans_.push_back({std::uint32_t(first), std::uint32_t(std::min(end, dirty_from_))});
   }
   // A set's hash is a function of the sum of its elements' hashes, so that
   // whoever edits a set one element at a time (SceneOctree) can keep the sum
@@ -80,12 +83,15 @@ class LightSetPool {
   const std::vector<std::uint32_t>& compact();
 
   // First list index appended since the last take (list size if none),
-  // the entries rewritten before it (unsorted, maybe repeated); `all` after
-  // clear() or compact().
+  // the spans [first, end) of words rewritten before it (unsorted, maybe
+  // overlapping); `all` after clear() or compact().
+  struct Span {
+    std::uint32_t first, end;
+  };
   struct Dirty {
     bool all = false;
     std::size_t from = 0;
-    std::vector<std::uint32_t> words;
+    std::vector<Span> spans;
   };
   Dirty takeDirty();
 
@@ -113,7 +119,7 @@ class LightSetPool {
   std::size_t garbage_ = 0;
   bool all_dirty_ = true;
   std::size_t dirty_from_ = 0;
-  std::vector<std::uint32_t> dirty_words_;
+  std::vector<Span> dirty_spans_;
 };
 
 }  // namespace ml::hashed

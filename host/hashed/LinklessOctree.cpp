@@ -222,7 +222,8 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
   // tasks do them (noting the words per thread) instead of the sequential
   // step: most deepest leaves end there.
   struct Scratch {
-    std::vector<std::uint32_t> entries, rewritten;
+    std::vector<std::uint32_t> entries;
+    std::vector<LightSetPool::Span> rewritten;
   };
   tbb::enumerable_thread_specific<Scratch> scratch;
   auto derive = [&](std::size_t j) {
@@ -259,15 +260,22 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
         if (reuse && v.lights->size() <= pool_.capacityOf(d.data_have->offset)) {
           Scratch& sc = scratch.local();
           entriesOf(t, c, *v.lights, lights, nullptr, &*reuse, sc.entries);
-          std::uint32_t* words = pool_.ownWords(d.data_have->offset);
-          for (std::size_t k = 0; k < sc.entries.size(); ++k)
+          const std::uint32_t offset = d.data_have->offset;
+          std::uint32_t* words = pool_.ownWords(offset);
+          std::uint32_t first = ~0u, last = 0;
+          for (std::uint32_t k = 0; k < sc.entries.size(); ++k)
             if (words[k] != sc.entries[k]) {
               words[k] = sc.entries[k];
-              sc.rewritten.push_back(d.data_have->offset + std::uint32_t(k));
+              first = std::min(first, k);
+              last = k;
             }
+          if (first != ~0u) sc.rewritten.push_back({offset + first, offset + last + 1});
           d.in_place = true;
           d.count = std::uint32_t(sc.entries.size());
-          if (d.count != d.data_have->count) sc.rewritten.push_back(pool_.resizeOwn(d.data_have->offset, d.count));
+          if (d.count != d.data_have->count) {
+            const std::uint32_t head = pool_.resizeOwn(offset, d.count);
+            sc.rewritten.push_back({head, head + 1});
+          }
         } else {
           entriesOf(t, c, *v.lights, lights, nullptr, reuse ? &*reuse : nullptr, d.entries);
           if (!own) d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
@@ -299,7 +307,7 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
   std::vector<std::uint32_t> release;
   st.keys += touched.size();
   for (const Scratch& sc : scratch)
-    for (const auto at : sc.rewritten) pool_.noteRewritten(at);
+    for (const auto& span : sc.rewritten) pool_.noteRewritten(span.first, span.end);
   for (std::size_t j = 0; j < touched.size(); ++j) {
     const Derived& d = derived[j];
     const unsigned t = keyDepth(touched[j]);
