@@ -547,10 +547,15 @@ void SceneOctree::runLanes(unsigned P, const std::vector<std::int32_t>& part,
       if (!edit(ln, part[id], c, j)) return;
       ++done[i];
     }
+    // The subtree is final: merge what became mergeable while it is in
+    // cache, in parallel; normalize() then finds it clean.
+    normalizeRec(ln, part[id], P, c);
   });
   free_blocks_.resize(free_blocks_.size() - reserved_taken_.load(std::memory_order_relaxed));
-  for (auto& ln : lanes)
+  for (auto& ln : lanes) {
+    free_blocks_.insert(free_blocks_.end(), ln.freed.begin(), ln.freed.end());
     if (recording_) main_.touched.insert(main_.touched.end(), ln.touched.begin(), ln.touched.end());
+  }
   // The items the reservation did not cover, in order, on the main lane.
   for (std::size_t i = 0; i < busy.size(); ++i)
     for (std::size_t k = done[i]; k < work[busy[i]].size(); ++k)
@@ -674,14 +679,18 @@ void SceneOctree::replaceAll(const std::vector<CellsReplacement>& batch) {
 
 void SceneOctree::removeEverywhere(std::uint32_t l) { removeAll(main_, 0, 0, glm::uvec3(0), l); }
 
-void SceneOctree::normalize() { normalizeRec(0, 0, glm::uvec3(0)); }
+void SceneOctree::normalize() {
+  normalizeRec(main_, 0, 0, glm::uvec3(0));
+  free_blocks_.insert(free_blocks_.end(), main_.freed.begin(), main_.freed.end());
+  main_.freed.clear();
+}
 
-void SceneOctree::normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c) {
+void SceneOctree::normalizeRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c) {
   if (!nodes_[n].dirty) return;
   nodes_[n].dirty = false;
   if (isLeaf(n)) return;
   const std::int32_t ch = nodes_[n].child;
-  for (unsigned k = 0; k < 8; ++k) normalizeRec(ch + std::int32_t(k), t + 1, childCoord(c, k));
+  for (unsigned k = 0; k < 8; ++k) normalizeRec(ln, ch + std::int32_t(k), t + 1, childCoord(c, k));
   // Merge when the children that matter are leaves with one light set.
   const std::vector<std::uint32_t>* common = nullptr;
   for (unsigned k = 0; k < 8; ++k) {
@@ -705,8 +714,8 @@ void SceneOctree::normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c) 
     sums_[ch + std::int32_t(k)] = 0;
   }
   nodes_[n].child = -1;
-  free_blocks_.push_back(ch);
-  recordChildren(main_, t, c);
+  ln.freed.push_back(ch);
+  recordChildren(ln, t, c);
 }
 
 SceneOctree::NodeView SceneOctree::view(std::int32_t n) const {

@@ -133,7 +133,8 @@ class SceneOctree {
     std::vector<std::uint64_t> touched;
     std::uint64_t last_parent = ~std::uint64_t(0);
     bool reserved = false;
-    std::size_t taken = 0;  // reserved blocks taken
+    std::size_t taken = 0;                // reserved blocks taken
+    std::vector<std::int32_t> freed;      // blocks its merges freed, for free_blocks_ afterwards
   };
   // After leaf n's set changed.
   void record(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c);
@@ -153,7 +154,7 @@ class SceneOctree {
   void removeAll(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
   bool addToSet(std::int32_t n, std::uint32_t l);
   bool eraseFromSet(std::int32_t n, std::uint32_t l);
-  void normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c);
+  void normalizeRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c);
   // Coverage of a node by a light during replace(): Above = an ancestor of
   // the light octree's root (partial, no stream read yet).
   enum class Cover : std::uint8_t { Empty = 0, Full = 1, Branch = 2, Above = 3 };
