@@ -33,17 +33,17 @@ LinklessOctree::LinklessOctree(const OctreeBounds& bounds, const HashedConfig& c
   computeBases();
 }
 
-void LinklessOctree::entriesOf(unsigned t, const glm::uvec3& c, const std::vector<std::uint32_t>& set,
+void LinklessOctree::entriesOf(unsigned t, const glm::uvec3& c, const std::uint32_t* set, std::size_t n,
                                const std::vector<gpu::PointLight>& lights, const OctantTables* tables,
                                const Reuse* reuse, std::vector<std::uint32_t>& out) const {
-  out.resize(set.size());
+  out.resize(n);
   if (!cfg_.octant_masks || t != b_.depth) {
-    for (std::size_t i = 0; i < set.size(); ++i) out[i] = packEntry(set[i], kAllOctants);
+    for (std::size_t i = 0; i < n; ++i) out[i] = packEntry(set[i], kAllOctants);
     return;
   }
   const glm::ivec3 cell(c);
   const std::uint32_t *old = reuse ? reuse->first : nullptr, *last = reuse ? reuse->last : nullptr;
-  for (std::size_t i = 0; i < set.size(); ++i) {
+  for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t l = set[i];
     while (old != last && entryLight(*old) < l) ++old;
     if (old != last && entryLight(*old) == l) {
@@ -80,7 +80,9 @@ void LinklessOctree::buildFrom(const SceneOctree& tree, const std::vector<gpu::P
   std::vector<std::uint64_t> hashes(leaves.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 256), [&](const auto& r) {
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
-      entriesOf(leaves[j].t, leaves[j].c, *leaves[j].set, lights, tables ? &*tables : nullptr, nullptr, entries[j]);
+      const auto& set = *leaves[j].set;
+      entriesOf(leaves[j].t, leaves[j].c, set.data(), set.size(), lights, tables ? &*tables : nullptr, nullptr,
+                entries[j]);
       if (!ownsRange(leaves[j].t)) hashes[j] = LightSetPool::hashOf(entries[j].data(), entries[j].size());
     }
   });
@@ -257,27 +259,34 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
         if (own && d.data_have)
           reuse = Reuse{pool_.list().data() + d.data_have->offset,
                         pool_.list().data() + d.data_have->offset + d.data_have->count};
-        if (reuse && v.lights->size() <= pool_.capacityOf(d.data_have->offset)) {
+        const std::vector<std::uint32_t>& set = *v.lights;
+        if (reuse && set.size() <= pool_.capacityOf(d.data_have->offset)) {
           Scratch& sc = scratch.local();
-          entriesOf(t, c, *v.lights, lights, nullptr, &*reuse, sc.entries);
           const std::uint32_t offset = d.data_have->offset;
           std::uint32_t* words = pool_.ownWords(offset);
+          // The lights before the first change keep their words (their masks
+          // are current: applyOctantRewrites()); the rest are merged.
+          std::uint32_t p = 0;
+          const std::uint32_t common = std::min(std::uint32_t(set.size()), d.data_have->count);
+          while (p < common && entryLight(words[p]) == set[p]) ++p;
+          const Reuse rest{words + p, reuse->last};
+          entriesOf(t, c, set.data() + p, set.size() - p, lights, nullptr, &rest, sc.entries);
           std::uint32_t first = ~0u, last = 0;
           for (std::uint32_t k = 0; k < sc.entries.size(); ++k)
-            if (words[k] != sc.entries[k]) {
-              words[k] = sc.entries[k];
-              first = std::min(first, k);
-              last = k;
+            if (words[p + k] != sc.entries[k]) {
+              words[p + k] = sc.entries[k];
+              first = std::min(first, p + k);
+              last = p + k;
             }
           if (first != ~0u) sc.rewritten.push_back({offset + first, offset + last + 1});
           d.in_place = true;
-          d.count = std::uint32_t(sc.entries.size());
+          d.count = std::uint32_t(set.size());
           if (d.count != d.data_have->count) {
             const std::uint32_t head = pool_.resizeOwn(offset, d.count);
             sc.rewritten.push_back({head, head + 1});
           }
         } else {
-          entriesOf(t, c, *v.lights, lights, nullptr, reuse ? &*reuse : nullptr, d.entries);
+          entriesOf(t, c, set.data(), set.size(), lights, nullptr, reuse ? &*reuse : nullptr, d.entries);
           if (!own) d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
         }
       }

@@ -122,7 +122,7 @@ class LinklessOctree {
   struct Reuse {
     const std::uint32_t *first = nullptr, *last = nullptr;
   };
-  void entriesOf(unsigned t, const glm::uvec3& c, const std::vector<std::uint32_t>& set,
+  void entriesOf(unsigned t, const glm::uvec3& c, const std::uint32_t* set, std::size_t n,
                  const std::vector<gpu::PointLight>& lights, const OctantTables* tables, const Reuse* reuse,
                  std::vector<std::uint32_t>& out) const;
   OctreeBounds b_;

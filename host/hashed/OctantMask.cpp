@@ -87,9 +87,14 @@ void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLig
         // that either version misses lists the light in no cell of it.
         const std::size_t cy = std::size_t(n.x + y), cz = std::size_t(n.x + n.y + z);
         if ((0.0 + ca[cy]) + ca[cz] >= r2[0] || (0.0 + cb[cy]) + cb[cz] >= r2[1]) continue;
+        // The farthest octant's sum: below the radius, every octant is reached.
+        const double fya = std::max(ga[iy], ga[iy + 1]), fza = std::max(ga[iz], ga[iz + 1]);
+        const double fyb = std::max(gb[iy], gb[iy + 1]), fzb = std::max(gb[iz], gb[iz + 1]);
         for (int x = 0; x < n.x; ++x) {
           if ((ca[x] + ca[cy]) + ca[cz] >= r2[0] || (cb[x] + cb[cy]) + cb[cz] >= r2[1]) continue;
           const std::size_t ix = std::size_t(2 * x);
+          if ((std::max(ga[ix], ga[ix + 1]) + fya) + fza < r2[0] && (std::max(gb[ix], gb[ix + 1]) + fyb) + fzb < r2[1])
+            continue;  // all 8 octants in both versions
           const std::uint8_t ma = octantBits(ga + ix, ga + iy, ga + iz, r2[0]);
           const std::uint8_t mb = octantBits(gb + ix, gb + iy, gb + iz, r2[1]);
           if (ma != mb) out.push_back({nodeKey(b.depth, glm::uvec3(hull.lo + glm::ivec3(x, y, z))), light, mb});
