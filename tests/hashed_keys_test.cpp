@@ -9,6 +9,7 @@
 #include "host/hashed/KeySort.hpp"
 #include "host/hashed/LightSetPool.hpp"
 #include "host/hashed/SceneOctree.hpp"
+#include "support/TestDevice.hpp"
 
 namespace ml::hashed {
 namespace {
@@ -55,6 +56,53 @@ TEST(HashedKeys, SetHashFromTheElementSumEqualsHashOf) {
   EXPECT_NE(oa, ob);
   EXPECT_EQ(pool.acquire(a), oa);
   EXPECT_EQ(pool.rangeCount(), 2u);
+}
+
+// Own ranges keep their count and capacity in a head word, or in the side
+// table from 65535 words on; resizing and compaction keep both right, and
+// compaction repacks each range's live words behind a fresh head.
+TEST(HashedKeys, OwnRangesKeepCountAndCapacityThroughResizeAndCompaction) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  LightSetPool pool;
+  struct Own {
+    std::uint32_t offset;
+    std::vector<std::uint32_t> words;
+  };
+  std::vector<Own> own;
+  for (const std::size_t n : {std::size_t(1), std::size_t(2), std::size_t(7), std::size_t(58253), std::size_t(58254),
+                              std::size_t(65535), std::size_t(70001), std::size_t(33)}) {
+    std::vector<std::uint32_t> w(n);
+    for (auto& x : w) x = std::uint32_t(rng());
+    own.push_back({pool.acquireOwn(w), w});
+    EXPECT_EQ(pool.countOf(own.back().offset), n);
+    EXPECT_EQ(pool.capacityOf(own.back().offset), LightSetPool::ownCapacity(n)) << n;
+  }
+  const std::uint32_t shared = pool.acquire({5, 6, 7});
+  // Shrink some, grow others within their room, rewrite words in place.
+  for (auto& o : own) {
+    const std::uint32_t cap = pool.capacityOf(o.offset);
+    const std::uint32_t n = 1 + std::uint32_t(rng() % cap);
+    o.words.resize(n);
+    for (auto& x : o.words) x = std::uint32_t(rng());
+    pool.resizeOwn(o.offset, n);
+    for (std::size_t k = 0; k < o.words.size(); ++k) pool.rewrite(o.offset + k, o.words[k]);
+    EXPECT_EQ(pool.countOf(o.offset), o.words.size());
+    EXPECT_EQ(pool.capacityOf(o.offset), cap);
+  }
+  // The shared range becomes garbage; compaction moves every own range.
+  pool.release(shared);
+  const auto& remap = pool.compact();
+  for (auto& o : own) {
+    o.offset = remap[o.offset];
+    EXPECT_EQ(pool.countOf(o.offset), o.words.size());
+    EXPECT_EQ(pool.capacityOf(o.offset), LightSetPool::ownCapacity(o.words.size()));
+    const auto& list = pool.list();
+    ASSERT_LE(o.offset + o.words.size(), list.size());
+    EXPECT_TRUE(std::equal(o.words.begin(), o.words.end(), list.begin() + o.offset)) << o.words.size();
+  }
+  EXPECT_EQ(pool.garbageEntries(), 0u);
 }
 
 }  // namespace

@@ -56,10 +56,7 @@ constexpr std::uint32_t kPadWord = 0;  // past a range's count: never read
 std::uint32_t LightSetPool::append(const std::vector<std::uint32_t>& set, std::uint64_t h, bool own) {
   const std::uint32_t cap = own ? ownCapacity(set.size()) : std::uint32_t(set.size());
   if (list_.size() + cap + kOwnHead > 0xFFFFFFF0ull) throw std::length_error("light index list exceeds 2^32 entries");
-  if (own) {  // the head
-    list_.push_back(std::uint32_t(set.size()));
-    list_.push_back(cap);
-  }
+  if (own) list_.push_back(headOf(std::uint32_t(set.size()), cap));
   const std::uint32_t off = std::uint32_t(list_.size());
   list_.insert(list_.end(), set.begin(), set.end());
   list_.resize(list_.size() + (cap - set.size()), kPadWord);
@@ -122,10 +119,9 @@ const std::vector<std::uint32_t>& LightSetPool::compact() {
       continue;
     }
     if (r.own) {  // fresh room to grow
-      r.count = list_[r.offset - 2];
+      r.count = countOf(r.offset);
       r.capacity = ownCapacity(r.count);
-      list.push_back(r.count);
-      list.push_back(r.capacity);
+      list.push_back(headOf(r.count, r.capacity));
     }
     const std::uint32_t n = std::uint32_t(list.size());
     list.insert(list.end(), list_.begin() + std::ptrdiff_t(r.offset), list_.begin() + std::ptrdiff_t(r.offset + r.count));

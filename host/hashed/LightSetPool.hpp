@@ -12,11 +12,13 @@
 //    with room to grow (ownCapacity()), so that its owner may rewrite() its
 //    words and resizeOwn() it in place: deepest leaves' entries, whose octant
 //    masks change when a light moves and whose sets mostly change by a light
-//    or two. Words past a range's count are unspecified. The two words
-//    before an own range hold its count and capacity (never read by
-//    lookups): an update reads and writes them beside the range's words,
-//    where a side table cost two more cache misses per leaf.
-//    resizeOwn() and rewrite() of distinct own ranges may run in parallel.
+//    or two. Words past a range's count are unspecified. The word before
+//    an own range (its head, never read by lookups) holds its count and
+//    capacity, 16 bits each: an update reads and writes them beside the
+//    range's words, where a side table cost two more cache misses per leaf.
+//    Ranges of 65535 words or more keep them in the side table instead
+//    (head kBigHead). resizeOwn() and rewrite() of distinct own ranges may
+//    run in parallel.
 //  - Appends, rewrites and compactions are recorded for partial uploads.
 #include <algorithm>
 #include <cstdint>
@@ -32,12 +34,22 @@ class LightSetPool {
   std::uint32_t acquireOwn(const std::vector<std::uint32_t>& set);
   static std::uint32_t ownCapacity(std::size_t n) { return std::uint32_t(n + std::max<std::size_t>(2, n / 8)); }
   // For a range from acquireOwn().
-  std::uint32_t capacityOf(std::uint32_t offset) const { return list_[offset - 1]; }
-  // Returns the word it rewrote (the head's count), for noteRewritten().
-  std::uint32_t resizeOwn(std::uint32_t offset, std::uint32_t count) {
-    list_[offset - 2] = count;
-    return offset - 2;
+  std::uint32_t countOf(std::uint32_t offset) const {
+    const std::uint32_t h = list_[offset - 1];
+    return h != kBigHead ? h & 0xFFFFu : recs_[rec_at_[offset]].count;
   }
+  std::uint32_t capacityOf(std::uint32_t offset) const {
+    const std::uint32_t h = list_[offset - 1];
+    return h != kBigHead ? h >> 16 : recs_[rec_at_[offset]].capacity;
+  }
+  // Returns the word it rewrote (the head), for noteRewritten().
+  std::uint32_t resizeOwn(std::uint32_t offset, std::uint32_t count) {
+    std::uint32_t& h = list_[offset - 1];
+    if (h != kBigHead) h = (h & 0xFFFF0000u) | count;
+    else recs_[rec_at_[offset]].count = count;
+    return offset - 1;
+  }
+  static constexpr std::uint32_t kBigHead = 0xFFFFFFFFu;
   // Overwrites entry `at` of a range from acquireOwn().
   void rewrite(std::size_t at, std::uint32_t word) {
     list_[at] = word;
@@ -97,13 +109,17 @@ class LightSetPool {
 
  private:
   struct Rec {
-    // capacity: count unless own; an own range's count is in its head.
+    // capacity: count unless own; an own range's count is in its head
+    // unless the head is kBigHead.
     std::uint32_t offset = 0, count = 0, capacity = 0, refs = 0;
     std::uint32_t words() const { return capacity + (own ? kOwnHead : 0u); }
     bool own = false;  // from acquireOwn(): not in the index
     std::uint64_t hash = 0;
   };
-  static constexpr std::uint32_t kOwnHead = 2;  // count, capacity
+  static constexpr std::uint32_t kOwnHead = 1;
+  static std::uint32_t headOf(std::uint32_t count, std::uint32_t capacity) {
+    return capacity < 0xFFFFu ? count | capacity << 16 : kBigHead;
+  }
   std::uint32_t append(const std::vector<std::uint32_t>& set, std::uint64_t hash, bool own);
   void indexInsert(std::uint32_t rec);
   void rebuildIndex(std::size_t capacity);
