@@ -195,7 +195,7 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
   for (std::size_t i = n_new; i < n_old; ++i) changed.push_back(std::uint32_t(i));
   for (std::size_t i = n_old; i < n_new; ++i) changed.push_back(std::uint32_t(i));
   std::vector<LightCells> versions(2 * changed.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, changed.size(), 64), [&](const auto& r) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, changed.size(), 16), [&](const auto& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
       const std::uint32_t i = changed[k];
       if (i < n_old) versions[2 * k] = LightCells(old[i], b);

@@ -292,10 +292,10 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
       }
     }
   };
-  if (touched.size() < 2048) {
+  if (touched.size() < 512) {
     for (std::size_t j = 0; j < touched.size(); ++j) derive(j);
   } else {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched.size(), 512), [&](const auto& r) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched.size(), 64), [&](const auto& r) {
       for (std::size_t j = r.begin(); j != r.end(); ++j) derive(j);
     });
   }
@@ -401,7 +401,7 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
     if (task & 1) apply(data_[i], data_ops[i], task);
     else apply(desc_[i], desc_ops[i], task);
   };
-  if (ops_total < 512) {
+  if (ops_total < 4096) {
     for (unsigned task = 0; task < 2 * layers; ++task) applyTask(task);
   } else {
     tbb::parallel_for(0u, 2 * layers, applyTask);
