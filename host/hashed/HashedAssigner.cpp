@@ -20,16 +20,15 @@ hashed::HashedConfig configFrom(const TechniqueParams& p) {
   return c;
 }
 
-// Uploads the given element indices of `words` (elem_words per element) at
-// element base `base`, one call per run of nearby indices: `words` is the
-// whole current buffer, so the elements in a gap may go along, and a gap of
-// up to 256 bytes costs less than another call: moved lights' octant masks
-// are rewritten a few words apart (default scene, 10% moving, llvmpipe:
-// 0.79 ms for 537 KB against 1.12 ms for 142 KB in exact runs).
 using Span = hashed::LightSetPool::Span;
 
-// Spans of elements [first, end), uploaded as runs: spans less than 256
-// bytes apart go in one call.
+// Uploads the given spans [first, end) of elements of `words` (elem_words
+// per element) at element base `base`, one call per run of nearby spans:
+// `words` is the whole current buffer, so the elements in a gap may go
+// along, and a gap of up to 256 bytes costs less than another call: moved
+// lights' octant masks are rewritten a few words apart (default scene, 10%
+// moving, llvmpipe: 0.79 ms for 537 KB against 1.12 ms for 142 KB in exact
+// runs).
 std::size_t uploadSpans(GLuint buffer, std::size_t base, unsigned elem_words, const std::vector<std::uint32_t>& words,
                         std::vector<Span> spans) {
   std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) { return a.first < b.first; });
@@ -48,6 +47,7 @@ std::size_t uploadSpans(GLuint buffer, std::size_t base, unsigned elem_words, co
   return bytes;
 }
 
+// The same for single elements (the hash tables' dirty slots and offsets).
 std::size_t uploadRuns(GLuint buffer, std::size_t base, unsigned elem_words, const std::vector<std::uint32_t>& words,
                        const std::vector<std::uint32_t>& idx) {
   std::vector<Span> spans(idx.size());

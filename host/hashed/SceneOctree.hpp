@@ -14,9 +14,12 @@
 //  - insert()/remove() leave the tree valid (every leaf's set is exactly the
 //    lights covering its cells) but maybe not minimal; normalize() merges
 //    the subtrees they touched.
-//  - With recording on, every node whose type or set changed, every node
-//    created or freed, and their parents are reported by takeTouched(): the
-//    keys whose hash entries the linkless octree must re-derive.
+//  - With recording on, every node whose type or set changed and every node
+//    created or freed are reported by takeTouched(), with the parents whose
+//    description (children's leaf / filled bits) may have changed: of a
+//    node created, freed or split, or of a leaf whose set became or stopped
+//    being empty. These are the keys whose hash entries the linkless octree
+//    must re-derive.
 #include <glm/glm.hpp>
 
 #include <atomic>
