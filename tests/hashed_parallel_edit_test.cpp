@@ -35,6 +35,21 @@ NodeDump dump(const SceneOctree& tree) {
   return out;
 }
 
+// `one` has had the batch replaced one light at a time; par1 and parN get it
+// by replaceAll() on 1 and 4 threads. All three normalized must agree; the
+// sequential result is returned.
+template <class Batch>
+NodeDump expectReplaceAllAgrees(SceneOctree& one, SceneOctree& par1, SceneOctree& parN, const Batch& batch,
+                                int round) {
+  tbb::task_arena(1).execute([&] { par1.replaceAll(batch); });
+  tbb::task_arena(4).execute([&] { parN.replaceAll(batch); });
+  for (auto* t : {&one, &par1, &parN}) t->normalize();
+  NodeDump want = dump(one);
+  EXPECT_TRUE(dump(par1) == want) << "round " << round << ", 1 thread";
+  EXPECT_TRUE(dump(parN) == want) << "round " << round << ", 4 threads";
+  return want;
+}
+
 // Random lights plus lights centred on the faces, edges and corners shared by
 // the depth-1 and depth-2 subtrees, some large enough to span many of them.
 // `inside`: every sphere inside the box (updates then never leave the bounds).
@@ -107,12 +122,7 @@ TEST(HashedParallelEdit, ReplaceAllEqualsOneReplaceAtATime) {
       batch.push_back({&moved_old[k], &moved_new[k], &ends_old[k], &ends_new[k]});
     }
     for (const auto& r : batch) one.replace(*r.old_version, *r.new_version);
-    tbb::task_arena(1).execute([&] { par1.replaceAll(batch); });
-    tbb::task_arena(4).execute([&] { parN.replaceAll(batch); });
-    for (auto* t : {&one, &par1, &parN}) t->normalize();
-    const NodeDump want = dump(one);
-    EXPECT_TRUE(dump(par1) == want) << "round " << round << ", 1 thread";
-    EXPECT_TRUE(dump(parN) == want) << "round " << round << ", 4 threads";
+    const NodeDump want = expectReplaceAllAgrees(one, par1, parN, batch, round);
     // And both equal the tree built from scratch.
     SceneOctree fresh(b, nullptr);
     for (const auto& o : old_versions) fresh.insert(o);
@@ -170,12 +180,7 @@ TEST(HashedParallelEdit, CellsReplaceAllEqualsOneReplaceAtATime) {
     ASSERT_GE(batch.size(), 32u);  // replaceAll's parallel path
     for (const auto& r : batch) one.replace(r.old_version ? *r.old_version : LightCells(),
                                             r.new_version ? *r.new_version : LightCells(), r.light);
-    tbb::task_arena(1).execute([&] { par1.replaceAll(batch); });
-    tbb::task_arena(4).execute([&] { parN.replaceAll(batch); });
-    for (auto* t : {&one, &par1, &parN}) t->normalize();
-    const NodeDump want = dump(one);
-    EXPECT_TRUE(dump(par1) == want) << "round " << round << ", 1 thread";
-    EXPECT_TRUE(dump(parN) == want) << "round " << round << ", 4 threads";
+    const NodeDump want = expectReplaceAllAgrees(one, par1, parN, batch, round);
     lights = next;
     SceneOctree fresh(b, nullptr);
     for (std::uint32_t i = 0; i < lights.size(); ++i) fresh.insert(buildLightOctree(lights[i], i, b, scratch));

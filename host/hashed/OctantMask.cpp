@@ -75,35 +75,32 @@ void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLig
   const double* gb = g.data() + terms;
   const double* ca = g.data() + 2 * terms;  // cell terms: x at 0, y at n.x, z at n.x + n.y
   const double* cb = ca + cterms;
-  auto rowMisses = [](const double* gv, std::size_t iy, std::size_t iz, double r) {
-    // Sums only grow with the x term (rounding is monotonic): all 0 bits.
+  auto rowMisses = [](const double* gv, std::size_t iy, std::size_t iz, double r) {  // no octant of any cell
     return std::min(gv[iy], gv[iy + 1]) + std::min(gv[iz], gv[iz + 1]) >= r;
+  };
+  const std::size_t cz0 = std::size_t(n.x + n.y);  // cell terms of y start at n.x, of z here
+  // With listed_in_both, a cell either version is not listed in (the cell
+  // test: the octant terms' sums over the whole cell) is skipped.
+  auto unlisted = [&](std::size_t cx, std::size_t cy, std::size_t cz) {
+    return (ca[cx] + ca[cy]) + ca[cz] >= r2[0] || (cb[cx] + cb[cy]) + cb[cz] >= r2[1];
   };
   for (int z = 0; z < n.z; ++z)
     for (int y = 0; y < n.y; ++y) {
       const std::size_t iy = std::size_t(off.y + 2 * y), iz = std::size_t(off.z + 2 * z);
-      if (listed_in_both) {
-        // The cell test is the octant terms' sums over whole cells; a row
-        // that either version misses lists the light in no cell of it.
-        const std::size_t cy = std::size_t(n.x + y), cz = std::size_t(n.x + n.y + z);
-        if ((0.0 + ca[cy]) + ca[cz] >= r2[0] || (0.0 + cb[cy]) + cb[cz] >= r2[1]) continue;
-        // The farthest octant's sum: below the radius, every octant is reached.
-        const double fya = std::max(ga[iy], ga[iy + 1]), fza = std::max(ga[iz], ga[iz + 1]);
-        const double fyb = std::max(gb[iy], gb[iy + 1]), fzb = std::max(gb[iz], gb[iz + 1]);
-        for (int x = 0; x < n.x; ++x) {
-          if ((ca[x] + ca[cy]) + ca[cz] >= r2[0] || (cb[x] + cb[cy]) + cb[cz] >= r2[1]) continue;
-          const std::size_t ix = std::size_t(2 * x);
-          if ((std::max(ga[ix], ga[ix + 1]) + fya) + fza < r2[0] && (std::max(gb[ix], gb[ix + 1]) + fyb) + fzb < r2[1])
-            continue;  // all 8 octants in both versions
-          const std::uint8_t ma = octantBits(ga + ix, ga + iy, ga + iz, r2[0]);
-          const std::uint8_t mb = octantBits(gb + ix, gb + iy, gb + iz, r2[1]);
-          if (ma != mb) out.push_back({nodeKey(b.depth, glm::uvec3(hull.lo + glm::ivec3(x, y, z))), light, mb});
-        }
+      const std::size_t cy = std::size_t(n.x + y), cz = cz0 + std::size_t(z);
+      // Sums only grow with the x term (rounding is monotonic): a row where
+      // they miss without it misses in every cell.
+      if (listed_in_both ? (0.0 + ca[cy]) + ca[cz] >= r2[0] || (0.0 + cb[cy]) + cb[cz] >= r2[1]
+                         : rowMisses(ga, iy, iz, r2[0]) && rowMisses(gb, iy, iz, r2[1]))
         continue;
-      }
-      if (rowMisses(ga, iy, iz, r2[0]) && rowMisses(gb, iy, iz, r2[1])) continue;
+      // The farthest octant's sum: below the radius, every octant is reached.
+      const double fya = std::max(ga[iy], ga[iy + 1]), fza = std::max(ga[iz], ga[iz + 1]);
+      const double fyb = std::max(gb[iy], gb[iy + 1]), fzb = std::max(gb[iz], gb[iz + 1]);
       for (int x = 0; x < n.x; ++x) {
+        if (listed_in_both && unlisted(std::size_t(x), cy, cz)) continue;
         const std::size_t ix = std::size_t(2 * x);
+        if ((std::max(ga[ix], ga[ix + 1]) + fya) + fza < r2[0] && (std::max(gb[ix], gb[ix + 1]) + fyb) + fzb < r2[1])
+          continue;  // all 8 octants in both versions
         const std::uint8_t ma = octantBits(ga + ix, ga + iy, ga + iz, r2[0]);
         const std::uint8_t mb = octantBits(gb + ix, gb + iy, gb + iz, r2[1]);
         if (ma != mb) out.push_back({nodeKey(b.depth, glm::uvec3(hull.lo + glm::ivec3(x, y, z))), light, mb});
