@@ -2,6 +2,7 @@
 // registered technique on the project's own scene (JSON/CSV schema, counts
 // that respect the exact lower bound), a sweep over a small generated suite
 // (light sets x sizes x parameters), plots, and one-line errors.
+#include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR, MANYLIGHTS_BINARY (generated)
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

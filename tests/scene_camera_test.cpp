@@ -1,6 +1,7 @@
 // Camera matrices (checked against glm and against hand-derived projections),
 // CameraParams layout, JSON load/save (manylights and nTiled formats), errors,
 // and the shipped default camera path.
+#include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR, MANYLIGHTS_BINARY (generated)
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -1,6 +1,7 @@
 // glTF loading: a small scene written by the test itself (so every expected
 // number is derived here by hand, independently of the loader), malformed
 // inputs, and the shipped default scene.
+#include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR, MANYLIGHTS_BINARY (generated)
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 

@@ -1,5 +1,6 @@
 // Light sets: seeded generation in weighted boxes, JSON load/save (manylights
 // and nTiled formats), validation, and the shipped default light set.
+#include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR, MANYLIGHTS_BINARY (generated)
 #include <gtest/gtest.h>
 
 #include <algorithm>

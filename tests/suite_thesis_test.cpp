@@ -4,6 +4,7 @@
 // suite is an input, not a dependency: without it these tests skip, visibly.
 // Location: $MANYLIGHTS_THESIS_SUITE, else ../shared/data/thesis-suite next
 // to the source tree.
+#include "ml_build_paths.h"  // MANYLIGHTS_SOURCE_DIR (generated)
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>

@@ -1,3 +1,4 @@
+#include "ml_build_paths.h"  // MANYLIGHTS_SOURCE_DIR (generated)
 #include "host/util/DataPaths.hpp"
 
 #include <cstdlib>

@@ -1,3 +1,4 @@
+#include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR, MANYLIGHTS_BINARY (generated)
 #include "support/RunCommand.hpp"
 
 #include <sys/wait.h>
