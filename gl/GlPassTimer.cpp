@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "gl/GlCheck.hpp"
+#include "host/util/Error.hpp"
 
 namespace ml {
 namespace {
@@ -13,12 +14,18 @@ double nowMs() {
 }
 }  // namespace
 
-GlPassTimer::GlPassTimer() {
+GlTimingMode glTimingModeFromEnv() {
   const char* force = std::getenv("MANYLIGHTS_GL_TIMING");
-  if (force && std::strcmp(force, "host") == 0) {
-    host_clock_ = true;
-  } else if (force && std::strcmp(force, "query") == 0) {
-    host_clock_ = false;
+  if (!force || !*force) return GlTimingMode::Auto;
+  if (std::strcmp(force, "host") == 0) return GlTimingMode::Host;
+  if (std::strcmp(force, "query") == 0) return GlTimingMode::Query;
+  throw UserError("MANYLIGHTS_GL_TIMING: expected query or host (or unset), got '" + std::string(force) + "'");
+}
+
+GlPassTimer::GlPassTimer() {
+  const GlTimingMode mode = glTimingModeFromEnv();
+  if (mode != GlTimingMode::Auto) {
+    host_clock_ = mode == GlTimingMode::Host;
   } else {
     const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     host_clock_ = r && (std::strstr(r, "llvmpipe") || std::strstr(r, "softpipe") || std::strstr(r, "SWR"));

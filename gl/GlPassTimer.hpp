@@ -3,7 +3,8 @@
 // must not nest). On software rasterisers (llvmpipe, softpipe) those queries
 // do not cover the deferred rasterisation work, so there each pass is
 // bracketed by glFinish() and timed on the host clock instead.
-// $MANYLIGHTS_GL_TIMING=query|host forces one method.
+// $MANYLIGHTS_GL_TIMING=query|host forces one method; any other non-empty
+// value is a UserError naming the variable (checked at start-up too).
 #include <epoxy/gl.h>
 
 #include <string>
@@ -13,6 +14,10 @@
 #include "host/util/PassTimings.hpp"
 
 namespace ml {
+
+enum class GlTimingMode { Auto, Query, Host };
+// $MANYLIGHTS_GL_TIMING: unset or empty -> Auto; throws UserError otherwise.
+GlTimingMode glTimingModeFromEnv();
 
 class GlPassTimer {
  public:

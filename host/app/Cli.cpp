@@ -5,10 +5,13 @@
 #include <cstdio>
 #include <iostream>
 
+#include "gl/GlPassTimer.hpp"
 #include "host/app/BenchCommand.hpp"
 #include "host/app/CompareReferenceCommand.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/cl/KernelCache.hpp"
+#include "host/util/EmbeddedFiles.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml {
@@ -51,6 +54,11 @@ int runCli(int argc, char** argv) {
       for (const auto& t : techniques()) std::printf("%-20s %s\n", t.name.c_str(), t.description.c_str());
       return 0;
     }
+    // Environment first, so a bad value is the run's only line and a cache
+    // warning comes before the start-up lines.
+    glTimingModeFromEnv();
+    sourceDirFromEnv();
+    KernelCache::checkEnvironment();
     if (render->parsed()) return runRender(render_args);
     if (bench->parsed()) {
       for (int i = 0; i < argc; ++i) bench_args.command_line += (i ? " " : "") + std::string(argv[i]);

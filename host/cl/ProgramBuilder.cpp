@@ -1,9 +1,6 @@
 #include "host/cl/ProgramBuilder.hpp"
 
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -12,7 +9,6 @@
 #include "host/util/Error.hpp"
 
 namespace ml {
-namespace fs = std::filesystem;
 
 std::uint64_t fnv1a64(std::string_view data, std::uint64_t seed) {
   std::uint64_t h = seed;
@@ -24,22 +20,6 @@ std::uint64_t fnv1a64(std::string_view data, std::uint64_t seed) {
 }
 
 namespace {
-
-std::string defaultCacheDir() {
-  if (const char* dir = std::getenv("MANYLIGHTS_CACHE_DIR"); dir && *dir) {
-    if (std::string_view(dir) == "off") return {};
-    return std::string(dir) + "/kernels";
-  }
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::string(xdg) + "/manylights/kernels";
-  if (const char* home = std::getenv("HOME"); home && *home) return std::string(home) + "/.cache/manylights/kernels";
-  return {};
-}
-
-std::string hex(std::uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
-}
 
 void expandInto(std::string_view name, const std::string& source, std::set<std::string>& seen, std::string& out) {
   std::istringstream in(source);
@@ -85,7 +65,10 @@ std::string ProgramBuilder::expandIncludes(std::string_view name, const std::str
 }
 
 ProgramBuilder::ProgramBuilder(cl::Context context, cl::Device device, const DeviceInfo& info)
-    : context_(std::move(context)), device_(std::move(device)), cache_dir_(defaultCacheDir()) {
+    : ProgramBuilder(std::move(context), std::move(device), info, KernelCache::fromEnvironment()) {}
+
+ProgramBuilder::ProgramBuilder(cl::Context context, cl::Device device, const DeviceInfo& info, KernelCache cache)
+    : context_(std::move(context)), device_(std::move(device)), cache_(std::move(cache)) {
   device_id_ = info.platform_name + "|" + info.platform_version + "|" + info.name + "|" + info.version + "|" +
                info.driver_version;
 }
@@ -116,25 +99,10 @@ cl::Program ProgramBuilder::buildSource(std::string_view name, const std::string
 
 cl::Program ProgramBuilder::compile(std::string_view name, const std::string& source, const std::string& options,
                                     std::uint64_t key) {
-  const std::string path = cache_dir_.empty() ? std::string() : cache_dir_ + "/" + hex(key) + ".bin";
-  // 1. Cached binary.
-  if (!path.empty()) {
-    std::ifstream in(path, std::ios::binary);
-    if (in) {
-      std::vector<unsigned char> bin((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      try {
-        cl::Program::Binaries bins{bin};
-        std::vector<cl_int> status;
-        cl::Program p(context_, {device_}, bins, &status);
-        p.build({device_}, options.c_str());
-        ++stats_.disk_hits;
-        return p;
-      } catch (const cl::Error&) {
-        // Stale or corrupt entry (e.g. driver update): fall through and rebuild.
-      }
-    }
+  if (auto cached = fromCache(options, key)) {
+    ++stats_.disk_hits;
+    return *cached;
   }
-  // 2. Compile from source.
   cl::Program program;
   try {
     program = cl::Program(context_, source);
@@ -149,26 +117,36 @@ cl::Program ProgramBuilder::compile(std::string_view name, const std::string& so
                     "\n--- build log ---\n" + log);
   }
   ++stats_.compiles;
-  // 3. Store the binary (atomically: write then rename, so parallel runs never read half a file).
-  if (!path.empty()) {
-    try {
-      auto bins = program.getInfo<CL_PROGRAM_BINARIES>();
-      if (!bins.empty() && !bins.front().empty()) {
-        std::error_code ec;
-        fs::create_directories(cache_dir_, ec);
-        const std::string tmp = path + ".tmp" + std::to_string(std::rand());
-        {
-          std::ofstream out(tmp, std::ios::binary);
-          out.write(reinterpret_cast<const char*>(bins.front().data()), static_cast<std::streamsize>(bins.front().size()));
-        }
-        fs::rename(tmp, path, ec);
-        if (ec) fs::remove(tmp, ec);
-      }
-    } catch (const cl::Error&) {
-      // A device that cannot return binaries simply is not cached.
-    }
-  }
+  storeInCache(program, key);
   return program;
+}
+
+std::optional<cl::Program> ProgramBuilder::fromCache(const std::string& options, std::uint64_t key) {
+  // load() has checked size, key and checksum: the driver never sees a damaged file.
+  auto binary = cache_.load(key);
+  if (!binary) return std::nullopt;
+  try {
+    std::vector<cl_int> status;
+    cl::Program p(context_, {device_}, cl::Program::Binaries{*binary}, &status);
+    p.build({device_}, options.c_str());
+    return p;
+  } catch (const cl::Error& e) {
+    // An intact file the driver still refuses (e.g. written by another driver
+    // build with the same version strings): drop it rather than fail every run.
+    cache_.discard(key, "was refused by the OpenCL driver (" + clErrorName(e.err()) + ")");
+    return std::nullopt;
+  }
+}
+
+void ProgramBuilder::storeInCache(const cl::Program& program, std::uint64_t key) {
+  if (!cache_.enabled()) return;
+  std::vector<std::vector<unsigned char>> bins;
+  try {
+    bins = program.getInfo<CL_PROGRAM_BINARIES>();
+  } catch (const cl::Error&) {
+    return;  // a device that cannot return binaries simply is not cached
+  }
+  if (!bins.empty()) cache_.store(key, bins.front());
 }
 
 }  // namespace ml

@@ -4,19 +4,27 @@
 // `#include "x.h"` / `#include "x.cl"` lines are expanded from the embedded
 // host/shared/ headers and kernels/ before compiling, so the text that is hashed
 // is the text that is compiled. Built binaries are cached on disk under
-// $MANYLIGHTS_CACHE_DIR (default $XDG_CACHE_HOME/manylights or
-// ~/.cache/manylights), keyed by a hash of source, options, device, driver and
-// platform: the second run of anything skips the LLVM compile. Programs are also
-// memoised per process. A failed build throws UserError with the build log.
+// $MANYLIGHTS_CACHE_DIR/kernels (default $XDG_CACHE_HOME/manylights/kernels or
+// ~/.cache/manylights/kernels; `off` disables), keyed by a hash of source,
+// options, device, driver and platform: the second run of anything skips the
+// LLVM compile. The cache (KernelCache.hpp) checks each entry's header, key and
+// checksum before the driver sees it; a bad entry, or one whose binary the
+// driver refuses, is deleted with one warning line and recompiled, and a cache
+// that cannot be written is turned off with one warning line: the cache never
+// makes a run fail. Programs are also memoised per process. A failed build
+// from source throws UserError with the build log.
 #include <CL/opencl.hpp>
 
 #include <cstdint>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
+
+#include "host/cl/KernelCache.hpp"
 
 namespace ml {
 
@@ -33,7 +41,9 @@ class ProgramBuilder {
     int compiles = 0;
   };
 
+  // Caches in KernelCache::fromEnvironment().
   ProgramBuilder(cl::Context context, cl::Device device, const DeviceInfo& info);
+  ProgramBuilder(cl::Context context, cl::Device device, const DeviceInfo& info, KernelCache cache);
 
   // Builds kernels/<file> (e.g. "scan.cl").
   cl::Program build(std::string_view file, const Defines& defines = {});
@@ -41,8 +51,10 @@ class ProgramBuilder {
   cl::Program buildSource(std::string_view name, const std::string& source, const Defines& defines = {});
 
   const Stats& stats() const { return stats_; }
-  // Where binaries go; empty when the cache is disabled (MANYLIGHTS_CACHE_DIR=off).
-  const std::string& cacheDir() const { return cache_dir_; }
+  // Where binaries go; empty when the cache is disabled (MANYLIGHTS_CACHE_DIR=off,
+  // an unusable folder, or a write failed earlier in this run).
+  std::string cacheDir() const { return cache_.enabled() ? cache_.dir() : std::string(); }
+  const KernelCache& cache() const { return cache_; }
 
   // Expands #include "..." lines from embedded files (exposed for tests).
   static std::string expandIncludes(std::string_view name, const std::string& source);
@@ -50,10 +62,12 @@ class ProgramBuilder {
  private:
   cl::Program compile(std::string_view name, const std::string& source, const std::string& options,
                       std::uint64_t key);
+  std::optional<cl::Program> fromCache(const std::string& options, std::uint64_t key);
+  void storeInCache(const cl::Program& program, std::uint64_t key);
   cl::Context context_;
   cl::Device device_;
   std::string device_id_;  // device + driver + platform, part of the key
-  std::string cache_dir_;
+  KernelCache cache_;
   std::map<std::uint64_t, cl::Program> memo_;
   std::mutex mutex_;
   Stats stats_;

@@ -1,6 +1,7 @@
 #include "host/util/EmbeddedFiles.hpp"
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -20,6 +21,18 @@ std::string diskPath(const std::string& root, std::string_view name) {
 
 }  // namespace
 
+std::string sourceDirFromEnv() {
+  const char* root = std::getenv("MANYLIGHTS_SOURCE_DIR");
+  if (!root || !*root) return {};
+  const std::string origin = "MANYLIGHTS_SOURCE_DIR=" + std::string(root);
+  std::error_code ec;
+  if (!std::filesystem::is_directory(root, ec)) throw UserError(origin + ": no such folder");
+  for (const char* sub : {"kernels", "gl/shaders", "host/shared"})
+    if (!std::filesystem::is_directory(std::filesystem::path(root) / sub, ec))
+      throw UserError(origin + ": not a manylights source tree (no " + sub + "/ folder)");
+  return root;
+}
+
 bool hasEmbeddedFile(std::string_view name) {
   for (const auto& f : embeddedFiles())
     if (name == f.name) return true;
@@ -27,7 +40,7 @@ bool hasEmbeddedFile(std::string_view name) {
 }
 
 std::string readEmbeddedFile(std::string_view name) {
-  if (const char* root = std::getenv("MANYLIGHTS_SOURCE_DIR"); root && *root) {
+  if (const std::string root = sourceDirFromEnv(); !root.empty()) {
     std::ifstream in(diskPath(root, name), std::ios::binary);
     if (in) {
       std::ostringstream ss;
