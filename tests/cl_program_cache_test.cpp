@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -270,6 +271,40 @@ TEST(KernelCache, FailedWriteWarnsOnceDisablesAndLeavesNothing) {
   EXPECT_FALSE(cache.enabled());
   EXPECT_FALSE(KernelCache(dir, "test").enabled()) << "off for the rest of the process";
   EXPECT_TRUE(filesIn(dir).empty()) << "no entry and no temp file left";
+}
+
+// Writers in several processes storing the same key at once (the race of two
+// runs on an empty cache, many times over): every store succeeds (a clash of
+// temp names would fail O_EXCL and turn the cache off), no temp file is left
+// and the entry that remains is whole.
+TEST(KernelCache, ConcurrentWritersOfOneKeyLeaveOneWholeEntry) {
+  test::TempDir tmp;
+  const std::string dir = tmp.file("kernels");
+  constexpr int kWriters = 4, kStores = 25;
+  std::vector<pid_t> kids;
+  for (int w = 0; w < kWriters; ++w) {
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      KernelCache cache(dir, "writer");
+      for (int i = 0; i < kStores; ++i) cache.store(7, Bytes(20000 + 1000 * w + i, static_cast<unsigned char>(w)));
+      ::_exit(cache.enabled() ? 0 : 1);
+    }
+    kids.push_back(pid);
+  }
+  for (pid_t pid : kids) {
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "a writer failed to store";
+  }
+  const auto files = filesIn(dir);
+  ASSERT_EQ(files.size(), 1u) << "temp files left behind";
+  ::testing::internal::CaptureStderr();
+  const auto bin = KernelCache(dir, "reader").load(7);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+  ASSERT_TRUE(bin.has_value());
+  EXPECT_EQ(std::count(bin->begin(), bin->end(), bin->front()), static_cast<std::ptrdiff_t>(bin->size()))
+      << "bytes of two writers mixed";
 }
 
 // ---- Whole renders, as a user runs them ----

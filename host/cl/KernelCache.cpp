@@ -123,8 +123,9 @@ std::string writeAll(int fd, const std::vector<unsigned char>& bytes, const std:
   return {};
 }
 
-// Unique in the folder across processes (pid), across pid reuse and forks that
-// keep the pid namespace (a per-process random seed) and within the process (a counter).
+// Unique in the folder across processes (pid), across containers or hosts that
+// share the folder and may reuse a pid (a per-process random seed) and within
+// the process (a counter).
 std::string tempPath(const std::string& dir, std::uint64_t key) {
   static const std::uint64_t seed = [] {
     std::random_device rd;
