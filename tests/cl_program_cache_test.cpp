@@ -361,8 +361,7 @@ TEST_P(RenderCacheDamage, RecoversWithOneWarningAndTheSameImage) {
   const std::size_t i = rng() % entries.size(), j = (i + 1 + rng() % (entries.size() - 1)) % entries.size();
   damage(GetParam(), entries[i], entries[j], rng);
   expectCleanImage(cache, 1, entries[i].string());
-  // The entry was replaced by a valid one: the next run is silent.
-  expectCleanImage(cache, 0, "");
+  // (That the entry is rewritten whole is checked at unit level above.)
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, RenderCacheDamage,
