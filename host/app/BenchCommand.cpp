@@ -75,18 +75,24 @@ void checkBenchOutputs(const BenchArgs& a) {
   requireOutputDir("--images", a.images);
 }
 
-// Generated light counts before any light is generated, then every light set
-// (files included) against the limits of every technique in the sweep.
-void checkBenchLightCounts(const std::string& list, const std::vector<TechniqueVariant>& variants,
-                           const std::vector<LightSetInput>* sets, const std::string& flag) {
+std::vector<const TechniqueInfo*> techniquesOf(const std::vector<TechniqueVariant>& variants) {
   std::vector<const TechniqueInfo*> techs;
   for (const auto& v : variants) techs.push_back(&findTechnique(v.technique));
-  if (!sets) {
-    for (const auto& item : splitList(list))
-      if (std::uint64_t n = 0; parseLightCount(item, n)) checkLightLimits(flag, n, techs, "generated");
-    return;
-  }
-  for (const auto& ls : *sets) checkLightLimits(flag, ls.lights.size(), techs, ls.label);
+  return techs;
+}
+
+// Light counts in the --lights list against the limits of every technique in
+// the sweep, before any light is generated.
+void checkLightCounts(const std::string& list, const std::vector<TechniqueVariant>& variants,
+                      const std::string& flag) {
+  for (const auto& item : splitList(list))
+    if (std::uint64_t n = 0; parseLightCount(item, n)) checkLightLimits(flag, n, techniquesOf(variants), "generated");
+}
+
+// The same for the loaded light sets (files count too).
+void checkLightSets(const std::vector<LightSetInput>& sets, const std::vector<TechniqueVariant>& variants,
+                    const std::string& flag) {
+  for (const auto& ls : sets) checkLightLimits(flag, ls.lights.size(), techniquesOf(variants), ls.label);
 }
 
 void printSummaries(const std::vector<RunSummary>& sums) {
@@ -261,7 +267,7 @@ int runBench(const BenchArgs& a) {
   if (a.fovy != 0 && !(a.fovy > 0 && a.fovy < 180)) throw UserError("--fovy: must be in (0, 180) degrees");
   if (a.near_plane < 0 || a.far_plane < 0) throw UserError("--near/--far: must be positive");
   checkBenchOutputs(a);
-  checkBenchLightCounts(a.lights, variants, nullptr, where);
+  checkLightCounts(a.lights, variants, where);
   const DeviceChoice device = DeviceChoice::resolve(a.device);
 
   BenchSceneArgs sa = a.scene;
@@ -274,7 +280,7 @@ int runBench(const BenchArgs& a) {
   BenchPlan plan;
   plan.variants = variants;
   plan.light_sets = resolveLightSets(scene, a.lights, sa, where);
-  checkBenchLightCounts(a.lights, variants, &plan.light_sets, where);
+  checkLightSets(plan.light_sets, variants, where);
   plan.sizes = sizes;
   plan.frames = selectFrames(range, scene.cameras.frames.size(), "--frames");
   plan.counts = !a.no_counts;
@@ -290,8 +296,8 @@ int runBench(const BenchArgs& a) {
   auto cl = ClRuntime::create(device, &share);
   for (const auto& ls : plan.light_sets) checkDeviceLightLimits(where, ls.lights.size(), cl->info());
   std::printf("%s\n%s\n", cl->describe().c_str(), gl->describe().c_str());
-  std::printf("scene: %s [%s] (%zu triangles, %zu camera frames; fovy %g, near %g, far %g)\n", reportPath(scene.source).c_str(),
-              scene.format.c_str(), scene.scene.triangleCount(), scene.cameras.frames.size(), c0.fovy_degrees,
+  std::printf("scene: %s [%s] (%zu triangles, %zu camera frames; fovy %g, near %g, far %g)\n",
+              reportPath(scene.source).c_str(), scene.format.c_str(), scene.scene.triangleCount(), scene.cameras.frames.size(), c0.fovy_degrees,
               c0.near_plane, c0.far_plane);
   if (!scene.missing_meshes.empty()) {
     std::string m;
