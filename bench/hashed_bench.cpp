@@ -3,13 +3,17 @@
 // shaded pixel against tiled and clustered shading and the exact lower bound
 // in the same run, incremental updates (1%, 10%, 100% of the lights moving)
 // against full rebuilds, and the thesis suite's 1890-light Spaceship set
-// when /work/shared/data/thesis-suite is present (skipped, visibly, when not).
+// when the thesis suite is present (skipped, visibly, when not): --suite, else
+// $MANYLIGHTS_THESIS_SUITE/scenes/spaceship-indoor, else
+// ../shared/data/thesis-suite/scenes/spaceship-indoor next to the checkout.
 // Prints tables; --json writes every record.
+#include "ml_build_paths.h"  // MANYLIGHTS_SOURCE_DIR (generated)
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <cstdio>
 #include <filesystem>
@@ -28,6 +32,7 @@
 #include "host/scene/LightAnimator.hpp"
 #include "host/util/Error.hpp"
 #include "host/bench/BenchInputs.hpp"
+#include "host/bench/OutputFiles.hpp"
 #include "BenchCommon.hpp"
 
 namespace {
@@ -45,6 +50,15 @@ double cpuMs() {
 }
 
 double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
+
+// The thesis suite's Spaceship Indoor scene where the tests look for the suite
+// (tests/suite_thesis_test.cpp): $MANYLIGHTS_THESIS_SUITE, else the shared
+// data folder next to the checkout. No machine's absolute path.
+std::string defaultSuiteScene() {
+  std::filesystem::path root = std::filesystem::path(MANYLIGHTS_SOURCE_DIR) / ".." / "shared" / "data" / "thesis-suite";
+  if (const char* env = std::getenv("MANYLIGHTS_THESIS_SUITE"); env && *env) root = env;
+  return (root / "scenes" / "spaceship-indoor").lexically_normal().string();
+}
 
 struct BuildRecord {
   hashed::BuildStats stats;  // the median-total run
@@ -127,7 +141,7 @@ void printBuild(const std::string& lights, const std::string& node, const BuildR
 int run(int argc, char** argv) {
   CLI::App app{"Hashed shading: build, memory, light evaluations and dynamic updates"};
   std::string json_path, light_counts = "1024,4096", node_sizes = "0.25r,0.5r,1r,2r", size = "640x360";
-  std::string suite_dir = "/work/shared/data/thesis-suite/scenes/spaceship-indoor";
+  std::string suite_dir = defaultSuiteScene();
   // "tiled-deferred@32/none": the thesis's tiled baseline (32x32 tiles, no depth bounds).
   std::string compare = "tiled-deferred,tiled-deferred@32/none,clustered-deferred", device;
   std::string update_fractions = "0.01,0.1,1";
@@ -271,8 +285,8 @@ int run(int argc, char** argv) {
   // --- 3. Thesis suite: the 1890-light Spaceship Indoor set ---
   std::printf("\n3. Thesis suite: Spaceship Indoor, 1890 lights\n");
   if (!have_suite) {
-    std::printf("   SKIPPED: %s not found (the project does not ship the thesis suite)\n", suite_lights.c_str());
-    out["thesis_suite"] = {{"skipped", "missing " + suite_lights}};
+    std::printf("   SKIPPED: %s not found (the project does not ship the thesis suite)\n", reportPath(suite_lights).c_str());
+    out["thesis_suite"] = {{"skipped", "missing " + reportPath(suite_lights)}};
   } else {
     const auto lights = loadLightsJson(suite_lights);
     printBuildHeader();

@@ -12,12 +12,13 @@
 #include <map>
 
 #include "gl/GlContext.hpp"
+#include "host/app/InputChecks.hpp"
 #include "host/app/RenderCommand.hpp"
+#include "host/bench/OutputFiles.hpp"
 #include "host/bench/BenchRunner.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/scene/LightAnimator.hpp"
 #include "host/util/Error.hpp"
-#include "host/util/TextFile.hpp"
 
 namespace ml {
 namespace fs = std::filesystem;
@@ -54,6 +55,44 @@ void addSweep(std::vector<std::pair<std::string, std::vector<std::string>>>& swe
       return;
     }
   sweep.emplace_back(key, values);
+}
+
+// A CLI11 check refusing a list flag given with no items ("", ","), which
+// would otherwise mean the flag's default (e.g. every technique).
+CLI::Validator nonEmptyList(const std::string& expected) {
+  return CLI::Validator(
+      [expected](std::string& v) {
+        return splitList(v).empty() ? "expected " + expected + ", got '" + v + "'" : std::string();
+      },
+      "LIST");
+}
+
+// Every output path can be written (folders made), before GL/CL open.
+void checkBenchOutputs(const BenchArgs& a) {
+  requireOutputFile("--json", a.json);
+  requireOutputFile("--csv", a.csv);
+  requireOutputDir("--plot", a.plot);
+  requireOutputDir("--images", a.images);
+}
+
+std::vector<const TechniqueInfo*> techniquesOf(const std::vector<TechniqueVariant>& variants) {
+  std::vector<const TechniqueInfo*> techs;
+  for (const auto& v : variants) techs.push_back(&findTechnique(v.technique));
+  return techs;
+}
+
+// Light counts in the --lights list against the limits of every technique in
+// the sweep, before any light is generated.
+void checkLightCounts(const std::string& list, const std::vector<TechniqueVariant>& variants,
+                      const std::string& flag) {
+  for (const auto& item : splitList(list))
+    if (std::uint64_t n = 0; parseLightCount(item, n)) checkLightLimits(flag, n, techniquesOf(variants), "generated");
+}
+
+// The same for the loaded light sets (files count too).
+void checkLightSets(const std::vector<LightSetInput>& sets, const std::vector<TechniqueVariant>& variants,
+                    const std::string& flag) {
+  for (const auto& ls : sets) checkLightLimits(flag, ls.lights.size(), techniquesOf(variants), ls.label);
 }
 
 void printSummaries(const std::vector<RunSummary>& sums) {
@@ -152,13 +191,16 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
                   "scene: a thesis scene-suite folder (geometry/ obj/ lights/ camera/), a folder with scene.glb + "
                   "camera.json + lights.json, or a .gltf/.glb file (default: data/default)");
   cmd->add_option("--camera", a.scene.camera, "camera path JSON (default: the folder's camera.json / camera/camera.json)");
-  cmd->add_option("--lights,--light-sets", a.lights, "light sets, comma-separated (see below; default: the scene's)");
+  cmd->add_option("--lights,--light-sets", a.lights, "light sets, comma-separated (see below; default: the scene's)")
+      ->check(nonEmptyList("a comma list of light sets (leave the flag out for the scene's)"));
   cmd->add_option("--light-volumes", a.scene.light_volumes, "boxes for generated lights (glTF scenes)");
-  cmd->add_option("--light-radius", a.scene.light_radius, "radius of generated lights");
+  cmd->add_option("--light-radius", a.scene.light_radius, "radius of generated lights")->check(finitePositive());
   cmd->add_option("--seed", a.scene.seed, "seed of generated lights")->capture_default_str();
-  cmd->add_option("--techniques", a.techniques, "comma list of: " + techniqueNames() + " (default: all)");
+  cmd->add_option("--techniques", a.techniques, "comma list of: " + techniqueNames() + " (default: all)")
+      ->check(nonEmptyList("a comma list of techniques (leave the flag out for all)"));
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
-  cmd->add_option("--sizes", a.sizes, "comma list of WIDTHxHEIGHT (resolution sweep; overrides --size)");
+  cmd->add_option("--sizes", a.sizes, "comma list of WIDTHxHEIGHT (resolution sweep; overrides --size)")
+      ->check(nonEmptyList("a comma list of WIDTHxHEIGHT"));
   cmd->add_option("--frames", a.frames, "FIRST:LAST:STEP along the camera path, LAST inclusive (default: all)");
   cmd->add_option("--resample", a.scene.resample, "resample the camera path to N frames first (linear in eye/center/up)");
   cmd->add_option("--param,--params", a.params, "sweep KEY=V1,V2,... (repeatable; keys below)")->expected(1, -1);
@@ -224,6 +266,8 @@ int runBench(const BenchArgs& a) {
     throw UserError("--plot: no python3 with matplotlib found; install python3-matplotlib (or set MANYLIGHTS_PYTHON)");
   if (a.fovy != 0 && !(a.fovy > 0 && a.fovy < 180)) throw UserError("--fovy: must be in (0, 180) degrees");
   if (a.near_plane < 0 || a.far_plane < 0) throw UserError("--near/--far: must be positive");
+  checkBenchOutputs(a);
+  checkLightCounts(a.lights, variants, where);
   const DeviceChoice device = DeviceChoice::resolve(a.device);
 
   BenchSceneArgs sa = a.scene;
@@ -236,6 +280,7 @@ int runBench(const BenchArgs& a) {
   BenchPlan plan;
   plan.variants = variants;
   plan.light_sets = resolveLightSets(scene, a.lights, sa, where);
+  checkLightSets(plan.light_sets, variants, where);
   plan.sizes = sizes;
   plan.frames = selectFrames(range, scene.cameras.frames.size(), "--frames");
   plan.counts = !a.no_counts;
@@ -249,9 +294,10 @@ int runBench(const BenchArgs& a) {
   auto gl = createHeadlessContext();
   const GlShareHandles share = gl->shareHandles();
   auto cl = ClRuntime::create(device, &share);
+  for (const auto& ls : plan.light_sets) checkDeviceLightLimits(where, ls.lights.size(), cl->info());
   std::printf("%s\n%s\n", cl->describe().c_str(), gl->describe().c_str());
-  std::printf("scene: %s [%s] (%zu triangles, %zu camera frames; fovy %g, near %g, far %g)\n", scene.source.c_str(),
-              scene.format.c_str(), scene.scene.triangleCount(), scene.cameras.frames.size(), c0.fovy_degrees,
+  std::printf("scene: %s [%s] (%zu triangles, %zu camera frames; fovy %g, near %g, far %g)\n",
+              reportPath(scene.source).c_str(), scene.format.c_str(), scene.scene.triangleCount(), scene.cameras.frames.size(), c0.fovy_degrees,
               c0.near_plane, c0.far_plane);
   if (!scene.missing_meshes.empty()) {
     std::string m;
@@ -268,7 +314,7 @@ int runBench(const BenchArgs& a) {
   meta["device"] = cl->info().name;
   meta["gl"] = gl->describe();
   nlohmann::ordered_json sj;
-  sj["source"] = scene.source;
+  sj["source"] = reportPath(scene.source);
   sj["format"] = scene.format;
   sj["name"] = scene.name;
   sj["triangles"] = scene.scene.triangleCount();
@@ -305,21 +351,32 @@ int runBench(const BenchArgs& a) {
   std::string json_path = a.json;
   if (json_path.empty() && !a.plot.empty()) json_path = (fs::path(a.plot) / "bench.json").string();
   std::vector<FrameRecord> so_far;
-  auto save = [&](const std::vector<FrameRecord>& recs) {
+  // Results so far go to <file>.partial after every finished run (meta
+  // "complete": false), so an interrupted sweep still leaves usable files
+  // that do not pass for a whole run; the named files appear, atomically,
+  // only when every record is in, and the .partial files go.
+  auto save = [&](const std::vector<FrameRecord>& recs, bool complete) {
     const auto sums = summarizeRuns(recs);
-    if (!json_path.empty()) writeTextFile(json_path, benchJson(meta, recs, sums).dump(1) + "\n", a.json.empty() ? "--plot" : "--json");
-    if (!a.csv.empty()) writeTextFile(a.csv, benchCsv(recs), "--csv");
+    const std::string suffix = complete ? "" : ".partial";
+    meta["complete"] = complete;
+    meta["records_planned"] = planSteps(plan);
+    if (!json_path.empty())
+      writeFileAtomically(a.json.empty() ? "--plot" : "--json", json_path + suffix,
+                          benchJson(meta, recs, sums).dump(1) + "\n");
+    if (!a.csv.empty()) writeFileAtomically("--csv", a.csv + suffix, benchCsv(recs));
   };
-  // Results so far are rewritten after every finished run, so an interrupted
-  // sweep still leaves usable files.
   Progress progress(planSteps(plan), progress_mode);
   const std::size_t frames_per_run = plan.frames.size();
   const auto records = runBench(*cl, scene, plan, &progress, [&](const FrameRecord& r) {
     so_far.push_back(r);
-    if (so_far.size() % frames_per_run == 0) save(so_far);
+    if (so_far.size() % frames_per_run == 0 && so_far.size() < planSteps(plan)) save(so_far, false);
   });
   progress.finish();
-  save(records);
+  save(records, true);
+  for (const std::string& p : {json_path, a.csv}) {
+    std::error_code ec;
+    if (!p.empty()) fs::remove(p + ".partial", ec);
+  }
   printSummaries(summarizeRuns(records));
   if (!json_path.empty()) std::printf("\nwrote %s\n", json_path.c_str());
   if (!a.csv.empty()) std::printf("wrote %s\n", a.csv.c_str());

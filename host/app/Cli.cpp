@@ -3,7 +3,9 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <new>
 
 #include "gl/GlPassTimer.hpp"
 #include "host/app/BenchCommand.hpp"
@@ -17,6 +19,13 @@
 namespace ml {
 
 namespace {
+// OpenCL codes of a buffer or image that did not fit: the run asked for too
+// much (a flag's fault), not an internal error.
+bool isAllocationFailure(cl_int code) {
+  return code == CL_MEM_OBJECT_ALLOCATION_FAILURE || code == CL_OUT_OF_RESOURCES || code == CL_OUT_OF_HOST_MEMORY ||
+         code == CL_INVALID_BUFFER_SIZE;
+}
+
 int runDevices() {
   for (const auto& d : listDevices()) {
     std::printf("%d: %s | %s | %s, %u compute units, %s%s\n", d.index, d.info.platform_name.c_str(),
@@ -61,7 +70,9 @@ int runCli(int argc, char** argv) {
     KernelCache::checkEnvironment();
     if (render->parsed()) return runRender(render_args);
     if (bench->parsed()) {
-      for (int i = 0; i < argc; ++i) bench_args.command_line += (i ? " " : "") + std::string(argv[i]);
+      // The program by its name only: results files carry no machine paths.
+      bench_args.command_line = argc > 0 ? std::filesystem::path(argv[0]).filename().string() : "manylights";
+      for (int i = 1; i < argc; ++i) bench_args.command_line += " " + std::string(argv[i]);
       return runBench(bench_args);
     }
     if (compare->parsed()) return runCompareReference(compare_args);
@@ -69,7 +80,11 @@ int runCli(int argc, char** argv) {
     std::fprintf(stderr, "manylights: error: %s\n", e.what());
     return 2;
   } catch (const cl::Error& e) {
-    std::fprintf(stderr, "manylights: error: OpenCL: %s\n", describeClError(e).c_str());
+    std::fprintf(stderr, "manylights: error: OpenCL: %s%s\n", describeClError(e).c_str(),
+                 isAllocationFailure(e.err()) ? " (the device is out of memory: lower --lights or --size)" : "");
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "manylights: error: out of host memory (lower --lights or --size; README, \"Bad input\")\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "manylights: internal error: %s\n", e.what());

@@ -21,7 +21,7 @@
 #include "host/scene/LightSet.hpp"
 #include "host/suite/ThesisReference.hpp"
 #include "host/util/Error.hpp"
-#include "host/util/TextFile.hpp"
+#include "host/bench/OutputFiles.hpp"
 
 namespace ml {
 namespace fs = std::filesystem;
@@ -178,6 +178,9 @@ int runCompareReference(const CompareReferenceArgs& a) {
   if (a.fovy != 0 && !(a.fovy > 0 && a.fovy < 180)) throw UserError("--fovy: must be in (0, 180) degrees");
   const FrameRange range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
   const Progress::Mode progress_mode = Progress::parseMode(a.progress, "--progress");
+  requireOutputFile("--json", a.json);
+  requireOutputFile("--csv", a.csv);
+  requireOutputFile("--markdown", a.markdown);
   const DeviceChoice device = DeviceChoice::resolve(a.device);
 
   BenchSceneArgs sa;
@@ -495,11 +498,11 @@ int runCompareReference(const CompareReferenceArgs& a) {
     if (!oc.empty()) j["covered_pixels"] = {{"ours", mean(oc)}, {"thesis", mean(tc)}};
     j["series"] = jseries;
     j["ratios"] = jratios;
-    writeTextFile(a.json, j.dump(1) + "\n", "--json");
+    writeFileAtomically("--json", a.json, j.dump(1) + "\n");
     std::printf("\nwrote %s\n", a.json.c_str());
   }
   if (!a.csv.empty()) {
-    writeTextFile(a.csv, csv, "--csv");
+    writeFileAtomically("--csv", a.csv, csv);
     std::printf("wrote %s\n", a.csv.c_str());
   }
   if (!a.markdown.empty()) {
@@ -508,7 +511,7 @@ int runCompareReference(const CompareReferenceArgs& a) {
       text += "\nCovered pixels per frame: ours " + thousands(mean(oc)) + ", thesis " + thousands(mean(tc)) +
               " (naive x " + fixed(a.naive_scale, 0) + " / lights); " + std::to_string(matched.size()) + " of " +
               std::to_string(oc.size()) + " frames match within " + fixed(100.0 * a.coverage_tolerance, 1) + "%.\n";
-    writeTextFile(a.markdown, text, "--markdown");
+    writeFileAtomically("--markdown", a.markdown, text);
     std::printf("wrote %s\n", a.markdown.c_str());
   }
   return 0;

@@ -6,11 +6,12 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
-#include <fstream>
 #include <random>
 
 #include "gl/FrameRenderer.hpp"
 #include "gl/GlContext.hpp"
+#include "host/app/InputChecks.hpp"
+#include "host/bench/OutputFiles.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/hashed/HashedAssigner.hpp"
 #include "host/scene/LightAnimator.hpp"
@@ -39,7 +40,8 @@ void addSceneInputFlags(CLI::App& cmd, SceneInputArgs& a) {
                  "default: data/default/lights.json");
   cmd.add_option("--camera", a.camera, "camera or camera-path JSON; default: data/default/camera.json");
   cmd.add_option("--light-volumes", a.light_volumes, "JSON boxes that generated lights are placed in");
-  cmd.add_option("--light-radius", a.light_radius, "radius of generated lights (default: from the volume file)");
+  cmd.add_option("--light-radius", a.light_radius, "radius of generated lights (default: from the volume file)")
+      ->check(finitePositive());
   cmd.add_option("--seed", a.seed, "seed for generated lights (default 23, the thesis's)");
 }
 
@@ -65,7 +67,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--frame", a.frame, "index into the camera path")->capture_default_str();
   cmd->add_option("--frames", a.frames, "timed frames (median reported)")->capture_default_str();
   cmd->add_option("--warmup", a.warmup, "untimed frames first")->capture_default_str();
-  cmd->add_option("--out", a.out, "output image (.png 8-bit, .exr float)");
+  cmd->add_option("--out", a.out, "output image (.png 8-bit, .exr float; other extensions are refused)");
   cmd->add_option("--device", a.device, "OpenCL device: gpu, cpu or an index from `manylights devices`");
   cmd->add_option("--heatmap", a.heatmap, "write a heat map of lights evaluated per pixel (cubehelix) to this PNG");
   cmd->add_option("--heatmap-max", a.heatmap_max, "count mapped to the top of the palette (default: frame max)");
@@ -98,6 +100,23 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   return cmd;
 }
 
+namespace {
+// Flags checked before any input is loaded (InputChecks.hpp): technique
+// parameters, output paths (writable, image extensions), a generated light
+// count against the technique's and the memory limits.
+void checkRenderFlags(const RenderArgs& a, const TechniqueInfo& tech) {
+  checkRenderTechniqueParams(a.params);
+  if (!g_cluster_view.empty() && tech.name.find("clustered") == std::string::npos)
+    throw UserError("--cluster-view: needs a clustered technique, got '" + tech.name + "'");
+  requireImageFile("--out", a.out);
+  requireImageFile("--heatmap", a.heatmap);
+  requireImageFile("--cluster-view", g_cluster_view);
+  requireOutputFile("--stats-json", a.stats_json);
+  std::uint64_t count = 0;
+  if (parseLightCount(a.inputs.lights, count)) checkLightLimits("--lights", count, {&tech}, "generated");
+}
+}  // namespace
+
 int runRender(const RenderArgs& a) {
   unsigned width = 0, height = 0;
   parseSize(a.size, "--size", width, height);
@@ -105,18 +124,21 @@ int runRender(const RenderArgs& a) {
   if (a.frames == 0) throw UserError("--frames: must be at least 1");
   // Validates --animate and --animate-speed before any GL/CL work.
   (void)LightAnimator({}, g_animate, 23, g_animate_speed);
+  checkRenderFlags(a, tech);
   const DeviceChoice device = DeviceChoice::resolve(a.device);
 
   SceneInputs inputs = loadSceneInputs(a.inputs);
   if (a.frame >= inputs.cameras.frames.size())
     throw UserError("--frame: " + std::to_string(a.frame) + " is past the camera path's " +
                     std::to_string(inputs.cameras.frames.size()) + " frames");
+  checkLightLimits("--lights", inputs.lights.size(), {&tech}, a.inputs.lights.empty() ? "default" : a.inputs.lights);
 
   auto gl = createHeadlessContext();
   const GlShareHandles share = gl->shareHandles();
   auto cl = ClRuntime::create(device, &share);
+  checkDeviceLightLimits("--lights", inputs.lights.size(), cl->info());
   std::printf("%s\n%s\n", cl->describe().c_str(), gl->describe().c_str());
-  std::printf("scene: %s (%zu triangles) | lights: %s | %ux%u | technique: %s\n", inputs.scene.source.c_str(),
+  std::printf("scene: %s (%zu triangles) | lights: %s | %ux%u | technique: %s\n", reportPath(inputs.scene.source).c_str(),
               inputs.scene.triangleCount(), inputs.lights_label.c_str(), width, height, tech.name.c_str());
 
   FrameRenderer renderer(*cl, inputs.scene, width, height);
@@ -138,7 +160,7 @@ int runRender(const RenderArgs& a) {
     timed.push_back(renderer.render(camera, *assigner, opts));
   }
   if (!a.out.empty())
-    writeImage(a.out, width, height, 4, renderer.targets().readColor());
+    writeImageAtomically("--out", a.out, width, height, 4, renderer.targets().readColor());
 
   // Median per pass over the timed frames.
   auto median = [](std::vector<double> v) {
@@ -171,7 +193,8 @@ int runRender(const RenderArgs& a) {
       const auto depth = renderer.targets().readDepth(tech.pipeline == Pipeline::Deferred);
       std::vector<bool> covered(depth.size());
       for (size_t i = 0; i < depth.size(); ++i) covered[i] = depth[i] < 1.0f;
-      writeImage(a.heatmap, width, height, 4, heatmapRgba(renderer.targets().readCounts(), 2, 0, covered, a.heatmap_max));
+      writeImageAtomically("--heatmap", a.heatmap, width, height, 4,
+                           heatmapRgba(renderer.targets().readCounts(), 2, 0, covered, a.heatmap_max));
     }
     const double per_px = counted.covered_pixels ? double(counted.light_evaluations) / counted.covered_pixels : 0.0;
     const double lb_px = counted.covered_pixels ? double(counted.lower_bound) / counted.covered_pixels : 0.0;
@@ -188,7 +211,8 @@ int runRender(const RenderArgs& a) {
   if (!g_cluster_view.empty()) {
     auto* clustered = dynamic_cast<ClusteredAssigner*>(assigner.get());
     if (!clustered) throw UserError("--cluster-view needs a clustered technique");
-    writeImage(g_cluster_view, width, height, 4, ClusteredAssigner::clusterViewRgba(clustered->readClusterMap()));
+    writeImageAtomically("--cluster-view", g_cluster_view, width, height, 4,
+                         ClusteredAssigner::clusterViewRgba(clustered->readClusterMap()));
     std::printf("wrote %s\n", g_cluster_view.c_str());
   }
   const auto extra = assigner->stats();
@@ -224,10 +248,7 @@ int runRender(const RenderArgs& a) {
     j["technique_stats"] = st;
     j["device"] = cl->info().name;
     j["gl"] = gl->describe();
-    std::ofstream out(a.stats_json);
-    if (!out) throw UserError("--stats-json: cannot write '" + a.stats_json + "'");
-    out << j.dump(2) << "\n";
-    if (!out) throw UserError("--stats-json: writing '" + a.stats_json + "' failed");
+    writeFileAtomically("--stats-json", a.stats_json, j.dump(2) + "\n");
   }
   return 0;
 }

@@ -1,41 +1,37 @@
 #include "host/app/SceneInputs.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 
+#include "host/app/InputChecks.hpp"
+#include "host/bench/OutputFiles.hpp"
 #include "host/util/DataPaths.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml {
-namespace {
-
-bool parseCount(const std::string& s, std::uint32_t& out) {
-  if (s.empty()) return false;
-  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-  return ec == std::errc() && p == s.data() + s.size();
-}
-
-}  // namespace
 
 SceneInputs loadSceneInputs(const SceneInputArgs& args) {
+  std::uint64_t count = 0;
+  const bool generated = parseLightCount(args.lights, count);
+  if (args.light_radius != 0.0f && !generated)
+    throw UserError("--light-radius: only generated lights (--lights N) take a radius; light files carry their own");
+  if (generated) checkLightCount("--lights", count, "generated");  // before any memory is spent on them
   SceneInputs out;
   const bool default_scene = args.scene.empty();
   const std::string scene_path = default_scene ? dataPath("default/scene.glb") : args.scene;
   out.scene = loadGltfScene(scene_path);
 
-  std::uint32_t count = 0;
   if (args.lights.empty()) {
     const std::string p = dataPath("default/lights.json");
     out.lights = loadLightsJson(p);
-    out.lights_label = std::to_string(out.lights.size()) + " (" + p + ")";
-  } else if (parseCount(args.lights, count)) {
+    out.lights_label = std::to_string(out.lights.size()) + " (" + reportPath(p) + ")";
+  } else if (generated) {
     std::string vol_path = args.light_volumes;
     if (vol_path.empty() && default_scene) vol_path = dataPath("default/light_volumes.json");
-    out.lights = generateLightsIn(vol_path, out.scene.bounds.min, out.scene.bounds.max, count, args.seed,
-                                  args.light_radius);
+    out.lights = generateLightsIn(vol_path, out.scene.bounds.min, out.scene.bounds.max,
+                                  static_cast<std::uint32_t>(count), args.seed, args.light_radius);
     out.lights_label = std::to_string(count) + " generated (seed " + std::to_string(args.seed) + ")";
   } else {
     if (args.lights.size() > 0 && args.lights[0] == '-')

@@ -3,6 +3,7 @@
 #include "host/assign/BruteForceAssigner.hpp"
 #include "host/clustered/ClusteredAssigner.hpp"
 #include "host/hashed/HashedAssigner.hpp"
+#include "host/hashed/OctantMask.hpp"
 #include "host/tiled/TiledAssigner.hpp"
 #include "host/util/Error.hpp"
 
@@ -12,8 +13,8 @@ const std::vector<TechniqueInfo>& techniques() {
   static const std::vector<TechniqueInfo> list = {
       {"forward", Pipeline::Forward, "brute-force forward shading: every light for every fragment"},
       {"deferred", Pipeline::Deferred, "brute-force deferred shading: G-buffer, then every light per pixel"},
-      {"hashed-forward", Pipeline::Forward, "hashed shading, forward: camera-independent linkless octree of perfect spatial hashes"},
-      {"hashed-deferred", Pipeline::Deferred, "hashed shading, deferred: camera-independent linkless octree of perfect spatial hashes"},
+      {"hashed-forward", Pipeline::Forward, "hashed shading, forward: camera-independent linkless octree of perfect spatial hashes", hashed::kMaxHashedLights},
+      {"hashed-deferred", Pipeline::Deferred, "hashed shading, deferred: camera-independent linkless octree of perfect spatial hashes", hashed::kMaxHashedLights},
       {"tiled-forward", Pipeline::Forward, "forward+: depth pre-pass, per-tile light culling (OpenCL), forward shading"},
       {"tiled-deferred", Pipeline::Deferred, "tiled deferred: per-tile light culling (OpenCL) over the G-buffer depth"},
       {"clustered-forward", Pipeline::Forward, "clustered forward: depth pre-pass, cluster keys, unique clusters and light BVH (OpenCL)"},

@@ -2,6 +2,7 @@
 // The technique registry: `--technique NAME` maps to a pipeline (forward or
 // deferred) and a LightAssigner factory. New techniques add themselves here
 // and nowhere else; the frame loop never knows which one runs.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ struct TechniqueInfo {
   std::string name;         // "forward", "deferred", "tiled-forward", ...
   Pipeline pipeline;
   std::string description;  // one line for --help
+  // The most lights the technique addresses (hashed: 24-bit list entries);
+  // commands check --lights against it before generating or loading lights.
+  std::uint32_t max_lights = UINT32_MAX;
 };
 
 const std::vector<TechniqueInfo>& techniques();

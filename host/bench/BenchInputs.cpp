@@ -4,6 +4,7 @@
 #include <charconv>
 #include <filesystem>
 
+#include "host/bench/OutputFiles.hpp"
 #include "host/suite/CameraPathInterp.hpp"
 #include "host/suite/NtiledSuite.hpp"
 #include "host/util/DataPaths.hpp"
@@ -115,7 +116,7 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::
   std::vector<LightSetInput> out;
   auto addFile = [&](const std::string& file) {
     LightSetInput s;
-    s.file = file;
+    s.file = reportPath(file);  // recorded in results: no machine paths
     s.label = stem(file);
     if (s.label == "lights" && !scene.name.empty()) s.label = scene.name + "/lights";
     s.lights = loadLightsJson(file);
@@ -141,6 +142,7 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::
         continue;
       }
       if (count == 0) throw UserError(flag + ": a generated light set needs at least one light");
+      checkLightCount(flag, count, "generated");  // before any memory is spent on them
       std::string vol = args.light_volumes;
       if (vol.empty() && !scene.dir.empty() && fs::is_regular_file(fs::path(scene.dir) / "light_volumes.json"))
         vol = (fs::path(scene.dir) / "light_volumes.json").string();

@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <filesystem>
 #include <memory>
 
 #include "gl/FrameRenderer.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/hashed/HashedAssigner.hpp"
 #include "host/scene/LightAnimator.hpp"
-#include "host/util/ImageIO.hpp"
+#include "host/bench/OutputFiles.hpp"
 
 namespace ml {
 namespace {
@@ -102,11 +101,9 @@ std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const 
             r.memory_bytes = std::max(r.memory_bytes, reps.back().memory_bytes);
             r.timed = true;
           }
-          if (!plan.image_dir.empty()) {
-            std::filesystem::create_directories(plan.image_dir);
-            writeImage(plan.image_dir + "/" + fileSafe(run) + "_f" + std::to_string(frame) + ".png", width, height, 4,
-                       renderer.targets().readColor());
-          }
+          if (!plan.image_dir.empty())  // the folder was checked before the first frame (requireOutputDir)
+            writeImageAtomically("--images", plan.image_dir + "/" + fileSafe(run) + "_f" + std::to_string(frame) + ".png",
+                                 width, height, 4, renderer.targets().readColor());
           r.technique_stats = assigner->stats();
           ++done;
           if (on_record) on_record(r);

@@ -1,3 +1,4 @@
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <tiny_gltf.h>
 
@@ -22,6 +23,14 @@ namespace ml {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Loader warnings go to stderr, like its errors, so stdout carries only a
+// command's results. Not registered with spdlog: loading twice in one process
+// (tests, fuzzing) must not clash on the name.
+spdlog::logger& warnings() {
+  static spdlog::logger log("gltf", std::make_shared<spdlog::sinks::stderr_color_sink_mt>());
+  return log;
+}
 
 std::string oneLine(const std::string& text) {
   std::string out;
@@ -246,7 +255,7 @@ struct Loader {
     const int bytes_per_channel = img.bits == 16 ? 2 : 1;
     if (pixels == 0 || img.component < 1 || img.component > 4 || (img.bits != 8 && img.bits != 16) ||
         img.image.size() < pixels * static_cast<std::size_t>(img.component * bytes_per_channel)) {
-      spdlog::warn("{}: image {} has no usable pixel data; materials using it fall back to their base colour", path,
+      warnings().warn("{}: image {} has no usable pixel data; materials using it fall back to their base colour", path,
                    tex.source);
     } else {
       Texture t;
@@ -294,7 +303,7 @@ struct Loader {
       if (info.index >= 0) {
         out.base_color_texture = textureFor(info.index, where);
         if (info.texCoord != 0 && !warned_texcoord) {
-          spdlog::warn("{}: {} samples its base colour with TEXCOORD_{}; only TEXCOORD_0 is loaded", path, where,
+          warnings().warn("{}: {} samples its base colour with TEXCOORD_{}; only TEXCOORD_0 is loaded", path, where,
                        info.texCoord);
           warned_texcoord = true;
         }
@@ -337,12 +346,12 @@ struct Loader {
   void addPrimitive(const tinygltf::Primitive& prim, const glm::mat4& world, const std::string& where) {
     int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-      spdlog::warn("{}: {} has mode {} (points or lines); skipped", path, where, mode);
+      warnings().warn("{}: {} has mode {} (points or lines); skipped", path, where, mode);
       return;
     }
     auto pos_it = prim.attributes.find("POSITION");
     if (pos_it == prim.attributes.end()) {
-      spdlog::warn("{}: {} has no POSITION attribute; skipped", path, where);
+      warnings().warn("{}: {} has no POSITION attribute; skipped", path, where);
       return;
     }
     const std::vector<float> positions = floats(pos_it->second, 3, where + " POSITION");
@@ -380,7 +389,7 @@ struct Loader {
     const glm::mat3 linear(world);
     const float det = glm::determinant(linear);
     if (!(std::abs(det) > 1e-20f) || !std::isfinite(det)) {
-      spdlog::warn("{}: {} has a singular or non-finite transform; skipped", path, where);
+      warnings().warn("{}: {} has a singular or non-finite transform; skipped", path, where);
       return;
     }
     // A mirroring transform turns counter-clockwise triangles clockwise.
@@ -505,7 +514,7 @@ Scene loadGltfScene(const std::string& path) {
   } catch (const std::exception& e) {  // tinygltf lets some JSON type errors escape
     throw UserError(path + ": malformed glTF: " + summarize(e.what()));
   }
-  if (!warn.empty()) spdlog::warn("{}: {}", path, summarize(warn));
+  if (!warn.empty()) warnings().warn("{}: {}", path, summarize(warn));
   if (!ok) {
     const std::string kind = binary ? "malformed .glb" : "malformed glTF";
     throw UserError(path + ": " + kind + (err.empty() ? std::string() : ": " + summarize(err)));

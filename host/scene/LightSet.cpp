@@ -1,7 +1,13 @@
 #include "host/scene/LightSet.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -35,7 +41,49 @@ glm::dvec3 hueToRgb(double hue) {
 
 bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+std::string gib(double bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+  return buf;
+}
+
 }  // namespace
+
+std::uint64_t availableHostMemory() {
+  std::uint64_t avail = std::numeric_limits<std::uint64_t>::max();
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key, rest;
+  std::uint64_t kib = 0;
+  while (meminfo >> key >> kib) {
+    std::getline(meminfo, rest);
+    if (key == "MemAvailable:") {
+      avail = kib * 1024;
+      break;
+    }
+  }
+  rlimit rl{};
+  if (::getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY) {
+    std::ifstream statm("/proc/self/statm");
+    std::uint64_t pages = 0;
+    statm >> pages;  // the address space in use now, in pages
+    const std::uint64_t used = pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+    const std::uint64_t limit = static_cast<std::uint64_t>(rl.rlim_cur);
+    avail = std::min(avail, limit > used ? limit - used : 0);
+  }
+  return avail;
+}
+
+void checkLightCount(const std::string& flag, std::uint64_t count, const std::string& what) {
+  const std::string lights = std::to_string(count) + " lights" + (what.empty() ? "" : " (" + what + ")");
+  if (count > kMaxLights)
+    throw UserError(flag + ": " + lights + " exceed the maximum of " + std::to_string(kMaxLights) + " (2^27)");
+  const std::uint64_t avail = availableHostMemory();
+  const double need = static_cast<double>(count) * static_cast<double>(kHostBytesPerLight);
+  if (need > static_cast<double>(avail))
+    throw UserError(flag + ": " + lights + " need about " + gib(need) + " of memory (" +
+                    std::to_string(kHostBytesPerLight) + " bytes each), only " + gib(static_cast<double>(avail)) +
+                    " are available");
+}
 
 std::vector<gpu::PointLight> generateLights(const std::vector<LightVolume>& volumes, const LightGenParams& params) {
   if (!(params.radius > 0.0f) || !std::isfinite(params.radius))

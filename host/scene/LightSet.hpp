@@ -60,6 +60,32 @@ std::vector<gpu::PointLight> generateLightsIn(const std::string& volumes_path, g
 std::vector<gpu::PointLight> loadLightsJson(const std::string& path);
 void saveLightsJson(const std::string& path, const std::vector<gpu::PointLight>& lights);
 
+// Light-count limits, checked before lights are generated or loaded into a
+// renderer (README, "Bad input"):
+//  - kMaxLights: the most lights any technique takes. A ceiling well inside
+//    the 32-bit light indices, counts and sort keys used throughout, at 4 GiB
+//    of light data (32 bytes each), more than one buffer of common OpenCL
+//    devices holds (PoCL: 2 GiB, CL_DEVICE_MAX_MEM_ALLOC_SIZE).
+//  - kHostBytesPerLight: host memory a run needs per light, from measured peak
+//    resident sizes at 1M lights (PoCL + llvmpipe, where device buffers are host
+//    memory too): 185 (brute force, hashed) to 370 (tiled) bytes, rounded up for
+//    --animate's copies of the light set.
+//  - kDeviceBytesPerLight: device memory per light: the light buffer and the
+//    per-light arrays of the techniques (bounds, sort keys, sorted copies).
+constexpr std::uint64_t kMaxLights = std::uint64_t(1) << 27;
+constexpr std::uint64_t kHostBytesPerLight = 512;
+constexpr std::uint64_t kDeviceBytesPerLight = 128;
+
+// Host memory this process may still use, in bytes: the smaller of the
+// system's available memory (/proc/meminfo MemAvailable) and what the
+// address-space limit (ulimit -v) leaves; UINT64_MAX when neither is known.
+std::uint64_t availableHostMemory();
+
+// UserError naming `flag` (one line, with the limit) when `count` lights
+// exceed kMaxLights or kHostBytesPerLight x count exceeds availableHostMemory().
+// `what` says where the count comes from ("generated", a file name).
+void checkLightCount(const std::string& flag, std::uint64_t count, const std::string& what = "");
+
 inline gpu::PointLight makeLight(glm::vec3 p, float radius, glm::vec3 color) {
   gpu::PointLight l{};
   l.position_radius = {p.x, p.y, p.z, radius};

@@ -1,0 +1,41 @@
+#pragma once
+// Flag checks the commands run before any scene is loaded or GL/CL opens, so a
+// bad flag is one line naming it (exit 2) and no start-up line comes first.
+// Limits that need the device (its buffer sizes) are checked as soon as it is
+// open, still before the first frame.
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "host/assign/Techniques.hpp"
+#include "host/cl/ClRuntime.hpp"
+
+namespace ml {
+
+// A CLI11 check for flags that take a finite number > 0 (--light-radius): it
+// runs only when the flag is given, so an unset flag keeps its default while
+// 0, -1, nan and inf are refused naming the flag.
+CLI::Validator finitePositive();
+
+// The render command's technique flags (--tile, --tile-depth, --cluster-tile,
+// --unique, --cluster-assign, --cluster-bounds, --node-size, --start-depth),
+// each checked as bench's --param checks it, naming the render flag.
+void checkRenderTechniqueParams(const TechniqueParams& params);
+
+// "1000" -> 1000 (up to 2^64-1, so that huge counts get a limit message rather
+// than "not a file"); false when `text` is not a plain decimal count.
+bool parseLightCount(const std::string& text, std::uint64_t& count);
+
+// `count` lights against kMaxLights, the host memory estimate and the limit of
+// every technique in `techs` (hashed: 2^24-1): one line naming `flag`.
+void checkLightLimits(const std::string& flag, std::uint64_t count, const std::vector<const TechniqueInfo*>& techs,
+                      const std::string& what = "");
+
+// Once the device is open: the light buffer against its largest allocation
+// (CL_DEVICE_MAX_MEM_ALLOC_SIZE) and kDeviceBytesPerLight x count against its
+// global memory.
+void checkDeviceLightLimits(const std::string& flag, std::uint64_t count, const DeviceInfo& device);
+
+}  // namespace ml
