@@ -67,7 +67,7 @@ TEST(BenchTypes, SweepsOnlyTheKeysATechniqueReads) {
   const auto brute = expandVariants({"deferred"}, sweep, TechniqueParams{}, "--param");
   ASSERT_EQ(brute.size(), 1u);
   EXPECT_EQ(brute[0].label, "deferred");
-  EXPECT_EQ(paramKeysUsedBy("tiled-deferred"), (std::vector<std::string>{"tile", "tile_depth"}));
+  EXPECT_EQ(paramKeysUsedBy("tiled-deferred"), (std::vector<std::string>{"tile", "tile_depth", "kernel_shape"}));
   EXPECT_EQ(paramKeysUsedBy("clustered-forward").front(), "cluster_tile");
   EXPECT_EQ(paramKeysUsedBy("hashed-deferred").front(), "node_size");
 }
