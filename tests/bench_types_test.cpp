@@ -78,6 +78,9 @@ TEST(BenchTypes, ParamValuesAreChecked) {
   EXPECT_EQ(p.tile_size, 8u);
   setTechniqueParam(p, "cluster_tile", "64", "--param");
   EXPECT_EQ(p.cluster_tile, 64u);
+  setTechniqueParam(p, "kernel_shape", "gpu", "--param");
+  EXPECT_EQ(p.kernel_shape, "gpu");
+  EXPECT_THROW(setTechniqueParam(p, "kernel_shape", "warp", "--param"), UserError);
   setTechniqueParam(p, "tile_depth", "none", "--param");
   EXPECT_EQ(p.tile_depth, "none");
   setTechniqueParam(p, "node_size", "0.25r", "--param");
