@@ -18,6 +18,15 @@
  *
  * Both methods run the same leaf test, so BVH lists equal brute-force lists
  * as sets (the BVH's are in Morton order, brute force's ascending).
+ *
+ * Kernel shapes: the kernels above are the CPU shape (a work-item per tile,
+ * chunk, leaf, node or cluster with private state; PoCL runs each as a plain
+ * loop). The *_wg kernels at the end are the GPU shape of the same passes
+ * (work-groups cooperating through local memory, consecutive work-items on
+ * consecutive data) with the same outputs: the same boxes, leaves, tree and
+ * records in the same order. light_view, cluster_boxes, light_morton and
+ * cluster_order are one work-item per light or cluster with coalesced
+ * reads and writes and serve both shapes.
  * Mirrors host/clustered/ClusterGeometry.cpp (no contraction on either side).
  */
 #include "gpu_types.h"
@@ -88,6 +97,18 @@ inline float linear_depth(float d, const CameraParams* cam) {
   const float ndc = 2.0f * d - 1.0f;
   return cam->proj[14] / (ndc + cam->proj[10]);
 }
+/* The depth of a pixel with no geometry (the one place its convention lives). */
+inline bool is_sky_depth(float d) { return d >= 1.0f; }
+
+/* The widening of an explicit box (see cluster_pixel_boxes), shared by both shapes. */
+inline void widen_pixel_box(float4 lo, float4 hi, const CameraParams* cam, float4* out_lo, float4* out_hi) {
+  const float ext = fmax(fmax(hi.z, fmax(fabs(lo.x), fabs(hi.x))), fmax(fabs(lo.y), fabs(hi.y)));
+  const float rel_lo = DEPTH_EPS + RECON_EPS * (lo.z / cam->near_plane);
+  const float rel_hi = DEPTH_EPS + RECON_EPS * (hi.z / cam->near_plane);
+  const float pad = ext * rel_hi;
+  *out_lo = (float4)(lo.x - pad, lo.y - pad, lo.z - lo.z * rel_lo, 0.0f);
+  *out_hi = (float4)(hi.x + pad, hi.y + pad, hi.z + hi.z * rel_hi, 0.0f);
+}
 
 /* Explicit bounds (Olsson et al.): per unique cluster the view-space AABB of
  * the pixel centres that fall in it, reconstructed from the depth buffer.
@@ -144,13 +165,10 @@ __kernel void cluster_pixel_boxes(__global const float* depth, __global const ui
     }
   }
   for (uint c = cmin; c <= cmax && cmin <= cmax; ++c) {
-    const float4 lo = box_lo[c], hi = box_hi[c];
-    const float ext = fmax(fmax(hi.z, fmax(fabs(lo.x), fabs(hi.x))), fmax(fabs(lo.y), fabs(hi.y)));
-    const float rel_lo = DEPTH_EPS + RECON_EPS * (lo.z / cam.near_plane);
-    const float rel_hi = DEPTH_EPS + RECON_EPS * (hi.z / cam.near_plane);
-    const float pad = ext * rel_hi;
-    box_lo[c] = (float4)(lo.x - pad, lo.y - pad, lo.z - lo.z * rel_lo, 0.0f);
-    box_hi[c] = (float4)(hi.x + pad, hi.y + pad, hi.z + hi.z * rel_hi, 0.0f);
+    float4 lo, hi;
+    widen_pixel_box(box_lo[c], box_hi[c], &cam, &lo, &hi);
+    box_lo[c] = lo;
+    box_hi[c] = hi;
   }
 }
 
@@ -537,4 +555,415 @@ __kernel void assign_fill(__global const float* soa, uint n_leaves, __global con
   }
   uint unused = 0u;
   walk(1u, use_bvh, soa, n_leaves, nsoa, block_start, levels, box_lo[c], box_hi[c], 0, 0, 0u, out, &unused);
+}
+
+/* ============================================================ GPU shape
+ *
+ * Same outputs as the CPU-shaped kernels above; the host picks one set
+ * (ClusterLightAssigner, --kernel-shape). Work-group sizes are powers of two
+ * fitted by the host to the kernel's limits, at most the *_WG bounds below. */
+
+#define PIX_WG 256   /* cluster_pixel_boxes_wg: most work-items per tile */
+#define PIX_SLOTS 64 /* clusters of a tile reduced in local memory; the rest use global atomics */
+#define RED_WG 256   /* light_bounds_*_wg: most work-items per group */
+
+/* A float as an int that orders like the float, for atomic_min/max. */
+inline int ordered_int(float f) {
+  const int i = as_int(f);
+  return i >= 0 ? i : i ^ 0x7fffffff;
+}
+inline float from_ordered_int(int i) { return as_float(i >= 0 ? i : i ^ 0x7fffffff); }
+#define ORDERED_INF 0x7f800000          /* ordered_int(+INFINITY) */
+#define ORDERED_NEG_INF ((int)0x807fffff) /* ordered_int(-INFINITY) */
+
+/* Tree reductions over the work-group (power-of-two size) through `buf`
+ * (one float4 per work-item); every work-item gets the result. min/max are
+ * exact, so the order of the tree does not change the value. */
+inline float4 group_min4(__local float4* buf, float4 v) {
+  const uint lid = get_local_id(0);
+  buf[lid] = v;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint s = get_local_size(0) / 2u; s > 0u; s >>= 1) {
+    if (lid < s) buf[lid] = fmin(buf[lid], buf[lid + s]);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  const float4 r = buf[0];
+  barrier(CLK_LOCAL_MEM_FENCE);
+  return r;
+}
+inline float4 group_max4(__local float4* buf, float4 v) {
+  const uint lid = get_local_id(0);
+  buf[lid] = v;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint s = get_local_size(0) / 2u; s > 0u; s >>= 1) {
+    if (lid < s) buf[lid] = fmax(buf[lid], buf[lid + s]);
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  const float4 r = buf[0];
+  barrier(CLK_LOCAL_MEM_FENCE);
+  return r;
+}
+
+/* Explicit bounds, GPU shape: a work-group per screen tile, its work-items
+ * over the tile's pixels (consecutive pixels of a row on consecutive items).
+ * The tile's clusters are one index range from its smallest cluster (see
+ * cluster_pixel_boxes), so the first PIX_SLOTS of them are reduced with local
+ * atomics and written by the group, which owns them; clusters past that use
+ * global atomics. Boxes are ordered ints here (host fills ORDERED_INF /
+ * ORDERED_NEG_INF); cluster_boxes_finish turns them into widened floats. */
+__kernel void cluster_pixel_boxes_wg(__global const float* depth, __global const uint* cluster_of, CameraParams cam,
+                                     uint tile, uint tiles_x, __global int4* box_lo, __global int4* box_hi) {
+  __local uint lbase;
+  __local int llo[PIX_SLOTS * 3], lhi[PIX_SLOTS * 3];
+  const uint t = get_group_id(0), lid = get_local_id(0), lsize = get_local_size(0);
+  const uint x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
+  const uint w = min(x0 + tile, cam.width) - x0, npx = w * (min(y0 + tile, cam.height) - y0);
+  const float sx = 2.0f / (float)cam.width, sy = 2.0f / (float)cam.height;
+  const float ix = 1.0f / cam.proj[0], iy = 1.0f / cam.proj[5], ox = cam.proj[8], oy = cam.proj[9];
+  if (lid == 0u) lbase = 0xffffffffu;
+  for (uint i = lid; i < PIX_SLOTS * 3u; i += lsize) {
+    llo[i] = ORDERED_INF;
+    lhi[i] = ORDERED_NEG_INF;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (uint i = lid; i < npx; i += lsize) {
+    const uint c = cluster_of[(y0 + i / w) * cam.width + x0 + i % w];
+    if (c != 0xffffffffu) atomic_min(&lbase, c);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const uint base = lbase;
+  __global int* glo = (__global int*)box_lo;
+  __global int* ghi = (__global int*)box_hi;
+  for (uint i = lid; i < npx; i += lsize) {
+    const uint x = x0 + i % w, y = y0 + i / w, p = y * cam.width + x;
+    const uint c = cluster_of[p];
+    if (c == 0xffffffffu) continue;
+    const float z = linear_depth(depth[p], &cam);
+    const float fx = (((float)x + 0.5f) * sx - 1.0f + ox) * ix;
+    const float fy = (((float)y + 0.5f) * sy - 1.0f + oy) * iy;
+    const int v[3] = {ordered_int(z * fx), ordered_int(z * fy), ordered_int(z)};
+    const bool local_slot = c - base < PIX_SLOTS;
+    for (uint a = 0; a < 3u; ++a) {
+      if (local_slot) {
+        atomic_min(&llo[(c - base) * 3u + a], v[a]);
+        atomic_max(&lhi[(c - base) * 3u + a], v[a]);
+      } else {
+        atomic_min(&glo[(size_t)c * 4u + a], v[a]);
+        atomic_max(&ghi[(size_t)c * 4u + a], v[a]);
+      }
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  /* A used slot's cluster belongs to this tile alone (unused: z still +inf). */
+  for (uint s = lid; s < PIX_SLOTS; s += lsize)
+    if (base != 0xffffffffu && llo[s * 3u + 2u] != ORDERED_INF) {
+      box_lo[base + s] = (int4)(llo[s * 3u], llo[s * 3u + 1u], llo[s * 3u + 2u], 0);
+      box_hi[base + s] = (int4)(lhi[s * 3u], lhi[s * 3u + 1u], lhi[s * 3u + 2u], 0);
+    }
+}
+
+/* Ordered ints -> floats, widened as the CPU shape does. */
+__kernel void cluster_boxes_finish(__global float4* box_lo, __global float4* box_hi, uint count, CameraParams cam) {
+  const uint c = get_global_id(0);
+  if (c >= count) return;
+  const int4 l = as_int4(box_lo[c]), h = as_int4(box_hi[c]);
+  const float4 lo = (float4)(from_ordered_int(l.x), from_ordered_int(l.y), from_ordered_int(l.z), 0.0f);
+  const float4 hi = (float4)(from_ordered_int(h.x), from_ordered_int(h.y), from_ordered_int(h.z), 0.0f);
+  float4 out_lo, out_hi;
+  widen_pixel_box(lo, hi, &cam, &out_lo, &out_hi);
+  box_lo[c] = out_lo;
+  box_hi[c] = out_hi;
+}
+
+/* The Morton frame, GPU shape: a work-group per MORTON_CHUNK lights (the
+ * CPU shape's parts, so the same partial boxes), read by consecutive
+ * work-items and reduced in local memory; then one work-group over the parts. */
+__kernel void light_bounds_partial_wg(__global const float4* spheres, uint n, __global float4* part_lo,
+                                      __global float4* part_hi) {
+  __local float4 buf[RED_WG];
+  const uint g = get_group_id(0), lid = get_local_id(0);
+  const uint first = g * MORTON_CHUNK, last = min(first + MORTON_CHUNK, n);
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  for (uint i = first + lid; i < last; i += get_local_size(0)) {
+    const float4 s = spheres[i];
+    lo = fmin(lo, s);
+    hi = fmax(hi, s);
+  }
+  lo = group_min4(buf, lo);
+  hi = group_max4(buf, hi);
+  if (lid == 0u) {
+    part_lo[g] = lo;
+    part_hi[g] = hi;
+  }
+}
+
+__kernel void light_bounds_final_wg(__global const float4* part_lo, __global const float4* part_hi, uint parts,
+                                    __global float4* frame) {
+  __local float4 buf[RED_WG];
+  const uint lid = get_local_id(0);
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  for (uint i = lid; i < parts; i += get_local_size(0)) {
+    lo = fmin(lo, part_lo[i]);
+    hi = fmax(hi, part_hi[i]);
+  }
+  lo = group_min4(buf, lo);
+  hi = group_max4(buf, hi);
+  if (lid == 0u) {
+    const float extent = fmax(fmax(hi.x - lo.x, hi.y - lo.y), hi.z - lo.z);
+    frame[0] = (float4)(lo.xyz, extent > 0.0f ? 1.0f / extent : 0.0f);
+  }
+}
+
+/* Leaves, GPU shape: a work-group of LEAF_SIZE work-items per leaf, one per
+ * light; the leaf box and bounding sphere are group reductions of the values
+ * pack_leaves folds one light at a time. */
+__kernel void pack_leaves_wg(__global const float4* spheres, __global const uint* ids, uint use_ids, uint n,
+                             __global float* soa, __global uint* leaf_ids, __global float4* node_lo,
+                             __global float4* node_hi, __global float4* node_sph, uint write_boxes) {
+  __local float4 buf[LEAF_SIZE];
+  const uint leaf = get_group_id(0), i = get_local_id(0);
+  const uint first = leaf * LEAF_SIZE, k = first + i;
+  if (first >= n) return; /* whole group */
+  __global float* b = soa + (size_t)leaf * (4u * LEAF_SIZE);
+  const bool valid = k < n;
+  float4 p = (float4)(0.0f), lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  float w = 0.0f;
+  if (!valid) {
+    b[i] = 0.0f;
+    b[LEAF_SIZE + i] = 0.0f;
+    b[2u * LEAF_SIZE + i] = 0.0f;
+    b[3u * LEAF_SIZE + i] = -1.0f;
+    leaf_ids[k] = 0xffffffffu;
+  } else {
+    const uint id = use_ids ? ids[k] : k;
+    const float4 s = spheres[id];
+    b[i] = s.x;
+    b[LEAF_SIZE + i] = s.y;
+    b[2u * LEAF_SIZE + i] = -s.z;
+    b[3u * LEAF_SIZE + i] = s.w * s.w * (1.0f + 4.0f * DEPTH_EPS);
+    leaf_ids[k] = id;
+    const float r = s.w * 1.001f + 1e-6f;
+    p = (float4)(s.x, s.y, -s.z, 0.0f);
+    lo = p - r;
+    hi = p + r;
+    w = s.w;
+  }
+  if (!write_boxes) return; /* uniform */
+  lo = group_min4(buf, lo);
+  hi = group_max4(buf, hi);
+  const float4 clo = group_min4(buf, valid ? p : (float4)(INFINITY));
+  const float4 chi = group_max4(buf, valid ? p : (float4)(-INFINITY));
+  const float4 c = (clo + chi) * 0.5f;
+  const float rad = group_max4(buf, (float4)(valid ? length(p - c) + w : 0.0f)).x;
+  if (i == 0u) {
+    node_lo[leaf] = lo;
+    node_hi[leaf] = hi;
+    node_sph[leaf] = (float4)(c.xyz, rad * 1.001f + 1e-6f);
+  }
+}
+
+/* A BVH level, GPU shape: a work-group of BVH_BRANCH work-items per parent,
+ * one per child. */
+__kernel void bvh_level_wg(__global float4* node_lo, __global float4* node_hi, __global float4* node_sph,
+                           uint child_start, uint n_children, uint parent_start) {
+  __local float4 buf[BVH_BRANCH];
+  const uint node = get_group_id(0), i = get_local_id(0);
+  const uint first = node * BVH_BRANCH, k = first + i;
+  if (first >= n_children) return; /* whole group */
+  const bool valid = k < n_children;
+  const float4 s = valid ? node_sph[child_start + k] : (float4)(0.0f);
+  const float4 p = (float4)(s.xyz, 0.0f);
+  const float4 lo = group_min4(buf, valid ? node_lo[child_start + k] : (float4)(INFINITY));
+  const float4 hi = group_max4(buf, valid ? node_hi[child_start + k] : (float4)(-INFINITY));
+  const float4 clo = group_min4(buf, valid ? p : (float4)(INFINITY));
+  const float4 chi = group_max4(buf, valid ? p : (float4)(-INFINITY));
+  const float4 c = (clo + chi) * 0.5f;
+  const float rad = group_max4(buf, (float4)(valid ? length(p - c) + s.w : 0.0f)).x;
+  if (i == 0u) {
+    node_lo[parent_start + node] = lo;
+    node_hi[parent_start + node] = hi;
+    node_sph[parent_start + node] = (float4)(c.xyz, rad * 1.001f + 1e-6f);
+  }
+}
+
+/* Node blocks, GPU shape: a work-item per lane, so that each of the ten
+ * arrays of a block is written by consecutive work-items. */
+__kernel void node_blocks_wg(__global const float4* node_lo, __global const float4* node_hi,
+                             __global const float4* node_sph, uint start, uint count, uint block_start,
+                             __global float* nsoa) {
+  const uint gid = get_global_id(0), b = gid / BVH_BRANCH, i = gid % BVH_BRANCH;
+  if (b * BVH_BRANCH >= count) return;
+  __global float* o = nsoa + (size_t)(block_start + b) * (NODE_FLOATS * BVH_BRANCH);
+  const uint k = gid;
+  const float4 lo = k < count ? node_lo[start + k] : (float4)(INFINITY);
+  const float4 hi = k < count ? node_hi[start + k] : (float4)(-INFINITY);
+  const float4 s = k < count ? node_sph[start + k] : (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+  o[i] = lo.x;
+  o[BVH_BRANCH + i] = lo.y;
+  o[2u * BVH_BRANCH + i] = lo.z;
+  o[3u * BVH_BRANCH + i] = hi.x;
+  o[4u * BVH_BRANCH + i] = hi.y;
+  o[5u * BVH_BRANCH + i] = hi.z;
+  o[6u * BVH_BRANCH + i] = s.x;
+  o[7u * BVH_BRANCH + i] = s.y;
+  o[8u * BVH_BRANCH + i] = s.z;
+  o[9u * BVH_BRANCH + i] = s.w;
+}
+
+/* ----------------------------------------------- assignment, GPU shape
+ *
+ * A work-group of BVH_BRANCH (32) work-items per cluster walks the tree
+ * together: a node's 32 children are tested one per work-item (the lanes of
+ * block_mask), the leaves under a level-1 node (or 32 consecutive leaves,
+ * brute force) one leaf per work-item (leaf_mask), and hit leaves take their
+ * record slots in ascending order by a prefix count of the hit flags. The
+ * stack of pending nodes lives in local memory and is pushed by work-item 0;
+ * every work-item reads the same masks from local memory, so the walk's
+ * control flow is uniform across the group. The walk visits nodes and
+ * leaves in the CPU shape's order, so records come out in the same order. */
+
+/* Every work-item gets the OR (or the sum) of the group's values. */
+inline uint group_or(__local uint* cell, uint v) {
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (get_local_id(0) == 0u) *cell = 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (v != 0u) atomic_or(cell, v);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  return *cell;
+}
+inline uint group_add(__local uint* cell, uint v) {
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (get_local_id(0) == 0u) *cell = 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (v != 0u) atomic_add(cell, v);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  return *cell;
+}
+
+/* Lane `lane` of block_mask: does child `lane` of the block overlap the box? */
+inline uint block_lane_hit(__global const float* nsoa, uint block, uint lane, float4 lo, float4 hi) {
+  __global const float* b = nsoa + (size_t)block * (NODE_FLOATS * BVH_BRANCH) + lane;
+  const float x0 = b[0], y0 = b[BVH_BRANCH], z0 = b[2u * BVH_BRANCH];
+  const float x1 = b[3u * BVH_BRANCH], y1 = b[4u * BVH_BRANCH], z1 = b[5u * BVH_BRANCH];
+  const float cx = b[6u * BVH_BRANCH], cy = b[7u * BVH_BRANCH], cz = b[8u * BVH_BRANCH], r = b[9u * BVH_BRANCH];
+  const float dx = cx - clamp(cx, lo.x, hi.x), dy = cy - clamp(cy, lo.y, hi.y), dz = cz - clamp(cz, lo.z, hi.z);
+  return (x0 <= hi.x && lo.x <= x1 && y0 <= hi.y && lo.y <= y1 && z0 <= hi.z && lo.z <= z1 &&
+          dx * dx + dy * dy + dz * dz <= r * r && r >= 0.0f)
+             ? 1u
+             : 0u;
+}
+
+/* Leaves first + b for the set bits b of `bits`, one per work-item: records
+ * (mode 0: into the count pass's slots while they last; mode 1: out), *m
+ * lights, *h records, as visit_leaf does one leaf at a time. */
+inline void visit_leaves_wg(uint mode, uint first, uint bits, __global const float* soa, float4 lo, float4 hi,
+                            __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint2* out,
+                            uint* m, uint* h, __local uint* cells) {
+  const uint lid = get_local_id(0);
+  const uint mask = ((bits >> lid) & 1u) ? leaf_mask(soa, first + lid, lo, hi) : 0u;
+  const uint flags = group_or(&cells[0], mask != 0u ? 1u << lid : 0u);
+  const uint lights = group_add(&cells[1], popcount(mask));
+  if (mask != 0u) {
+    const uint pos = *h + popcount(flags & ((1u << lid) - 1u));
+    const uint leaf = first + lid;
+    if (mode == 0u) {
+      if (pos < slots) {
+        rec_leaf[pos] = leaf * LEAF_SIZE;
+        rec_mask[pos] = mask;
+      }
+    } else {
+      out[pos] = (uint2)(leaf * LEAF_SIZE, mask);
+    }
+  }
+  *m += lights;
+  *h += popcount(flags);
+}
+
+inline uint walk_wg(uint mode, uint use_bvh, __global const float* soa, uint n_leaves, __global const float* nsoa,
+                    __global const uint* block_start, uint levels, float4 lo, float4 hi, __global uint* rec_leaf,
+                    __global uint* rec_mask, uint slots, __global uint2* out, uint* hit_leaves,
+                    __local uint* cells, __local uint* stack) {
+  const uint lid = get_local_id(0);
+  uint m = 0u, h = 0u;
+  if (!use_bvh) {
+    for (uint first = 0; first < n_leaves; first += BVH_BRANCH) {
+      const uint k = min(BVH_BRANCH, n_leaves - first);
+      visit_leaves_wg(mode, first, k == 32u ? 0xffffffffu : (1u << k) - 1u, soa, lo, hi, rec_leaf, rec_mask, slots,
+                      out, &m, &h, cells);
+    }
+    *hit_leaves = h;
+    return m;
+  }
+  const uint top = levels - 1u;
+  uint mask = group_or(&cells[0], block_lane_hit(nsoa, block_start[top], lid, lo, hi) << lid);
+  if (top == 0u) {
+    visit_leaves_wg(mode, 0u, mask, soa, lo, hi, rec_leaf, rec_mask, slots, out, &m, &h, cells);
+    *hit_leaves = h;
+    return m;
+  }
+  /* Pushed in ascending bit order and popped from the top, as walk() does. */
+  uint sp = 0;
+  if (lid == 0u)
+    for (uint b = mask, j = 0; b != 0u; b &= b - 1u, ++j) stack[j] = (top << 27) | (31u - clz(b & (0u - b)));
+  sp = popcount(mask);
+  while (sp != 0u) {
+    barrier(CLK_LOCAL_MEM_FENCE); /* work-item 0's pushes are visible */
+    const uint e = stack[--sp];
+    const uint l = e >> 27, node = e & 0x7ffffffu;
+    const uint children = group_or(&cells[0], block_lane_hit(nsoa, block_start[l - 1u] + node, lid, lo, hi) << lid);
+    if (l == 1u) {
+      visit_leaves_wg(mode, node * BVH_BRANCH, children, soa, lo, hi, rec_leaf, rec_mask, slots, out, &m, &h, cells);
+      continue;
+    }
+    if (lid == 0u)
+      for (uint b = children, j = sp; b != 0u; b &= b - 1u, ++j)
+        stack[j] = ((l - 1u) << 27) | (node * BVH_BRANCH + (31u - clz(b & (0u - b))));
+    sp += popcount(children);
+  }
+  *hit_leaves = h;
+  return m;
+}
+
+__kernel void assign_count_wg(__global const float* soa, uint n_leaves, __global const float* nsoa,
+                              __global const uint* block_start, uint levels, uint use_bvh,
+                              __global const float4* box_lo, __global const float4* box_hi, uint count,
+                              __global uint* rec_leaf, __global uint* rec_mask, uint slots, __global uint* hit_leaves,
+                              __global uint* counts, __global const uint* order, uint use_order) {
+  __local uint cells[2];
+  __local uint stack[BVH_STACK];
+  const uint g = get_group_id(0);
+  if (g >= count) return; /* whole group */
+  const uint c = use_order ? order[g] : g;
+  uint h = 0u;
+  const uint m = n_leaves == 0u ? 0u
+                                : walk_wg(0u, use_bvh, soa, n_leaves, nsoa, block_start, levels, box_lo[c], box_hi[c],
+                                          rec_leaf + (size_t)c * slots, rec_mask + (size_t)c * slots, slots, 0, &h,
+                                          cells, stack);
+  if (get_local_id(0) == 0u) {
+    counts[c] = m;
+    hit_leaves[c] = h;
+  }
+}
+
+__kernel void assign_fill_wg(__global const float* soa, uint n_leaves, __global const float* nsoa,
+                             __global const uint* block_start, uint levels, uint use_bvh,
+                             __global const float4* box_lo, __global const float4* box_hi, uint count,
+                             __global const uint* rec_leaf, __global const uint* rec_mask, uint slots,
+                             __global const uint* hit_leaves, __global const uint* offsets, __global uint2* records,
+                             __global const uint* order, uint use_order) {
+  __local uint cells[2];
+  __local uint stack[BVH_STACK];
+  const uint g = get_group_id(0), lid = get_local_id(0);
+  if (g >= count) return; /* whole group */
+  const uint c = use_order ? order[g] : g;
+  const uint h = hit_leaves[c];
+  __global uint2* out = records + offsets[c];
+  if (h <= slots) {
+    for (uint j = lid; j < h; j += get_local_size(0))
+      out[j] = (uint2)(rec_leaf[(size_t)c * slots + j], rec_mask[(size_t)c * slots + j]);
+    return;
+  }
+  uint unused = 0u;
+  walk_wg(1u, use_bvh, soa, n_leaves, nsoa, block_start, levels, box_lo[c], box_hi[c], 0, 0, 0u, out, &unused, cells,
+          stack);
 }

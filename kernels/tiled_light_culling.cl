@@ -11,7 +11,13 @@
  *
  * Light-centric: each work-item walks one light's screen rectangle, so the
  * cost is the lights' covered tiles, not lights x tiles, and the culling math
- * runs once per (light, tile). Lists are built by count -> scan -> fill and
+ * runs once per (light, tile). That is the CPU shape (PoCL runs a work-item as
+ * a plain loop). The GPU shape (cull_mark_wg, cull_scatter_wg) spreads the
+ * same (light, tile) pairs over one work-item each, a light found from its
+ * hit-mask word, so that a light covering the screen does not serialize one
+ * work-item while the others idle; tile_depth_bounds_wg gives each tile a
+ * work-group. light_rects and write_grid are one work-item per light or
+ * tile with coalesced reads and writes and serve both shapes. Lists are built by count -> scan -> fill and
  * cannot overflow: the host sizes the index list from the scan total. Order
  * within a tile list follows atomics.
  *
@@ -41,6 +47,8 @@ inline float linear_depth(float d, const CameraParams* cam) {
   const float ndc = 2.0f * d - 1.0f;
   return cam->proj[14] / (ndc + cam->proj[10]);
 }
+/* The depth of a pixel with no geometry (the one place its convention lives). */
+inline bool is_sky_depth(float d) { return d >= 1.0f; }
 
 /* ---------------------------------------------------------------- bounds */
 
@@ -316,4 +324,75 @@ __kernel void write_grid(__global const uint* offsets, __global const uint* coun
   r.offset = offsets[t];
   r.count = counts[t];
   grid[t] = r;
+}
+
+/* ------------------------------------------------------------- GPU shape
+ *
+ * A work-item per bit of the hit masks: word w of the masks (32 tiles of one
+ * light's rectangle, in the order cull_mark walks them) belongs to the light
+ * whose mask_offsets range holds it. Same bits, same counts as the CPU shape;
+ * only the order of the atomics differs. */
+
+/* Most work-items per group of cull_mark_wg (the host asks for a power of two
+ * >= 32 and <= this, fitted to the kernel's limits). */
+#define MARK_WG 256
+
+/* The light owning mask word w: the largest i with mask_offsets[i] <= w
+ * (lights with empty rectangles share the next light's offset and own no word). */
+inline uint light_of_word(__global const uint* mask_offsets, uint n, uint w) {
+  uint lo = 0, hi = n;
+  while (hi - lo > 1u) {
+    const uint mid = (lo + hi) / 2u;
+    if (mask_offsets[mid] <= w) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
+/* Tile of bit k of light rectangle lr, or -1 when k is past its area. */
+inline int tile_of_bit(const LightRect* lr, uint k, uint tiles_x, int* tx, int* ty) {
+  const int w = lr->tx1 - lr->tx0 + 1;
+  const uint area = (uint)(w * (lr->ty1 - lr->ty0 + 1));
+  if (k >= area) return -1;
+  *tx = lr->tx0 + (int)(k % (uint)w);
+  *ty = lr->ty0 + (int)(k / (uint)w);
+  return *ty * (int)tiles_x + *tx;
+}
+
+/* Pass 2, GPU shape: 32 work-items build one mask word through local memory. */
+__kernel void cull_mark_wg(__global const LightRect* rects, uint n, uint words, CameraParams cam, uint tiles_x,
+                           __global const float4* bounds, __global const uint* masks,
+                           __global const uint* mask_offsets, __global uint* hit_masks, __global uint* counts) {
+  __local uint lword[MARK_WG / 32];
+  const size_t gid = get_global_id(0);
+  const uint lid = get_local_id(0), lane = lid % 32u;
+  const uint w = (uint)(gid / 32u);
+  if (lane == 0u) lword[lid / 32u] = 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (w < words) {
+    const uint i = light_of_word(mask_offsets, n, w);
+    const LightRect lr = rects[i];
+    int tx, ty;
+    const int t = tile_of_bit(&lr, (w - mask_offsets[i]) * 32u + lane, tiles_x, &tx, &ty);
+    if (t >= 0 && light_hits_tile(&lr, tx, ty, &cam, bounds, masks, tiles_x)) {
+      atomic_or(&lword[lid / 32u], 1u << lane);
+      atomic_inc(&counts[t]);
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (lane == 0u && w < words) hit_masks[w] = lword[lid / 32u];
+}
+
+/* Pass 3, GPU shape: a work-item per set bit scatters its light's index. */
+__kernel void cull_scatter_wg(__global const LightRect* rects, uint n, uint words, uint tiles_x,
+                              __global const uint* mask_offsets, __global const uint* hit_masks,
+                              __global const uint* offsets, __global uint* cursor, __global uint* indices) {
+  const size_t gid = get_global_id(0);
+  const uint w = (uint)(gid / 32u), lane = (uint)(gid % 32u);
+  if (w >= words || ((hit_masks[w] >> lane) & 1u) == 0u) return;
+  const uint i = light_of_word(mask_offsets, n, w);
+  const LightRect lr = rects[i];
+  int tx, ty;
+  const int t = tile_of_bit(&lr, (w - mask_offsets[i]) * 32u + lane, tiles_x, &tx, &ty);
+  if (t >= 0) indices[offsets[t] + atomic_inc(&cursor[t])] = i;
 }

@@ -67,7 +67,7 @@ TEST(BenchTypes, SweepsOnlyTheKeysATechniqueReads) {
   const auto brute = expandVariants({"deferred"}, sweep, TechniqueParams{}, "--param");
   ASSERT_EQ(brute.size(), 1u);
   EXPECT_EQ(brute[0].label, "deferred");
-  EXPECT_EQ(paramKeysUsedBy("tiled-deferred"), (std::vector<std::string>{"tile", "tile_depth"}));
+  EXPECT_EQ(paramKeysUsedBy("tiled-deferred"), (std::vector<std::string>{"tile", "tile_depth", "kernel_shape"}));
   EXPECT_EQ(paramKeysUsedBy("clustered-forward").front(), "cluster_tile");
   EXPECT_EQ(paramKeysUsedBy("hashed-deferred").front(), "node_size");
 }
@@ -78,6 +78,9 @@ TEST(BenchTypes, ParamValuesAreChecked) {
   EXPECT_EQ(p.tile_size, 8u);
   setTechniqueParam(p, "cluster_tile", "64", "--param");
   EXPECT_EQ(p.cluster_tile, 64u);
+  setTechniqueParam(p, "kernel_shape", "gpu", "--param");
+  EXPECT_EQ(p.kernel_shape, "gpu");
+  EXPECT_THROW(setTechniqueParam(p, "kernel_shape", "warp", "--param"), UserError);
   setTechniqueParam(p, "tile_depth", "none", "--param");
   EXPECT_EQ(p.tile_depth, "none");
   setTechniqueParam(p, "node_size", "0.25r", "--param");

@@ -55,6 +55,10 @@ TEST(Cli, BadCameraJson) {
 
 TEST(Cli, UnknownTechnique) { expectUserError(runManylights("render --technique magic"), "--technique"); }
 
+TEST(Cli, BadKernelShape) {
+  expectUserError(runManylights("render --technique tiled-deferred --kernel-shape warp"), "--kernel-shape");
+}
+
 TEST(Cli, BadSizes) {
   expectUserError(runManylights("render --size 0x100"), "--size");
   expectUserError(runManylights("render --size -5x100"), "--size");
@@ -81,7 +85,7 @@ TEST(Cli, HelpListsEveryRenderFlag) {
   auto r = runManylights("render --help");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* flag : {"--scene", "--lights", "--technique", "--size", "--camera", "--out", "--device",
-                           "--counts", "--stats-json"})
+                           "--counts", "--stats-json", "--kernel-shape"})
     EXPECT_NE(r.out.find(flag), std::string::npos) << flag;
 }
 

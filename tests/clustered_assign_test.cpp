@@ -4,7 +4,9 @@
 // every light whose sphere contains a pixel's surface point is in the list of
 // that pixel's cluster. Both bounds: the sub-frustum boxes and the explicit
 // boxes of the clusters' pixels (device boxes bit for bit against the C++
-// reduction, fewer list entries in all than the sub-frustum boxes).
+// reduction, fewer list entries in all than the sub-frustum boxes). Every
+// test runs in both kernel shapes, and the GPU shape's boxes, records and
+// leaves equal the CPU shape's exactly (same order).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,6 +17,7 @@
 #include "host/clustered/ClusterLightAssigner.hpp"
 #include "host/clustered/ClusterUniquer.hpp"
 #include "host/util/Error.hpp"
+#include "shape_support.hpp"
 #include "support/TestDevice.hpp"
 
 namespace ml {
@@ -41,10 +44,16 @@ Frame clusters(ClusterUniquer& u, const test::ClusterCase& c, cl::Buffer& depth,
   return f;
 }
 
+// The raw outputs of one count() + fill(), for comparing shapes.
+struct RawLists {
+  std::vector<gpu::LightRange> ranges;
+  std::vector<std::uint32_t> records, leaf_lights;
+};
+
 // Sorted list per cluster, expanded from the hit records, with the range and
-// record layout checked. pixels: explicit bounds.
+// record layout checked. pixels: explicit bounds. raw: the outputs as they are.
 std::vector<std::vector<std::uint32_t>> assign(ClusterLightAssigner& a, ClusterUniquer& u, const test::ClusterCase& c,
-                                               const Frame& f, const ClusterPixels* pixels) {
+                                               const Frame& f, const ClusterPixels* pixels, RawLists* raw = nullptr) {
   ClRuntime& rt = test::runtime();
   auto& q = rt.queue();
   const auto n = std::uint32_t(c.lights.size());
@@ -67,6 +76,7 @@ std::vector<std::vector<std::uint32_t>> assign(ClusterLightAssigner& a, ClusterU
   q.enqueueReadBuffer(leaf_lights, CL_TRUE, 0, leaf.size() * 4, leaf.data());
   for (std::size_t i = 2 * std::size_t(total); i < rec.size(); ++i) EXPECT_EQ(rec[i], kPoison) << "write past the list end";
   for (std::size_t i = slots; i < leaf.size(); ++i) EXPECT_EQ(leaf[i], kPoison) << "write past the leaf slots";
+  if (raw) *raw = {r, {rec.begin(), rec.begin() + 2 * std::ptrdiff_t(total)}, {leaf.begin(), leaf.begin() + std::ptrdiff_t(slots)}};
   // Every light sits in exactly one slot; slots past the last light are empty.
   std::vector<std::uint32_t> seen(n, 0);
   for (std::size_t i = 0; i < slots; ++i) {
@@ -135,32 +145,41 @@ void poisonBoxes(ClusterLightAssigner& a, std::size_t clusters) {
   }
 }
 
-TEST(ClusteredAssign, RejectsUnsupportedLeafSizes) {
+class ClusteredAssign : public ::testing::TestWithParam<KernelShape> {};
+
+TEST(ClusteredAssignLeaves, RejectsUnsupportedLeafSizes) {
   for (unsigned leaf : {0u, 1u, 4u, 24u, 64u})
     EXPECT_THROW(ClusterLightAssigner(test::runtime(), ClusterAssignMethod::Bvh, leaf), UserError) << leaf;
 }
 
-TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
+TEST_P(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
   ClRuntime& rt = test::runtime();
-  ClusterUniquer u(rt, UniqueMethod::PageTable);
-  ClusterLightAssigner brute(rt, ClusterAssignMethod::Brute), bvh(rt, ClusterAssignMethod::Bvh);
+  const KernelShape shape = GetParam();
+  ClusterUniquer u(rt, UniqueMethod::PageTable, 6, shape);
+  ClusterLightAssigner brute(rt, ClusterAssignMethod::Brute, 32, shape), bvh(rt, ClusterAssignMethod::Bvh, 32, shape);
+  EXPECT_EQ(bvh.shape(), shape);
   // One hit-leaf record per cluster: the fill pass walks again for most clusters.
-  ClusterLightAssigner brute_rewalk(rt, ClusterAssignMethod::Brute), bvh_rewalk(rt, ClusterAssignMethod::Bvh);
+  ClusterLightAssigner brute_rewalk(rt, ClusterAssignMethod::Brute, 32, shape);
+  ClusterLightAssigner bvh_rewalk(rt, ClusterAssignMethod::Bvh, 32, shape);
   brute_rewalk.setRecordBudget(1);
   bvh_rewalk.setRecordBudget(1);
   // Smaller leaves: other tree shapes over the same lights (leaf 8 walks one
   // more level at 40000 lights), and brute force over them.
-  ClusterLightAssigner bvh8(rt, ClusterAssignMethod::Bvh, 8), bvh16(rt, ClusterAssignMethod::Bvh, 16);
-  ClusterLightAssigner brute8(rt, ClusterAssignMethod::Brute, 8);
+  ClusterLightAssigner bvh8(rt, ClusterAssignMethod::Bvh, 8, shape), bvh16(rt, ClusterAssignMethod::Bvh, 16, shape);
+  ClusterLightAssigner brute8(rt, ClusterAssignMethod::Brute, 8, shape);
   // The BVH passes in key order instead of tile-Morton order.
-  ClusterLightAssigner bvh_key_order(rt, ClusterAssignMethod::Bvh);
+  ClusterLightAssigner bvh_key_order(rt, ClusterAssignMethod::Bvh, 32, shape);
   bvh_key_order.setClusterOrder(false);
   // Light counts give BVHs of 1 (< 32 lights), 2 and 3 levels, and none at all.
-  for (auto [w, h, tile, n] : {std::tuple{160u, 96u, 32u, 20u}, std::tuple{203u, 117u, 16u, 3000u},
-                               std::tuple{64u, 48u, 32u, 40000u}, std::tuple{50u, 30u, 8u, 0u}}) {
+  using Case = std::tuple<unsigned, unsigned, unsigned, unsigned>;
+  const std::vector<Case> cases =
+      test::smallTests() ? std::vector<Case>{{48u, 32u, 16u, 20u}, {40u, 24u, 8u, 1100u}, {20u, 12u, 8u, 0u}}
+                         : std::vector<Case>{{160u, 96u, 32u, 20u}, {203u, 117u, 16u, 3000u}, {64u, 48u, 32u, 40000u},
+                                             {50u, 30u, 8u, 0u}};
+  for (auto [w, h, tile, n] : cases) {
     SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " tile " + std::to_string(tile) + " lights " +
                  std::to_string(n));
     const auto c = test::randomClusterCase(rng, w, h, n);
@@ -260,6 +279,53 @@ TEST(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
       if (!explicit_bounds) frustum_lists = t;
     }
   }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, ClusteredAssign, ::testing::ValuesIn(test::kBothShapes),
+                         [](const auto& info) { return test::shapeLabel(info.param); });
+
+// The GPU shape against the CPU shape: the same boxes bit for bit, the same
+// ranges, records (in the same order) and leaf slots, for both methods and
+// both bounds, with and without the fill pass walking again.
+TEST(ClusteredAssignShapes, GpuShapeEqualsCpuShapeExactly) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  ClRuntime& rt = test::runtime();
+  ClusterUniquer u(rt, UniqueMethod::PageTable, 6, KernelShape::CpuChunked);
+  const bool small = test::smallTests();
+  const auto c = test::randomClusterCase(rng, small ? 40 : 203, small ? 24 : 117, small ? 1100 : 5000);
+  cl::Buffer depth(rt.context(), CL_MEM_READ_ONLY, c.depth.size() * 4);
+  const Frame f = clusters(u, c, depth, 8);
+  const ClusterPixels pixels{depth, u.clusterOf()};
+  for (ClusterAssignMethod m : {ClusterAssignMethod::Bvh, ClusterAssignMethod::Brute})
+    for (ClusterBounds bounds : {ClusterBounds::Frustum, ClusterBounds::Pixels})
+      for (std::size_t budget : {std::size_t(1) << 22, std::size_t(1)}) {
+        SCOPED_TRACE(std::string(clusterAssignName(m)) + " " + clusterBoundsName(bounds) + " budget " +
+                     std::to_string(budget));
+        RawLists raw[2];
+        std::vector<ClusterBox> boxes[2];
+        for (int s = 0; s < 2; ++s) {
+          ClusterLightAssigner a(rt, m, 32, test::kBothShapes[s]);
+          a.setRecordBudget(budget);
+          assign(a, u, c, f, bounds == ClusterBounds::Pixels ? &pixels : nullptr, &raw[s]);
+          boxes[s] = deviceBoxes(a, f.unique.size());
+        }
+        for (std::size_t k = 0; k < boxes[0].size(); ++k) {
+          const ClusterBox& a = boxes[0][k];
+          const ClusterBox& b = boxes[1][k];
+          ASSERT_TRUE(a.x0 == b.x0 && a.x1 == b.x1 && a.y0 == b.y0 && a.y1 == b.y1 && a.z0 == b.z0 && a.z1 == b.z1)
+              << "cluster " << k;
+        }
+        ASSERT_EQ(raw[0].ranges.size(), raw[1].ranges.size());
+        for (std::size_t k = 0; k < raw[0].ranges.size(); ++k) {
+          ASSERT_EQ(raw[0].ranges[k].offset, raw[1].ranges[k].offset) << "cluster " << k;
+          ASSERT_EQ(raw[0].ranges[k].count, raw[1].ranges[k].count) << "cluster " << k;
+        }
+        EXPECT_EQ(raw[0].records, raw[1].records);
+        EXPECT_EQ(raw[0].leaf_lights, raw[1].leaf_lights);
+        EXPECT_GT(raw[0].records.size(), 0u);
+      }
 }
 
 }  // namespace

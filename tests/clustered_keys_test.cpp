@@ -1,6 +1,8 @@
 // Cluster keys (kernel vs C++ reference, bit for bit) and the three
 // unique-cluster methods (page table, radix sort, per-tile sort) against
 // std::set of the keys, on random frames and on the page table's edge cases.
+// Every test runs in both kernel shapes (the uniquer passes its shape on to
+// the scan, compaction and sorts).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -8,6 +10,7 @@
 
 #include "clustered_support.hpp"
 #include "host/clustered/ClusterUniquer.hpp"
+#include "shape_support.hpp"
 #include "support/TestDevice.hpp"
 
 namespace ml {
@@ -29,12 +32,17 @@ std::vector<std::uint32_t> deviceKeys(ClusterUniquer& u, const test::ClusterCase
   return keys;
 }
 
-TEST(ClusteredKeys, KernelMatchesReference) {
+class ClusteredKeys : public ::testing::TestWithParam<KernelShape> {};
+class ClusteredUnique : public ::testing::TestWithParam<KernelShape> {};
+
+TEST_P(ClusteredKeys, KernelMatchesReference) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable);
+  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable, 6, GetParam());
+  EXPECT_EQ(u.shape(), GetParam());
   for (auto [w, h, tile] : {std::tuple{160u, 96u, 32u}, std::tuple{203u, 117u, 16u}, std::tuple{7u, 5u, 4u}}) {
+    if (test::smallTests() && w > 100) continue;
     SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " tile " + std::to_string(tile));
     const auto c = test::randomClusterCase(rng, w, h, 0);
     const auto cam = c.cam();
@@ -54,7 +62,7 @@ TEST(ClusteredKeys, KernelMatchesReference) {
   }
 }
 
-TEST(ClusteredKeys, SliceFormulaMatchesThesis) {
+TEST(ClusteredKeysGeometry, SliceFormulaMatchesThesis) {
   // k = floor(log(z / near) / log(1 + 2 tan(theta) / S_y)) away from boundaries.
   gpu::CameraParams cam{};
   cam.width = 1280;
@@ -133,12 +141,13 @@ ClusterGrid syntheticGrid(unsigned w, unsigned h, unsigned tile, unsigned k_bits
   return g;
 }
 
-TEST(ClusteredUnique, ThreeMethodsEqualStdSetOnRandomFrames) {
+TEST_P(ClusteredUnique, ThreeMethodsEqualStdSetOnRandomFrames) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable);
+  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable, 6, GetParam());
   for (auto [w, h, tile] : {std::tuple{320u, 180u, 32u}, std::tuple{203u, 117u, 8u}, std::tuple{33u, 65u, 32u}}) {
+    if (test::smallTests() && w > 100) continue;
     SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " tile " + std::to_string(tile));
     const auto c = test::randomClusterCase(rng, w, h, 0);
     const ClusterGrid g = ClusterGrid::make(c.cam(), tile);
@@ -147,17 +156,17 @@ TEST(ClusteredUnique, ThreeMethodsEqualStdSetOnRandomFrames) {
   }
 }
 
-TEST(ClusteredUnique, AllPixelsOneCluster) {
-  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable);
+TEST_P(ClusteredUnique, AllPixelsOneCluster) {
+  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable, 6, GetParam());
   const ClusterGrid g = syntheticGrid(40, 30, 64, 5);
   checkAllMethods(u, std::vector<std::uint32_t>(40 * 30, g.key(0, 0, 17)), g);
 }
 
-TEST(ClusteredUnique, EveryPixelADifferentCluster) {
+TEST_P(ClusteredUnique, EveryPixelADifferentCluster) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable);
+  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable, 6, GetParam());
   const ClusterGrid g = syntheticGrid(96, 64, 1, 8);  // one pixel per tile
   std::vector<std::uint32_t> keys(96 * 64);
   for (unsigned y = 0; y < 64; ++y)
@@ -165,8 +174,8 @@ TEST(ClusteredUnique, EveryPixelADifferentCluster) {
   checkAllMethods(u, keys, g);
 }
 
-TEST(ClusteredUnique, EmptyFrameIsAllSky) {
-  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable);
+TEST_P(ClusteredUnique, EmptyFrameIsAllSky) {
+  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable, 6, GetParam());
   const ClusterGrid g = syntheticGrid(64, 48, 16, 7);
   checkAllMethods(u, std::vector<std::uint32_t>(64 * 48, kClusterInvalid), g);
   // And through the key kernel: depth 1 everywhere.
@@ -180,11 +189,11 @@ TEST(ClusteredUnique, EmptyFrameIsAllSky) {
   checkAllMethods(u, keys, real);
 }
 
-TEST(ClusteredUnique, KeysAtTheLimitsOfEveryBitField) {
+TEST_P(ClusteredUnique, KeysAtTheLimitsOfEveryBitField) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable);
+  ClusterUniquer u(test::runtime(), UniqueMethod::PageTable, 6, GetParam());
   // 16 x 8 tiles (4 + 3 bits, all values used) and 24 slice bits: 31 bits.
   const ClusterGrid g = syntheticGrid(64, 32, 4, 24);
   ASSERT_EQ(g.keyBits(), 31u);
@@ -202,7 +211,7 @@ TEST(ClusteredUnique, KeysAtTheLimitsOfEveryBitField) {
   checkAllMethods(u, keys, g);
 }
 
-TEST(ClusteredUnique, RejectsKeysWiderThan31Bits) {
+TEST(ClusteredUniqueGrid, RejectsKeysWiderThan31Bits) {
   gpu::CameraParams cam{};
   cam.width = 1u << 14;
   cam.height = 1u << 14;
@@ -211,6 +220,11 @@ TEST(ClusteredUnique, RejectsKeysWiderThan31Bits) {
   cam.tan_half_fovy = 1.0f;
   EXPECT_ANY_THROW(ClusterGrid::make(cam, 1));
 }
+
+INSTANTIATE_TEST_SUITE_P(Shapes, ClusteredKeys, ::testing::ValuesIn(test::kBothShapes),
+                         [](const auto& info) { return test::shapeLabel(info.param); });
+INSTANTIATE_TEST_SUITE_P(Shapes, ClusteredUnique, ::testing::ValuesIn(test::kBothShapes),
+                         [](const auto& info) { return test::shapeLabel(info.param); });
 
 }  // namespace
 }  // namespace ml

@@ -1,11 +1,13 @@
 // Clustered forward and clustered deferred render the brute-force image, for
 // each unique-cluster method and assignment, and their lists lose no light
-// that matters (exact lower bound equality).
+// that matters (exact lower bound equality); the GPU kernel shape renders the
+// CPU shape's image exactly (the same lists in the same order).
 #include <gtest/gtest.h>
 
 #include "gl/FrameRenderer.hpp"
 #include "host/app/SceneInputs.hpp"
 #include "host/clustered/ClusteredAssigner.hpp"
+#include "shape_support.hpp"
 #include "support/BruteReference.hpp"
 #include "support/ImageCompare.hpp"
 #include "support/TestDevice.hpp"
@@ -24,16 +26,17 @@ struct Param {
   UniqueMethod unique;
   ClusterAssignMethod assign;
   ClusterBounds bounds = ClusterBounds::Pixels;
+  KernelShape shape = KernelShape::Auto;
 };
 class RenderClustered : public ::testing::TestWithParam<Param> {};
 
 TEST_P(RenderClustered, MatchesBruteForce) {
   test::glContext();
-  const auto [pipeline, tile, unique, assign, bounds] = GetParam();
+  const auto [pipeline, tile, unique, assign, bounds, shape] = GetParam();
   const test::BruteReference& ref = bruteReference(pipeline);
   FrameRenderer r(test::runtime(), scene().scene, kW, kH);
   r.setLights(scene().lights);
-  ClusteredAssigner clustered(test::runtime(), tile, unique, assign, bounds);
+  ClusteredAssigner clustered(test::runtime(), tile, unique, assign, bounds, shape);
   FrameResult res = r.render(scene().cameras.frames.front(), clustered, {pipeline, true});
   const auto img = r.targets().readColor();
   // Lights left out contribute exactly zero, so only the summation order differs.
@@ -65,13 +68,41 @@ INSTANTIATE_TEST_SUITE_P(
                       Param{Pipeline::Deferred, 32, UniqueMethod::PageTable, ClusterAssignMethod::Bvh,
                             ClusterBounds::Frustum},
                       Param{Pipeline::Forward, 16, UniqueMethod::TileSort, ClusterAssignMethod::Bvh,
-                            ClusterBounds::Frustum}),
+                            ClusterBounds::Frustum},
+                      Param{Pipeline::Deferred, 32, UniqueMethod::PageTable, ClusterAssignMethod::Bvh,
+                            ClusterBounds::Pixels, KernelShape::GpuWorkGroup},
+                      Param{Pipeline::Forward, 16, UniqueMethod::Sort, ClusterAssignMethod::Brute,
+                            ClusterBounds::Frustum, KernelShape::GpuWorkGroup}),
     [](const auto& info) {
       return std::string(info.param.pipeline == Pipeline::Forward ? "forward" : "deferred") + "_" +
              std::to_string(info.param.tile) + "_" +
              (info.param.unique == UniqueMethod::TileSort ? std::string("tilesort") : uniqueMethodName(info.param.unique)) +
-             "_" + clusterAssignName(info.param.assign) + "_" + clusterBoundsName(info.param.bounds);
+             "_" + clusterAssignName(info.param.assign) + "_" + clusterBoundsName(info.param.bounds) +
+             test::shapeSuffix(info.param.shape);
     });
+
+// Both shapes, one frame: the same cluster map, counts and image, exactly.
+TEST(RenderClusteredShapes, GpuShapeRendersTheCpuShapesImage) {
+  test::glContext();
+  FrameRenderer r(test::runtime(), scene().scene, kW, kH);
+  r.setLights(scene().lights);
+  FrameResult res[2];
+  std::vector<float> img[2];
+  std::vector<std::uint32_t> map[2];
+  for (int s = 0; s < 2; ++s) {
+    ClusteredAssigner clustered(test::runtime(), 16, UniqueMethod::TileSort, ClusterAssignMethod::Bvh,
+                                ClusterBounds::Pixels, test::kBothShapes[s]);
+    res[s] = r.render(scene().cameras.frames.front(), clustered, {Pipeline::Deferred, true});
+    img[s] = r.targets().readColor();
+    map[s] = clustered.readClusterMap();
+  }
+  EXPECT_EQ(res[0].light_evaluations, res[1].light_evaluations);
+  EXPECT_EQ(res[0].lower_bound, res[1].lower_bound);
+  EXPECT_GT(res[0].light_evaluations, 0u);
+  EXPECT_EQ(map[0], map[1]);
+  const auto diff = test::compareImages(img[1], img[0], 0.0);
+  EXPECT_EQ(diff.max_abs, 0.0);
+}
 
 TEST(RenderClusteredEdges, OddScreenSizeAndNoLights) {
   test::glContext();

@@ -184,6 +184,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       "  tile, tile_depth (none|minmax|mask)              tiled techniques\n"
       "  cluster_tile (pixels | auto), unique (pagetable|sort|tile-sort), cluster_assign (bvh|brute),\n"
       "  cluster_bounds (pixels|frustum)                                               clustered\n"
+      "  kernel_shape (auto|cpu|gpu): OpenCL kernel shape                    tiled and clustered\n"
       "  node_size (2.0 | 0.5r), start_depth, geometry_mask (on|off), octant_masks (on|off)  hashed\n"
       "Light sets (--lights, comma list): JSON files; names under the suite's lights/; 'thesis' (the thesis's set\n"
       "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).");
@@ -208,6 +209,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   cmd->add_option("--tile-depth", a.tile_depth, "shorthand for --param tile_depth=LIST");
   cmd->add_option("--cluster-tile", a.cluster_tile, "shorthand for --param cluster_tile=LIST");
   cmd->add_option("--node-size", a.node_size, "shorthand for --param node_size=LIST");
+  cmd->add_option("--kernel-shape", a.kernel_shape,
+                  "shorthand for --param kernel_shape=LIST: OpenCL kernel shape auto|cpu|gpu (tiled, clustered)");
   cmd->add_option("--repeat", a.repeat, "timed renders per frame (per-pass median)")->capture_default_str();
   cmd->add_option("--warmup", a.warmup, "untimed renders before each run")->capture_default_str();
   cmd->add_option("--animate", a.animate,
@@ -257,6 +260,7 @@ int runBench(const BenchArgs& a) {
   if (!a.tile_depth.empty()) addSweep(sweep, "tile_depth", splitList(a.tile_depth));
   if (!a.cluster_tile.empty()) addSweep(sweep, "cluster_tile", splitList(a.cluster_tile));
   if (!a.node_size.empty()) addSweep(sweep, "node_size", splitList(a.node_size));
+  if (!a.kernel_shape.empty()) addSweep(sweep, "kernel_shape", splitList(a.kernel_shape));
   const auto variants = expandVariants(tech_names, sweep, TechniqueParams{}, "--param");
   const FrameRange range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
   const Progress::Mode progress_mode = Progress::parseMode(a.progress, "--progress");

@@ -22,7 +22,7 @@ struct BenchArgs {
   std::string sizes;       // comma list; overrides size
   std::string frames;      // FIRST:LAST:STEP; empty: the whole path
   std::vector<std::string> params;  // "key=v1,v2"
-  std::string tile, tile_depth, cluster_tile, node_size;  // shorthands for params
+  std::string tile, tile_depth, cluster_tile, node_size, kernel_shape;  // shorthands for params
   std::string json, csv, plot, images;
   std::string device;
   std::string progress = "auto";

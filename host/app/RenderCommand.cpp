@@ -13,6 +13,7 @@
 #include "host/app/InputChecks.hpp"
 #include "host/bench/OutputFiles.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/cl/KernelLimits.hpp"
 #include "host/hashed/HashedAssigner.hpp"
 #include "host/scene/LightAnimator.hpp"
 #include "host/clustered/ClusteredAssigner.hpp"
@@ -85,6 +86,9 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--cluster-bounds", a.params.cluster_bounds,
                   "clustered: cull against the AABB of each cluster's pixels or of its sub-frustum: pixels|frustum")
       ->capture_default_str();
+  cmd->add_option("--kernel-shape", a.params.kernel_shape,
+                  "OpenCL kernel shape of tiled and clustered shading: auto (by device type)|cpu|gpu")
+      ->capture_default_str();
   cmd->add_option("--cluster-view", g_cluster_view, "clustered: write each unique cluster as a colour to this PNG");
   cmd->add_option("--node-size", a.params.node_size, "hashed: minimal node size, absolute or relative (0.5r)")
       ->capture_default_str();
@@ -121,6 +125,7 @@ int runRender(const RenderArgs& a) {
   unsigned width = 0, height = 0;
   parseSize(a.size, "--size", width, height);
   const TechniqueInfo& tech = findTechnique(a.technique);
+  (void)parseKernelShape(a.params.kernel_shape);  // a bad --kernel-shape fails before any GL/CL work
   if (a.frames == 0) throw UserError("--frames: must be at least 1");
   // Validates --animate and --animate-speed before any GL/CL work.
   (void)LightAnimator({}, g_animate, 23, g_animate_speed);

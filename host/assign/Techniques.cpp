@@ -1,6 +1,7 @@
 #include "host/assign/Techniques.hpp"
 
 #include "host/assign/BruteForceAssigner.hpp"
+#include "host/cl/KernelLimits.hpp"
 #include "host/clustered/ClusteredAssigner.hpp"
 #include "host/hashed/HashedAssigner.hpp"
 #include "host/hashed/OctantMask.hpp"
@@ -41,11 +42,13 @@ std::unique_ptr<LightAssigner> makeAssigner(const std::string& technique, ClRunt
   if (t.name == "forward" || t.name == "deferred") return std::make_unique<BruteForceAssigner>();
   if (t.name == "hashed-forward" || t.name == "hashed-deferred") return std::make_unique<HashedAssigner>(t.name, params);
   if (t.name == "tiled-forward" || t.name == "tiled-deferred")
-    return std::make_unique<TiledAssigner>(cl, params.tile_size, parseTileDepthMode(params.tile_depth));
+    return std::make_unique<TiledAssigner>(cl, params.tile_size, parseTileDepthMode(params.tile_depth),
+                                           parseKernelShape(params.kernel_shape));
   if (t.name == "clustered-forward" || t.name == "clustered-deferred")
     return std::make_unique<ClusteredAssigner>(cl, params.cluster_tile, parseUniqueMethod(params.unique_method),
                                                parseClusterAssign(params.cluster_assign),
-                                               parseClusterBounds(params.cluster_bounds));
+                                               parseClusterBounds(params.cluster_bounds),
+                                               parseKernelShape(params.kernel_shape));
   throw UserError("--technique: '" + technique + "' is registered but has no assigner");
 }
 

@@ -27,6 +27,11 @@ struct TechniqueParams {
   unsigned start_depth = 3;
   bool geometry_mask = false;
   bool octant_masks = true;
+  // Kernel shape of the OpenCL passes (--kernel-shape): auto (by device type),
+  // cpu (a work-item per element with private state) or gpu (work-groups
+  // cooperating through local memory). Tiled and clustered shading and the
+  // primitives they call; brute force and hashed shading have no CL passes.
+  std::string kernel_shape = "auto";
 };
 
 struct TechniqueInfo {

@@ -124,15 +124,16 @@ nlohmann::ordered_json toJson(const Summary& s) {
 const std::vector<std::string>& techniqueParamKeys() {
   static const std::vector<std::string> keys = {"tile",           "tile_depth",  "cluster_tile", "unique",
                                                 "cluster_assign", "cluster_bounds", "node_size", "start_depth",
-                                                "geometry_mask", "octant_masks"};
+                                                "geometry_mask", "octant_masks", "kernel_shape"};
   return keys;
 }
 
 std::vector<std::string> paramKeysUsedBy(const std::string& technique) {
   std::vector<std::string> keys;
   auto has = [&](const char* s) { return technique.find(s) != std::string::npos; };
-  if (has("tiled")) keys.insert(keys.end(), {"tile", "tile_depth"});
-  if (has("clustered")) keys.insert(keys.end(), {"cluster_tile", "unique", "cluster_assign", "cluster_bounds"});
+  if (has("tiled")) keys.insert(keys.end(), {"tile", "tile_depth", "kernel_shape"});
+  if (has("clustered"))
+    keys.insert(keys.end(), {"cluster_tile", "unique", "cluster_assign", "cluster_bounds", "kernel_shape"});
   if (has("hashed")) keys.insert(keys.end(), {"node_size", "start_depth", "geometry_mask", "octant_masks"});
   return keys;
 }
@@ -170,6 +171,8 @@ void setTechniqueParam(TechniqueParams& p, const std::string& key, const std::st
     oneOf({"bvh", "brute"}, p.cluster_assign);
   } else if (key == "cluster_bounds") {
     oneOf({"pixels", "frustum"}, p.cluster_bounds);
+  } else if (key == "kernel_shape") {
+    oneOf({"auto", "cpu", "gpu"}, p.kernel_shape);
   } else if (key == "node_size") {
     const std::string number = !value.empty() && value.back() == 'r' ? value.substr(0, value.size() - 1) : value;
     double d = 0;

@@ -38,6 +38,9 @@ constexpr std::size_t kNodeFloats = 10;       // NODE_FLOATS in the kernel
 // Morton quantization per axis: 3 x 8 bits sort in 3 radix passes (8-bit
 // digits on CPUs) where 3 x 10 take 4; see light_morton.
 constexpr unsigned kMortonAxisBits = 8;
+constexpr std::size_t kGroupMax = 256;  // PIX_WG and RED_WG in the kernel
+// The GPU shape's pixel boxes are ordered ints until cluster_boxes_finish.
+constexpr cl_int kOrderedInf = 0x7f800000, kOrderedNegInf = cl_int(0x807fffffu);
 }  // namespace
 
 static unsigned checkedLeafSize(unsigned requested) {
@@ -46,37 +49,68 @@ static unsigned checkedLeafSize(unsigned requested) {
   return requested;
 }
 
-ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method, unsigned leaf_size)
+ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method, unsigned leaf_size,
+                                           KernelShape shape)
     : rt_(rt),
       method_(method),
       leaf_size_(checkedLeafSize(leaf_size)),
+      shape_(resolveKernelShape(rt.info(), shape)),
+      gpu_(shape_ == KernelShape::GpuWorkGroup),
       record_budget_(kDefaultRecordBudget),
-      scan_(rt),
-      radix_(rt) {
+      scan_(rt, compute::Options{shape_}),
+      radix_(rt, compute::Options{shape_}) {
   program_ = rt.programs().build("cluster_assign.cl", {{"LEAF_SIZE", std::to_string(leaf_size_) + "u"},
                                                       {"MORTON_AXIS_BITS", std::to_string(kMortonAxisBits) + "u"}});
+  // Kernels that serve both shapes (a work-item per light or cluster).
   view_ = cl::Kernel(program_, "light_view");
   boxes_ = cl::Kernel(program_, "cluster_boxes");
-  pixel_boxes_ = cl::Kernel(program_, "cluster_pixel_boxes");
   morton_ = cl::Kernel(program_, "light_morton");
-  pack_ = cl::Kernel(program_, "pack_leaves");
-  level_ = cl::Kernel(program_, "bvh_level");
-  blocks_ = cl::Kernel(program_, "node_blocks");
-  bounds_part_ = cl::Kernel(program_, "light_bounds_partial");
-  bounds_final_ = cl::Kernel(program_, "light_bounds_final");
-  count_k_ = cl::Kernel(program_, "assign_count");
   order_k_ = cl::Kernel(program_, "cluster_order");
-  fill_k_ = cl::Kernel(program_, "assign_fill");
+  finish_ = cl::Kernel(program_, "cluster_boxes_finish");
   // The tiled kernel's write_grid turns (offsets, counts) into LightRanges.
   keys_program_ = rt.programs().build("tiled_light_culling.cl", {{"TILE_SIZE", "16"}, {"DEPTH_MODE", "0"}});
   ranges_ = cl::Kernel(keys_program_, "write_grid");
-  const auto& ctx = rt.context();
-  block_start_ = cl::Buffer(ctx, CL_MEM_READ_ONLY, kMaxLevels * 4);
-  frame_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
+  // One kernel of each pass per shape.
+  auto shaped = [&](const std::string& name) { return cl::Kernel(program_, (gpu_ ? name + "_wg" : name).c_str()); };
+  pixel_boxes_ = shaped("cluster_pixel_boxes");
+  pack_ = shaped("pack_leaves");
+  level_ = shaped("bvh_level");
+  blocks_ = shaped("node_blocks");
+  bounds_part_ = shaped("light_bounds_partial");
+  bounds_final_ = shaped("light_bounds_final");
+  count_k_ = shaped("assign_count");
+  fill_k_ = shaped("assign_fill");
+  fitLocalSizes();
+  block_start_ = checkedBuffer(rt, CL_MEM_READ_ONLY, kMaxLevels * 4, "cluster BVH");
+  frame_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "cluster BVH");
   for (cl::Buffer* b :
        {&spheres_, &codes_, &ids_, &soa_, &leaf_ids_, &node_lo_, &node_hi_, &node_sph_, &node_soa_, &rec_leaf_,
         &rec_mask_, &order_codes_, &order_ids_})
-    *b = cl::Buffer(ctx, CL_MEM_READ_WRITE, 16);
+    *b = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "cluster BVH");
+}
+
+void ClusterLightAssigner::fitLocalSizes() {
+  const cl::Device& dev = rt_.device();
+  const DeviceInfo& info = rt_.info();
+  local_ = 1024;
+  for (const cl::Kernel* k : {&view_, &boxes_, &morton_, &order_k_, &finish_, &ranges_, &blocks_})
+    local_ = std::min(local_, elementLocalSize(*k, dev, info));
+  if (!gpu_) {
+    // CPU shape: every pass is a work-item per element (tile, chunk, leaf, node, cluster).
+    for (const cl::Kernel* k : {&pixel_boxes_, &pack_, &level_, &bounds_part_, &bounds_final_, &count_k_, &fill_k_})
+      local_ = std::min(local_, elementLocalSize(*k, dev, info));
+    pixel_local_ = red_local_ = leaf_local_ = node_local_ = walk_local_ = local_;
+    return;
+  }
+  // Group sizes the GPU kernels are written for (their __local arrays):
+  // PIX_WG, RED_WG, LEAF_SIZE and BVH_BRANCH (exact) items.
+  pixel_local_ = fitLocalSize(pixel_boxes_, dev, kGroupMax, 1, 0, "cluster_pixel_boxes_wg");
+  red_local_ = std::min(fitLocalSize(bounds_part_, dev, kGroupMax, 1, 0, "light_bounds_partial_wg"),
+                        fitLocalSize(bounds_final_, dev, kGroupMax, 1, 0, "light_bounds_final_wg"));
+  leaf_local_ = fitLocalSize(pack_, dev, leaf_size_, leaf_size_, 0, "pack_leaves_wg");
+  node_local_ = fitLocalSize(level_, dev, kBranch, kBranch, 0, "bvh_level_wg");
+  walk_local_ = std::min(fitLocalSize(count_k_, dev, kBranch, kBranch, 0, "assign_count_wg"),
+                         fitLocalSize(fill_k_, dev, kBranch, kBranch, 0, "assign_fill_wg"));
 }
 
 std::size_t ClusterLightAssigner::scratchBytes() const {
@@ -104,19 +138,17 @@ void ClusterLightAssigner::boxes(cl::CommandQueue& q, const gpu::CameraParams& c
                                  const cl::Buffer& unique_keys, std::uint32_t clusters, ClPassTimer* timer,
                                  const ClusterPixels* pixels) {
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
-  const auto& ctx = rt_.context();
   clusters_ = clusters;
   if (clusters + 1 > cluster_capacity_) {
     cluster_capacity_ = std::size_t(clusters) + clusters / 2 + 1;
-    box_lo_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 16);
-    box_hi_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 16);
-    counts_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 4);
-    offsets_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 4);
-    hit_leaves_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, cluster_capacity_ * 4);
+    for (cl::Buffer* b : {&box_lo_, &box_hi_})
+      *b = checkedBuffer(rt_, CL_MEM_READ_WRITE, cluster_capacity_ * 16, "cluster boxes");
+    for (cl::Buffer* b : {&counts_, &offsets_, &hit_leaves_})
+      *b = checkedBuffer(rt_, CL_MEM_READ_WRITE, cluster_capacity_ * 4, "cluster light counts");
   }
   if (g.slice_bounds.size() > bounds_capacity_) {
     bounds_capacity_ = g.slice_bounds.size();
-    bounds_ = cl::Buffer(ctx, CL_MEM_READ_ONLY, bounds_capacity_ * 4);
+    bounds_ = checkedBuffer(rt_, CL_MEM_READ_ONLY, bounds_capacity_ * 4, "cluster slice bounds");
   }
   q.enqueueWriteBuffer(bounds_, CL_FALSE, 0, g.slice_bounds.size() * 4, g.slice_bounds.data());
   if (clusters == 0) return;
@@ -124,23 +156,33 @@ void ClusterLightAssigner::boxes(cl::CommandQueue& q, const gpu::CameraParams& c
   order_grid_ = g;
   if (pixels) {
     const cl_uint n_tiles = g.tiles_x * g.tiles_y;
-    q.enqueueFillBuffer(box_lo_, cl_float4{{kInf, kInf, kInf, kInf}}, 0, std::size_t(clusters) * 16);
-    q.enqueueFillBuffer(box_hi_, cl_float4{{-kInf, -kInf, -kInf, -kInf}}, 0, std::size_t(clusters) * 16);
-    setArgs(pixel_boxes_, pixels->depth, pixels->cluster_of, cam, cl_uint(g.tile_size), cl_uint(g.tiles_x), n_tiles,
-            box_lo_, box_hi_);
-    q.enqueueNDRangeKernel(pixel_boxes_, cl::NullRange, cl::NDRange(n_tiles), cl::NullRange, nullptr,
-                           ev("cluster-boxes"));
+    const std::size_t bytes = std::size_t(clusters) * 16;
+    if (gpu_) {
+      // A work-group per tile reduces ordered ints; the finish pass widens them into floats.
+      q.enqueueFillBuffer(box_lo_, cl_int4{{kOrderedInf, kOrderedInf, kOrderedInf, 0}}, 0, bytes);
+      q.enqueueFillBuffer(box_hi_, cl_int4{{kOrderedNegInf, kOrderedNegInf, kOrderedNegInf, 0}}, 0, bytes);
+      setArgs(pixel_boxes_, pixels->depth, pixels->cluster_of, cam, cl_uint(g.tile_size), cl_uint(g.tiles_x), box_lo_,
+              box_hi_);
+      launch1d(q, pixel_boxes_, std::size_t(n_tiles) * pixel_local_, pixel_local_, ev("cluster-boxes"));
+      setArgs(finish_, box_lo_, box_hi_, clusters, cam);
+      launch1d(q, finish_, clusters, local_, ev("cluster-boxes"));
+    } else {
+      q.enqueueFillBuffer(box_lo_, cl_float4{{kInf, kInf, kInf, kInf}}, 0, bytes);
+      q.enqueueFillBuffer(box_hi_, cl_float4{{-kInf, -kInf, -kInf, -kInf}}, 0, bytes);
+      setArgs(pixel_boxes_, pixels->depth, pixels->cluster_of, cam, cl_uint(g.tile_size), cl_uint(g.tiles_x), n_tiles,
+              box_lo_, box_hi_);
+      launch1d(q, pixel_boxes_, n_tiles, pixel_local_, ev("cluster-boxes"));
+    }
   } else {
     setArgs(boxes_, unique_keys, cl_uint(clusters), cam, bounds_, cl_uint(g.tile_size), cl_uint(g.x_bits),
             cl_uint(g.k_bits), box_lo_, box_hi_);
-    q.enqueueNDRangeKernel(boxes_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr, ev("cluster-boxes"));
+    launch1d(q, boxes_, clusters, local_, ev("cluster-boxes"));
   }
 }
 
 std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n,
                                            const gpu::CameraParams& cam, ClPassTimer* timer) {
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
-  const auto& ctx = rt_.context();
   const std::uint32_t clusters = clusters_;
   n_ = n;
   bvh_ = method_ == ClusterAssignMethod::Bvh;
@@ -149,30 +191,28 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
   if (clusters == 0) return 0;
   if (n > light_capacity_) {
     light_capacity_ = std::size_t(n) + n / 2;
-    spheres_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 16);
-    codes_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
-    ids_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, light_capacity_ * 4);
+    spheres_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, light_capacity_ * 16, "clustered light assignment");
+    codes_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, light_capacity_ * 4, "clustered light assignment");
+    ids_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, light_capacity_ * 4, "clustered light assignment");
   }
   n_leaves_ = (n + leaf_size_ - 1) / leaf_size_;
   if (n > 0) {
     setArgs(view_, lights, n, cam, spheres_);
-    q.enqueueNDRangeKernel(view_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-light-view"));
+    launch1d(q, view_, n, local_, ev("cluster-light-view"));
     if (bvh_) {
       // Morton frame: the bounding cube of the light centres, on the device.
       const std::uint32_t parts = (n + kMortonChunk - 1) / kMortonChunk;
       if (parts > part_capacity_) {
         part_capacity_ = std::size_t(parts) + parts / 2;
-        part_lo_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, part_capacity_ * 16);
-        part_hi_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, part_capacity_ * 16);
+        part_lo_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, part_capacity_ * 16, "clustered light assignment");
+        part_hi_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, part_capacity_ * 16, "clustered light assignment");
       }
       setArgs(bounds_part_, spheres_, n, part_lo_, part_hi_);
-      q.enqueueNDRangeKernel(bounds_part_, cl::NullRange, cl::NDRange(parts), cl::NullRange, nullptr,
-                             ev("cluster-light-bounds"));
+      launchShaped(q, bounds_part_, parts, red_local_, ev("cluster-light-bounds"));
       setArgs(bounds_final_, part_lo_, part_hi_, parts, frame_);
-      q.enqueueNDRangeKernel(bounds_final_, cl::NullRange, cl::NDRange(1), cl::NullRange, nullptr,
-                             ev("cluster-light-bounds"));
+      launchShaped(q, bounds_final_, 1, red_local_, ev("cluster-light-bounds"));
       setArgs(morton_, spheres_, n, frame_, codes_, ids_);
-      q.enqueueNDRangeKernel(morton_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-morton"));
+      launch1d(q, morton_, n, local_, ev("cluster-morton"));
       radix_.sort(q, codes_, &ids_, n, 3 * kMortonAxisBits, timer);
     }
     packLeaves(q, n, bvh_, timer);
@@ -182,13 +222,28 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
   slots_ = std::uint32_t(std::min<std::size_t>(n_leaves_, std::max<std::size_t>(1, record_budget_ / clusters)));
   if (std::size_t(clusters) * slots_ > record_capacity_) {
     record_capacity_ = std::size_t(clusters) * slots_;
-    rec_leaf_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, record_capacity_ * 4);
-    rec_mask_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, record_capacity_ * 4);
+    rec_leaf_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, record_capacity_ * 4, "clustered light assignment");
+    rec_mask_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, record_capacity_ * 4, "clustered light assignment");
   }
   setAssignArgs(count_k_, rec_leaf_, rec_mask_, slots_, hit_leaves_, counts_, order_ids_, cl_uint(use_order_));
-  q.enqueueNDRangeKernel(count_k_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr,
-                         ev("cluster-assign-count"));
-  return scan_.exclusiveTotal(q, hit_leaves_, offsets_, clusters, timer);
+  launchShaped(q, count_k_, clusters, walk_local_, ev("cluster-assign-count"));
+  const std::uint32_t records = scan_.exclusiveTotal(q, hit_leaves_, offsets_, clusters, timer);
+  // The scan wraps mod 2^32; where clusters x leaves could pass that, the
+  // records are summed again in 64 bits, and too many are an error, not a wrap.
+  if (std::uint64_t(clusters) * n_leaves_ > 0xffffffffull) {
+    const std::uint64_t total = sumOver(q, hit_leaves_);
+    if (total > 0xffffffffull)
+      throw UserError("clustered shading: the cluster light lists need " + std::to_string(total) +
+                      " records, more than 32-bit offsets reach (fewer --lights or a smaller --size)");
+  }
+  return records;
+}
+
+// GPU shape: a work-group of `group` items per element; CPU: a work-item per element.
+void ClusterLightAssigner::launchShaped(cl::CommandQueue& q, const cl::Kernel& k, std::size_t elements,
+                                        std::size_t group, cl::Event* event) const {
+  if (gpu_) launch1d(q, k, elements * group, group, event);
+  else launch1d(q, k, elements, local_, event);
 }
 
 void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer) {
@@ -196,8 +251,8 @@ void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool
   const std::uint32_t n_leaves = (n + leaf_size_ - 1) / leaf_size_;
   if (n_leaves > leaf_capacity_) {
     leaf_capacity_ = std::size_t(n_leaves) + n_leaves / 2;
-    soa_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, leaf_capacity_ * leaf_size_ * 16);
-    leaf_ids_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, leaf_capacity_ * leaf_size_ * 4);
+    soa_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, leaf_capacity_ * leaf_size_ * 16, "cluster BVH leaves");
+    leaf_ids_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, leaf_capacity_ * leaf_size_ * 4, "cluster BVH leaves");
   }
   std::vector<cl_uint> start, count, block_start;
   std::uint32_t total = 0, blocks = 0;
@@ -216,28 +271,26 @@ void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool
     if (levels_ > kMaxLevels) throw UserError("clustered: too many lights for the BVH stack");
     if (total > node_capacity_) {
       node_capacity_ = std::size_t(total) + total / 2;
-      node_lo_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
-      node_hi_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
-      node_sph_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, node_capacity_ * 16);
+      node_lo_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, node_capacity_ * 16, "clustered light assignment");
+      node_hi_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, node_capacity_ * 16, "clustered light assignment");
+      node_sph_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, node_capacity_ * 16, "clustered light assignment");
     }
     if (blocks > block_capacity_) {
       block_capacity_ = std::size_t(blocks) + blocks / 2;
-      node_soa_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, block_capacity_ * kBranch * kNodeFloats * 4);
+      node_soa_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, block_capacity_ * kBranch * kNodeFloats * 4, "cluster BVH");
     }
     q.enqueueWriteBuffer(block_start_, CL_TRUE, 0, levels_ * 4, block_start.data());
   }
   setArgs(pack_, spheres_, ids_, cl_uint(bvh), n, soa_, leaf_ids_, node_lo_, node_hi_, node_sph_, cl_uint(bvh));
-  q.enqueueNDRangeKernel(pack_, cl::NullRange, cl::NDRange(n_leaves), cl::NullRange, nullptr,
-                         ev(bvh ? "cluster-bvh-leaves" : "cluster-pack-leaves"));
+  launchShaped(q, pack_, n_leaves, leaf_local_, ev(bvh ? "cluster-bvh-leaves" : "cluster-pack-leaves"));
   for (unsigned l = 1; l < levels_; ++l) {
     setArgs(level_, node_lo_, node_hi_, node_sph_, start[l - 1], count[l - 1], start[l]);
-    q.enqueueNDRangeKernel(level_, cl::NullRange, cl::NDRange(count[l]), cl::NullRange, nullptr, ev("cluster-bvh-level"));
+    launchShaped(q, level_, count[l], node_local_, ev("cluster-bvh-level"));
   }
   for (unsigned l = 0; l < levels_; ++l) {
     const std::uint32_t n_blocks = (count[l] + kBranch - 1) / kBranch;
     setArgs(blocks_, node_lo_, node_hi_, node_sph_, start[l], count[l], block_start[l], node_soa_);
-    q.enqueueNDRangeKernel(blocks_, cl::NullRange, cl::NDRange(n_blocks), cl::NullRange, nullptr,
-                           ev("cluster-bvh-blocks"));
+    launch1d(q, blocks_, gpu_ ? std::size_t(n_blocks) * kBranch : n_blocks, local_, ev("cluster-bvh-blocks"));
   }
 }
 
@@ -248,12 +301,11 @@ void ClusterLightAssigner::orderClusters(cl::CommandQueue& q, std::uint32_t clus
   if (!use_order_) return;
   if (clusters > order_capacity_) {
     order_capacity_ = std::size_t(clusters) + clusters / 2;
-    order_codes_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, order_capacity_ * 4);
-    order_ids_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, order_capacity_ * 4);
+    order_codes_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, order_capacity_ * 4, "clustered light assignment");
+    order_ids_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, order_capacity_ * 4, "clustered light assignment");
   }
   setArgs(order_k_, order_keys_, clusters, cl_uint(g.x_bits), cl_uint(g.k_bits), order_codes_, order_ids_);
-  q.enqueueNDRangeKernel(order_k_, cl::NullRange, cl::NDRange(clusters), cl::NullRange, nullptr,
-                         timer ? timer->next("cluster-order") : nullptr);
+  launch1d(q, order_k_, clusters, local_, timer ? timer->next("cluster-order") : nullptr);
   radix_.sort(q, order_codes_, &order_ids_, clusters, tile_bits + g.k_bits, timer);
 }
 
@@ -271,11 +323,9 @@ void ClusterLightAssigner::fill(cl::CommandQueue& q, cl::Buffer& ranges, cl::Buf
   if (clusters_ == 0) return;
   setAssignArgs(fill_k_, rec_leaf_, rec_mask_, slots_, hit_leaves_, offsets_, records, order_ids_,
                 cl_uint(use_order_));
-  q.enqueueNDRangeKernel(fill_k_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr,
-                         timer ? timer->next("cluster-assign-fill") : nullptr);
+  launchShaped(q, fill_k_, clusters_, walk_local_, timer ? timer->next("cluster-assign-fill") : nullptr);
   setArgs(ranges_, offsets_, hit_leaves_, clusters_, ranges);
-  q.enqueueNDRangeKernel(ranges_, cl::NullRange, cl::NDRange(clusters_), cl::NullRange, nullptr,
-                         timer ? timer->next("cluster-ranges") : nullptr);
+  launch1d(q, ranges_, clusters_, local_, timer ? timer->next("cluster-ranges") : nullptr);
   if (leafLightSlots() > 0)
     q.enqueueCopyBuffer(leaf_ids_, leaf_lights, 0, 0, leafLightSlots() * 4, nullptr,
                         timer ? timer->next("cluster-leaf-lights") : nullptr);

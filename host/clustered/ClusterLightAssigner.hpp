@@ -26,6 +26,12 @@
 // -> fill and never truncate: count() records each cluster's hit leaves
 // in a bounded scratch, fill() copies them into place and walks again only
 // for clusters whose hits did not fit. Not thread-safe.
+//
+// Kernel shape (--kernel-shape): CpuChunked runs a work-item per tile, chunk,
+// leaf, node or cluster (PoCL runs each as a plain loop); GpuWorkGroup runs a
+// work-group per tile, chunk, leaf, node or cluster (32 work-items walking the
+// BVH together through local memory). Both build the same boxes, tree and
+// records in the same order; Auto picks by device type.
 #include <CL/opencl.hpp>
 
 #include <cstdint>
@@ -34,6 +40,7 @@
 
 #include "host/cl/ClPassTimer.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/cl/KernelLimits.hpp"
 #include "host/clustered/ClusterGeometry.hpp"
 #include "host/compute/RadixSort.hpp"
 #include "host/compute/Scan.hpp"
@@ -63,7 +70,8 @@ class ClusterLightAssigner {
   // leaf_size: lights per leaf, 8, 16 or 32 (UserError otherwise). Smaller
   // leaves test fewer lights that miss but make the walk longer; on PoCL 32 is
   // the fastest (bench/RESULTS-clustered.md), and it is a warp on a GPU.
-  ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method, unsigned leaf_size = 32);
+  ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method, unsigned leaf_size = 32,
+                       KernelShape shape = KernelShape::Auto);
 
   // boxes() then assign(). pixels: explicit bounds from these pixels; null: sub-frustum bounds.
   std::uint32_t count(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n, const gpu::CameraParams& cam,
@@ -87,6 +95,7 @@ class ClusterLightAssigner {
   void setMethod(ClusterAssignMethod m) { method_ = m; }
   unsigned bvhLevels() const { return levels_; }
   unsigned leafSize() const { return leaf_size_; }
+  KernelShape shape() const { return shape_; }  // resolved, never Auto
   // The last count()'s boxes (lo, hi as x, y, z(distance), 0), for tests.
   const cl::Buffer& boxLo() const { return box_lo_; }
   const cl::Buffer& boxHi() const { return box_hi_; }
@@ -103,6 +112,9 @@ class ClusterLightAssigner {
   void setClusterOrder(bool morton) { cluster_order_ = morton; }
 
  private:
+  void fitLocalSizes();
+  void launchShaped(cl::CommandQueue& q, const cl::Kernel& k, std::size_t elements, std::size_t group,
+                    cl::Event* event) const;
   void packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer);
   template <typename... Rest>
   void setAssignArgs(cl::Kernel& k, const Rest&... rest);
@@ -112,9 +124,14 @@ class ClusterLightAssigner {
   ClRuntime& rt_;
   ClusterAssignMethod method_;
   unsigned leaf_size_;
+  KernelShape shape_;
+  bool gpu_ = false;
   cl::Program program_, keys_program_;
   cl::Kernel view_, boxes_, pixel_boxes_, morton_, pack_, level_, blocks_, count_k_, fill_k_, ranges_;
-  cl::Kernel bounds_part_, bounds_final_, order_k_;
+  cl::Kernel bounds_part_, bounds_final_, order_k_, finish_;
+  // Work-group sizes: per-element kernels, and the GPU shape's groups (per
+  // tile, reduction, leaf, node, cluster), fitted to each kernel's limits.
+  std::size_t local_ = 1, pixel_local_ = 1, red_local_ = 1, leaf_local_ = 1, node_local_ = 1, walk_local_ = 1;
   cl::Buffer order_codes_, order_ids_, order_keys_;
   ClusterGrid order_grid_;
   std::size_t order_capacity_ = 0;

@@ -25,9 +25,20 @@ const char* uniqueMethodName(UniqueMethod m) {
   return "?";
 }
 
-ClusterUniquer::ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page_bits)
-    : rt_(rt), method_(method), page_bits_(page_bits), scan_(rt), compact_(rt), radix_(rt), segsort_(rt) {
+ClusterUniquer::ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page_bits, KernelShape shape)
+    : rt_(rt),
+      method_(method),
+      shape_(resolveKernelShape(rt.info(), shape)),
+      page_bits_(page_bits),
+      scan_(rt, compute::Options{shape_}),
+      compact_(rt, compute::Options{shape_}),
+      radix_(rt, compute::Options{shape_}),
+      segsort_(rt, compute::Options{shape_}) {
   if (page_bits < 1 || page_bits > 16) throw std::invalid_argument("ClusterUniquer: page_bits must be 1..16");
+  // Every kernel of cluster_keys.cl is one work-item per pixel, page, slot or
+  // sorted element, reading and writing consecutive elements: that suits a GPU
+  // as it is and PoCL vectorizes it across work-items, so one shape serves both;
+  // the shape reaches the primitives (scan, compaction, sorts).
   program_ = rt.programs().build("cluster_keys.cl");
   keys_k_ = cl::Kernel(program_, "cluster_keys");
   mark_ = cl::Kernel(program_, "page_mark");
@@ -39,15 +50,18 @@ ClusterUniquer::ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page
   gather_ = cl::Kernel(program_, "tile_gather");
   heads_ = cl::Kernel(program_, "head_flags");
   scatter_ = cl::Kernel(program_, "run_scatter");
+  local_ = 1024;
+  for (const cl::Kernel* k : {&keys_k_, &mark_, &store_, &inverse_, &page_unique_, &page_map_, &sort_init_, &gather_,
+                              &heads_, &scatter_})
+    local_ = std::min(local_, elementLocalSize(*k, rt.device(), rt.info()));
 }
 
 void ClusterUniquer::ensurePixels(std::size_t n) {
   if (n <= pixel_capacity_) return;
   pixel_capacity_ = n;
-  const auto& ctx = rt_.context();
   const std::size_t bytes = std::max<std::size_t>(16, n * 4);
   for (cl::Buffer* b : {&keys_, &unique_keys_, &cluster_of_, &sort_keys_, &sort_vals_, &flags_, &rank_})
-    *b = cl::Buffer(ctx, CL_MEM_READ_WRITE, bytes);
+    *b = checkedBuffer(rt_, CL_MEM_READ_WRITE, bytes, "clustered shading per-pixel buffers");
 }
 
 std::size_t ClusterUniquer::scratchBytes() const {
@@ -62,13 +76,12 @@ void ClusterUniquer::keys(cl::CommandQueue& q, const cl::Buffer& depth, const gp
   ensurePixels(n);
   if (g.slice_bounds.size() > bounds_capacity_) {
     bounds_capacity_ = g.slice_bounds.size();
-    bounds_ = cl::Buffer(rt_.context(), CL_MEM_READ_ONLY, bounds_capacity_ * 4);
+    bounds_ = checkedBuffer(rt_, CL_MEM_READ_ONLY, bounds_capacity_ * 4, "clustered shading unique clusters");
   }
   q.enqueueWriteBuffer(bounds_, CL_FALSE, 0, g.slice_bounds.size() * 4, g.slice_bounds.data());
   setArgs(keys_k_, depth, cam, bounds_, cl_uint(g.slices), cl_uint(g.tile_size), cl_uint(g.x_bits), cl_uint(g.k_bits),
           keys_);
-  q.enqueueNDRangeKernel(keys_k_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr,
-                         timer ? timer->next("cluster-keys") : nullptr);
+  launch1d(q, keys_k_, n, local_, timer ? timer->next("cluster-keys") : nullptr);
 }
 
 void ClusterUniquer::setKeys(cl::CommandQueue& q, const std::vector<std::uint32_t>& keys, const ClusterGrid& g) {
@@ -99,14 +112,13 @@ std::uint32_t ClusterUniquer::uniquePageTable(cl::CommandQueue& q, const Cluster
   const std::size_t n_pages = key_space >> pb;
   if (n_pages > page_capacity_) {
     page_capacity_ = n_pages;
-    const auto& ctx = rt_.context();
-    marks_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n_pages * 4);
-    page_table_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n_pages * 4);
-    phys_to_virt_ = cl::Buffer(ctx, CL_MEM_READ_WRITE, n_pages * 4);
+    marks_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n_pages * 4, "clustered shading unique clusters");
+    page_table_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n_pages * 4, "clustered shading unique clusters");
+    phys_to_virt_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n_pages * 4, "clustered shading unique clusters");
   }
   q.enqueueFillBuffer(marks_, cl_uint(0), 0, n_pages * 4);
   setArgs(mark_, keys_, cl_uint(n), cl_uint(pb), marks_);
-  q.enqueueNDRangeKernel(mark_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-page-mark"));
+  launch1d(q, mark_, n, local_, ev("cluster-page-mark"));
   const std::uint32_t used_pages = scan_.exclusiveTotal(q, marks_, page_table_, n_pages, timer);
   if (used_pages == 0) {
     q.enqueueFillBuffer(map, kClusterInvalid, 0, n * 4);
@@ -116,23 +128,21 @@ std::uint32_t ClusterUniquer::uniquePageTable(cl::CommandQueue& q, const Cluster
   const std::size_t n_slots = std::size_t(used_pages) << pb;
   if (n_slots > slot_capacity_) {
     slot_capacity_ = n_slots;
-    slots_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, n_slots * 4);
-    used_slots_ = cl::Buffer(rt_.context(), CL_MEM_READ_WRITE, n_slots * 4);
+    slots_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n_slots * 4, "clustered shading unique clusters");
+    used_slots_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n_slots * 4, "clustered shading unique clusters");
   }
   q.enqueueFillBuffer(slots_, cl_uint(0), 0, n_slots * 4);
   setArgs(store_, keys_, cl_uint(n), cl_uint(pb), page_table_, slots_);
-  q.enqueueNDRangeKernel(store_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-page-store"));
+  launch1d(q, store_, n, local_, ev("cluster-page-store"));
   setArgs(inverse_, marks_, page_table_, cl_uint(n_pages), phys_to_virt_);
-  q.enqueueNDRangeKernel(inverse_, cl::NullRange, cl::NDRange(n_pages), cl::NullRange, nullptr,
-                         ev("cluster-page-inverse"));
+  launch1d(q, inverse_, n_pages, local_, ev("cluster-page-inverse"));
   const auto count = std::uint32_t(compact_.compactIndices(q, slots_, used_slots_, n_slots, timer));
   if (count > 0) {
     setArgs(page_unique_, used_slots_, cl_uint(count), cl_uint(pb), phys_to_virt_, unique_keys_, slots_);
-    q.enqueueNDRangeKernel(page_unique_, cl::NullRange, cl::NDRange(count), cl::NullRange, nullptr,
-                           ev("cluster-page-unique"));
+    launch1d(q, page_unique_, count, local_, ev("cluster-page-unique"));
   }
   setArgs(page_map_, keys_, cl_uint(n), cl_uint(pb), page_table_, slots_, map);
-  q.enqueueNDRangeKernel(page_map_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-page-map"));
+  launch1d(q, page_map_, n, local_, ev("cluster-page-map"));
   return count;
 }
 
@@ -143,7 +153,8 @@ std::uint32_t ClusterUniquer::uniqueSorted(cl::CommandQueue& q, const ClusterGri
     const std::size_t n_tiles = std::size_t(g.tiles_x) * g.tiles_y;
     if (n_tiles + 1 > tile_offsets_capacity_) {
       tile_offsets_capacity_ = n_tiles + 1;
-      tile_offsets_ = cl::Buffer(rt_.context(), CL_MEM_READ_ONLY, tile_offsets_capacity_ * 4);
+      tile_offsets_ =
+          checkedBuffer(rt_, CL_MEM_READ_ONLY, tile_offsets_capacity_ * 4, "clustered shading tile offsets");
       offsets_for_w_ = 0;
     }
     if (offsets_for_w_ != g.width || offsets_for_h_ != g.height || offsets_for_tile_ != g.tile_size) {
@@ -155,19 +166,19 @@ std::uint32_t ClusterUniquer::uniqueSorted(cl::CommandQueue& q, const ClusterGri
     }
     setArgs(gather_, keys_, cl_uint(g.width), cl_uint(g.height), cl_uint(g.tile_size), cl_uint(g.tiles_x),
             tile_offsets_, sort_keys_, sort_vals_);
-    q.enqueueNDRangeKernel(gather_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-tile-gather"));
+    launch1d(q, gather_, n, local_, ev("cluster-tile-gather"));
     segsort_.sort(q, sort_keys_, &sort_vals_, n, tile_offsets_, n_tiles, timer);
   } else {
     setArgs(sort_init_, keys_, cl_uint(n), sort_keys_, sort_vals_);
-    q.enqueueNDRangeKernel(sort_init_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-sort-init"));
+    launch1d(q, sort_init_, n, local_, ev("cluster-sort-init"));
     // One bit above the key so that sky (all ones) sorts after every cluster.
     radix_.sort(q, sort_keys_, &sort_vals_, n, std::min(32u, g.keyBits() + 1), timer);
   }
   setArgs(heads_, sort_keys_, cl_uint(n), flags_);
-  q.enqueueNDRangeKernel(heads_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-heads"));
+  launch1d(q, heads_, n, local_, ev("cluster-heads"));
   const std::uint32_t count = scan_.exclusiveTotal(q, flags_, rank_, n, timer);
   setArgs(scatter_, sort_keys_, sort_vals_, cl_uint(n), flags_, rank_, unique_keys_, map);
-  q.enqueueNDRangeKernel(scatter_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, ev("cluster-scatter"));
+  launch1d(q, scatter_, n, local_, ev("cluster-scatter"));
   return count;
 }
 

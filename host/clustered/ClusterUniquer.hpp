@@ -26,6 +26,7 @@
 
 #include "host/cl/ClPassTimer.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/cl/KernelLimits.hpp"
 #include "host/clustered/ClusterGeometry.hpp"
 #include "host/compute/Compact.hpp"
 #include "host/compute/RadixSort.hpp"
@@ -40,7 +41,7 @@ const char* uniqueMethodName(UniqueMethod m);
 
 class ClusterUniquer {
  public:
-  ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page_bits = 6);
+  ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page_bits = 6, KernelShape shape = KernelShape::Auto);
 
   // depth: window floats (cam.width x cam.height, row 0 bottom).
   void keys(cl::CommandQueue& q, const cl::Buffer& depth, const gpu::CameraParams& cam, const ClusterGrid& g,
@@ -56,6 +57,7 @@ class ClusterUniquer {
   const cl::Buffer& uniqueKeys() const { return unique_keys_; }
   const cl::Buffer& clusterOf() const { return cluster_of_; }
   UniqueMethod method() const { return method_; }
+  KernelShape shape() const { return shape_; }  // resolved, never Auto
   void setMethod(UniqueMethod m) { method_ = m; }
   std::size_t scratchBytes() const;
 
@@ -68,6 +70,8 @@ class ClusterUniquer {
 
   ClRuntime& rt_;
   UniqueMethod method_;
+  KernelShape shape_;
+  std::size_t local_ = 1;  // every kernel here is one work-item per element
   unsigned page_bits_;
   cl::Program program_;
   cl::Kernel keys_k_, mark_, store_, inverse_, page_unique_, page_map_, sort_init_, gather_, heads_, scatter_;

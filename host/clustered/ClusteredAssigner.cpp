@@ -6,8 +6,8 @@
 namespace ml {
 
 ClusteredAssigner::ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMethod unique,
-                                     ClusterAssignMethod assign, ClusterBounds bounds)
-    : rt_(rt), tile_size_(tile_size), bounds_(bounds), uniquer_(rt, unique), lights_(rt, assign) {
+                                     ClusterAssignMethod assign, ClusterBounds bounds, KernelShape shape)
+    : rt_(rt), tile_size_(tile_size), bounds_(bounds), uniquer_(rt, unique, 6, shape), lights_(rt, assign, 32, shape) {
   ranges_ = std::make_unique<SharedBuffer>(rt, 4096 * sizeof(gpu::LightRange), "cluster light ranges");
   records_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(cl_uint2), "cluster light records");
   leaf_lights_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(std::uint32_t), "cluster leaf lights");

@@ -24,7 +24,7 @@ class ClusteredAssigner final : public LightAssigner {
  public:
   // tile_size 0: autoClusterTile() of each frame's viewport.
   ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMethod unique, ClusterAssignMethod assign,
-                    ClusterBounds bounds = ClusterBounds::Pixels);
+                    ClusterBounds bounds = ClusterBounds::Pixels, KernelShape shape = KernelShape::Auto);
   std::string name() const override { return "clustered"; }
   bool needsDepth() const override { return true; }
   void assign(const FrameInputs& in) override;

@@ -9,14 +9,22 @@
 //
 // count() blocks twice (for the size of the per-light hit masks and for the
 // list total): everything is sized from those, so nothing can overflow or be
-// truncated. The order inside a tile's
-// list is unspecified (atomics).
+// truncated. Totals that could pass 2^32 (lights x tiles, e.g. 1M lights at
+// 4K) are summed again in 64 bits; a list or mask that 32-bit offsets or the
+// device's largest allocation cannot hold is a UserError, never a wrap. The
+// order inside a tile's list is unspecified (atomics).
+//
+// Kernel shape (KernelShape, --kernel-shape): CpuChunked walks a light's
+// rectangle (or a tile's pixels) per work-item; GpuWorkGroup gives each
+// (light, tile) pair a work-item and each tile's depth a work-group. Both give
+// the same grid and the same lists up to order; Auto picks by device type.
 #include <CL/opencl.hpp>
 
 #include <cstdint>
 
 #include "host/cl/ClPassTimer.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/cl/KernelLimits.hpp"
 #include "host/compute/Scan.hpp"
 #include "host/tiled/TileGeometry.hpp"
 
@@ -24,7 +32,7 @@ namespace ml {
 
 class TileLightCuller {
  public:
-  TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMode mode);
+  TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape = KernelShape::Auto);
 
   // depth: window-space floats (cam.width x cam.height, row 0 bottom); may be
   // null only when the mode is None.
@@ -36,19 +44,26 @@ class TileLightCuller {
 
   const TileGrid& tileGrid() const { return grid_; }
   TileDepthMode mode() const { return mode_; }
+  KernelShape shape() const { return shape_; }  // resolved, never Auto
   std::size_t scratchBytes() const;
 
  private:
   void ensureTiles(const gpu::CameraParams& cam);
+  void ensureLights(std::uint32_t n);
+  std::uint64_t exactTotal(cl::CommandQueue& q, const cl::Buffer& values, std::size_t n, std::uint32_t wrapped,
+                           std::uint64_t per_item_max) const;
   ClRuntime& rt_;
   TileDepthMode mode_;
   TileGrid grid_;
+  KernelShape shape_;
   bool gpu_shape_;
+  std::size_t bounds_local_ = 1, element_local_ = 1, mark_local_ = 32, rects_local_ = 1, grid_local_ = 1;
   cl::Program program_;
   cl::Kernel bounds_, rects_k_, mark_, scatter_, write_grid_;
   cl::Buffer tile_bounds_, tile_masks_, counts_, offsets_, cursor_;
   cl::Buffer rects_, mask_words_, mask_offsets_, hit_masks_;
   std::size_t tile_capacity_ = 0, light_capacity_ = 0, mask_capacity_ = 0;
+  std::uint32_t words_ = 0;  // hit-mask words of the last count()
   compute::Scanner scan_;
 };
 

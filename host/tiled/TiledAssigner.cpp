@@ -5,8 +5,8 @@
 
 namespace ml {
 
-TiledAssigner::TiledAssigner(ClRuntime& rt, unsigned tile_size, TileDepthMode mode)
-    : rt_(rt), culler_(rt, tile_size, mode) {
+TiledAssigner::TiledAssigner(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape)
+    : rt_(rt), culler_(rt, tile_size, mode, shape) {
   grid_ = std::make_unique<SharedBuffer>(rt, 4096 * sizeof(gpu::LightRange), "tile light grid");
   indices_ = std::make_unique<SharedBuffer>(rt, 65536 * sizeof(std::uint32_t), "tile light indices");
 }

@@ -12,7 +12,7 @@ namespace ml {
 
 class TiledAssigner final : public LightAssigner {
  public:
-  TiledAssigner(ClRuntime& rt, unsigned tile_size, TileDepthMode mode);
+  TiledAssigner(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape = KernelShape::Auto);
   std::string name() const override { return "tiled"; }
   bool needsDepth() const override { return culler_.mode() != TileDepthMode::None; }
   void assign(const FrameInputs& in) override;
