@@ -267,7 +267,7 @@ std::unique_ptr<ClRuntime> ClRuntime::create(DeviceChoice choice, const GlShareH
     refuseSoftwareGlBesideGpu(*gl, rt->info_);
   }
   std::string failure;
-  if (with_gl && gl_device && gl_device != pick)
+  if (with_gl && gl_device && gl_device != pick && share_env != "copy" && share_env != "hostptr")
     failure = "the GL context runs on '" + gl_device->info.name + "', not on the chosen OpenCL device";
   try {
     rt->createContext(with_gl && failure.empty() ? gl : nullptr, share_env);
