@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,9 @@ class EglContext final : public GlContext {
     GlShareHandles h;
     h.egl_display = display_;
     h.egl_context = context_;
+    const GLubyte* r = glGetString(GL_RENDERER);
+    h.renderer = r ? reinterpret_cast<const char*>(r) : "";
+    deviceIdentity(h);
     return h;
   }
 
@@ -134,6 +138,46 @@ class EglContext final : public GlContext {
       display_ = EGL_NO_DISPLAY;
     }
   }
+
+  // The EGL device behind the display (EGL_EXT_device_query), its DRM node
+  // and PCI id (EGL_EXT_device_drm, sysfs) and UUID (EGL_EXT_device_persistent_id),
+  // for matching with the CL device; fields stay empty where not offered.
+  void deviceIdentity(GlShareHandles& h) const {
+    const char* client_ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!client_ext || !std::strstr(client_ext, "EGL_EXT_device_query")) return;
+    EGLAttrib attrib = 0;
+    if (!eglQueryDisplayAttribEXT(display_, EGL_DEVICE_EXT, &attrib) || !attrib) return;
+    auto device = reinterpret_cast<EGLDeviceEXT>(attrib);
+    const char* dev_ext = eglQueryDeviceStringEXT(device, EGL_EXTENSIONS);
+    if (!dev_ext) return;
+    const char* node = nullptr;
+    if (std::strstr(dev_ext, "EGL_EXT_device_drm_render_node")) node = eglQueryDeviceStringEXT(device, kEglDrmRenderNode);
+    if (!node && std::strstr(dev_ext, "EGL_EXT_device_drm")) node = eglQueryDeviceStringEXT(device, EGL_DRM_DEVICE_FILE_EXT);
+    if (node) {
+      h.drm_node = node;
+      h.pci_bus_id = pciBusIdOf(node);
+    }
+    using QueryBinary = EGLBoolean (*)(EGLDeviceEXT, EGLint, EGLint, void*, EGLint*);
+    auto query_binary = reinterpret_cast<QueryBinary>(eglGetProcAddress("eglQueryDeviceBinaryEXT"));
+    EGLint size = 0;
+    std::vector<unsigned char> uuid(16);
+    if (std::strstr(dev_ext, "EGL_EXT_device_persistent_id") && query_binary &&
+        query_binary(device, kEglDeviceUuid, EGLint(uuid.size()), uuid.data(), &size) && size == 16)
+      h.device_uuid = uuid;
+  }
+
+  // "/dev/dri/renderD128" -> "0000:01:00.0" through /sys/class/drm/<node>/device; empty if not PCI.
+  static std::string pciBusIdOf(const std::string& node) {
+    std::error_code ec;
+    const auto name = std::filesystem::path(node).filename();
+    const auto dev = std::filesystem::canonical(std::filesystem::path("/sys/class/drm") / name / "device", ec);
+    if (ec) return {};
+    const std::string id = dev.filename().string();  // PCI: dddd:bb:dd.f
+    return id.size() == 12 && id[4] == ':' && id[7] == ':' && id[10] == '.' ? id : std::string();
+  }
+
+  static constexpr EGLint kEglDrmRenderNode = 0x3377;  // EGL_DRM_RENDER_NODE_FILE_EXT
+  static constexpr EGLint kEglDeviceUuid = 0x335C;     // EGL_DEVICE_UUID_EXT
 
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;

@@ -148,8 +148,17 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
                  lights_changed_,
                  needs_depth ? depth_.get() : nullptr,
                  cl_timer_,
-                 result.passes};
-  assigner.assign(in);
+                 result.passes,
+                 &gl_timer_};
+  {
+    // Shared-buffer hand-overs (share-acquire/-release/-copy) land in this frame's passes.
+    struct ShareSink {
+      ClRuntime& rt;
+      ~ShareSink() { rt.setShareTimings(nullptr); }
+    } sink{cl_};
+    cl_.setShareTimings(&result.passes);
+    assigner.assign(in);
+  }
   lights_changed_ = false;
 
   // 3. Shading.

@@ -56,6 +56,8 @@ class GlfwContext final : public GlContext {
     // Debian's GLFW 3.3 is the X11 build; GLX handles are what CL-GL sharing needs there.
     h.glx_display = glfwGetX11Display();
     h.glx_context = h.glx_display ? glfwGetGLXContext(window_) : nullptr;
+    const GLubyte* r = glGetString(GL_RENDERER);
+    h.renderer = r ? reinterpret_cast<const char*>(r) : "";
     return h;
   }
   bool hasWindow() const override { return true; }

@@ -2,6 +2,7 @@
 
 #include <CL/cl_gl.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -13,32 +14,8 @@
 
 namespace ml {
 
-std::string shareModeName(ShareMode m) {
-  switch (m) {
-    case ShareMode::Interop: return "interop";
-    case ShareMode::HostPtr: return "hostptr";
-    case ShareMode::Copy: return "copy";
-  }
-  return "?";
-}
-
-ShareMode defaultShareMode(const ClRuntime& rt) {
-  if (const char* env = std::getenv("MANYLIGHTS_SHARE"); env && *env) {
-    std::string v = env;
-    if (v == "interop") {
-      if (!rt.glSharingActive())
-        throw UserError("MANYLIGHTS_SHARE=interop: the OpenCL device/context has no cl_khr_gl_sharing");
-      return ShareMode::Interop;
-    }
-    if (v == "hostptr") return ShareMode::HostPtr;
-    if (v == "copy") return ShareMode::Copy;
-    throw UserError("MANYLIGHTS_SHARE: expected interop, hostptr or copy, got '" + v + "'");
-  }
-  if (rt.glSharingActive()) return ShareMode::Interop;
-  // Zero-copy needs CL to read host memory directly, which only CPU devices do.
-  if (rt.info().isCpu()) return ShareMode::HostPtr;
-  return ShareMode::Copy;
-}
+// Decided once per runtime (ClRuntime::create: sharing, zero-copy check, $MANYLIGHTS_SHARE).
+ShareMode defaultShareMode(const ClRuntime& rt) { return rt.shareMode(); }
 
 SharedBuffer::SharedBuffer(ClRuntime& rt, std::size_t bytes, const std::string& label)
     : SharedBuffer(rt, bytes, label, defaultShareMode(rt)) {}
@@ -46,6 +23,7 @@ SharedBuffer::SharedBuffer(ClRuntime& rt, std::size_t bytes, const std::string& 
 SharedBuffer::SharedBuffer(ClRuntime& rt, std::size_t bytes, const std::string& label, ShareMode mode)
     : rt_(rt), label_(label), mode_(mode) {
   allocate(bytes);
+  used_ = bytes;
 }
 
 SharedBuffer::~SharedBuffer() { release(); }
@@ -101,35 +79,70 @@ void SharedBuffer::allocate(std::size_t bytes) {
 }
 
 bool SharedBuffer::reserve(std::size_t bytes) {
-  if (bytes <= bytes_) return false;
   if (acquired_) throw std::logic_error("SharedBuffer::reserve while acquired by CL: " + label_);
+  used_ = bytes;
+  if (bytes <= bytes_) return false;
   release();
   // Grow geometrically so per-frame growth (more lights in view) settles fast.
   allocate(bytes + bytes / 2);
   return true;
 }
 
+namespace {
+
+double nowMs() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Times one hand-over step on the host clock into the runtime's share timings
+// (set by the frame renderer around a timed frame; null otherwise).
+template <typename F>
+void timed(ClRuntime& rt, const char* pass, F&& step) {
+  PassTimings* sink = rt.shareTimings();
+  const double t0 = sink ? nowMs() : 0.0;
+  step();
+  if (sink) sink->add(pass, nowMs() - t0);
+}
+
+}  // namespace
+
+// Copy mode: the bytes in use, GL -> host -> CL (blocking: the host vector dies here).
+void SharedBuffer::copyGlToCl(cl::CommandQueue& queue) {
+  if (used_ == 0) return;
+  std::vector<unsigned char> tmp(used_);
+  glGetNamedBufferSubData(gl_, 0, static_cast<GLsizeiptr>(used_), tmp.data());
+  glCheck(("reading shared buffer " + label_).c_str());
+  queue.enqueueWriteBuffer(cl_, CL_TRUE, 0, used_, tmp.data());
+}
+
+void SharedBuffer::copyClToGl(cl::CommandQueue& queue) {
+  if (used_ == 0) return;
+  std::vector<unsigned char> tmp(used_);
+  queue.enqueueReadBuffer(cl_, CL_TRUE, 0, used_, tmp.data());
+  glNamedBufferSubData(gl_, 0, static_cast<GLsizeiptr>(used_), tmp.data());
+  glCheck(("writing shared buffer " + label_).c_str());
+}
+
+// share-acquire / share-release time the waits on the host clock: they include
+// device work still in flight (which its own pass counts too), so they show
+// what each hand-over holds the pipeline up, not extra device work.
 void SharedBuffer::acquireForCl(cl::CommandQueue& queue, ClAccess access) {
   if (acquired_) throw std::logic_error("SharedBuffer acquired twice: " + label_);
   access_ = access;
   switch (mode_) {
-    case ShareMode::Interop: {
-      glFinish();  // portable: GL must be done before clEnqueueAcquireGLObjects
-      std::vector<cl::Memory> objs{cl_};
-      queue.enqueueAcquireGLObjects(&objs);
+    case ShareMode::Interop:
+      timed(rt_, "share-acquire", [&] {
+        glFinish();  // portable: GL must be done before clEnqueueAcquireGLObjects
+        std::vector<cl::Memory> objs{cl_};
+        queue.enqueueAcquireGLObjects(&objs);
+      });
       break;
-    }
     case ShareMode::HostPtr:
       // Coherent persistent mapping: once GL's commands completed, the bytes are in place.
-      glFinish();
+      timed(rt_, "share-acquire", [] { glFinish(); });
       break;
     case ShareMode::Copy:
-      if (access != ClAccess::Write) {
-        std::vector<unsigned char> tmp(bytes_);
-        glGetNamedBufferSubData(gl_, 0, static_cast<GLsizeiptr>(bytes_), tmp.data());
-        glCheck(("reading shared buffer " + label_).c_str());
-        queue.enqueueWriteBuffer(cl_, CL_TRUE, 0, bytes_, tmp.data());
-      }
+      if (access != ClAccess::Write) timed(rt_, "share-copy", [&] { copyGlToCl(queue); });
       break;
   }
   acquired_ = true;
@@ -138,24 +151,20 @@ void SharedBuffer::acquireForCl(cl::CommandQueue& queue, ClAccess access) {
 void SharedBuffer::releaseToGl(cl::CommandQueue& queue) {
   if (!acquired_) throw std::logic_error("SharedBuffer released without acquire: " + label_);
   switch (mode_) {
-    case ShareMode::Interop: {
-      std::vector<cl::Memory> objs{cl_};
-      queue.enqueueReleaseGLObjects(&objs);
-      queue.finish();
+    case ShareMode::Interop:
+      timed(rt_, "share-release", [&] {
+        std::vector<cl::Memory> objs{cl_};
+        queue.enqueueReleaseGLObjects(&objs);
+        queue.finish();
+      });
       break;
-    }
     case ShareMode::HostPtr:
-      queue.finish();
+      timed(rt_, "share-release", [&] { queue.finish(); });
       break;
     case ShareMode::Copy:
-      if (access_ != ClAccess::Read) {
-        std::vector<unsigned char> tmp(bytes_);
-        queue.enqueueReadBuffer(cl_, CL_TRUE, 0, bytes_, tmp.data());
-        glNamedBufferSubData(gl_, 0, static_cast<GLsizeiptr>(bytes_), tmp.data());
-        glCheck(("writing shared buffer " + label_).c_str());
-      } else {
-        queue.finish();
-      }
+      // The wait for the kernels first, so that share-copy is the copy alone.
+      timed(rt_, "share-release", [&] { queue.finish(); });
+      if (access_ != ClAccess::Read) timed(rt_, "share-copy", [&] { copyClToGl(queue); });
       break;
   }
   acquired_ = false;

@@ -3,12 +3,17 @@
 //
 // GL and CL take turns: the owner of the frame calls acquireForCl() before
 // kernels touch it and releaseToGl() before GL reads or writes it again. How
-// the bytes move depends on the mode, chosen automatically:
+// the bytes move depends on the mode, chosen once per ClRuntime (shareMode()):
 //  - Interop: cl_khr_gl_sharing (clCreateFromGLBuffer + acquire/release), GPUs.
-//  - HostPtr: zero-copy on CPU devices (PoCL): the GL buffer is persistently and
-//    coherently mapped, and the cl::Buffer wraps that pointer (CL_MEM_USE_HOST_PTR).
-//  - Copy: separate storage, copied at acquire/release as the access flags need.
+//  - HostPtr: zero-copy where the device passes the zero-copy check (PoCL): the
+//    GL buffer is persistently and coherently mapped, and the cl::Buffer wraps
+//    that pointer (CL_MEM_USE_HOST_PTR).
+//  - Copy: separate storage, copied at acquire/release as the access flags
+//    need, only the bytes in use (setUsed()), not the growth headroom.
 // $MANYLIGHTS_SHARE=interop|hostptr|copy forces a mode (tests use it).
+// With a timer, acquire and release are named passes: `share-acquire` and
+// `share-release` (the waits: glFinish, queue.finish) and `share-copy` (copy
+// mode's transfers), so the pass table shows what moving the bytes costs.
 // Depth and G-buffer images reach kernels through these buffers too (pack
 // buffer reads: see readDepthInto()).
 #include <CL/opencl.hpp>
@@ -17,14 +22,12 @@
 #include <cstddef>
 #include <string>
 
+#include "host/cl/ClRuntime.hpp"
+#include "host/util/PassTimings.hpp"
+
 namespace ml {
 
-class ClRuntime;
-
-enum class ShareMode { Interop, HostPtr, Copy };
 enum class ClAccess { Read, Write, ReadWrite };
-
-std::string shareModeName(ShareMode m);
 
 class SharedBuffer {
  public:
@@ -43,8 +46,10 @@ class SharedBuffer {
   const std::string& label() const { return label_; }
 
   // Reallocates when `bytes` exceeds the capacity (contents are lost). Returns
-  // true if it reallocated. Never shrinks.
+  // true if it reallocated. Never shrinks. Either way the first `bytes` are
+  // then the bytes in use: all that copy mode moves at a hand-over.
   bool reserve(std::size_t bytes);
+  std::size_t used() const { return used_; }
 
   // GL has finished with the buffer; kernels on `queue` may now use it.
   void acquireForCl(cl::CommandQueue& queue, ClAccess access);
@@ -62,10 +67,13 @@ class SharedBuffer {
  private:
   void allocate(std::size_t bytes);
   void release();
+  void copyGlToCl(cl::CommandQueue& queue);
+  void copyClToGl(cl::CommandQueue& queue);
   ClRuntime& rt_;
   std::string label_;
   ShareMode mode_;
   std::size_t bytes_ = 0;
+  std::size_t used_ = 0;
   GLuint gl_ = 0;
   void* mapped_ = nullptr;  // HostPtr mode
   cl::Buffer cl_;

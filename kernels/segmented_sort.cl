@@ -47,8 +47,10 @@ __kernel void segmented_sort(__global uint* keys, __global uint* vals, uint has_
  * loop construction ("peeling" of conditional barriers) miscompiles it
  * (observed: a later `for (i = lid; i < len; i += WG)` loop ran for every
  * work-item). So the stage loops run to max_np, a power of two >= every
- * segment length (next_pow2(seg_size) in fixed mode, next_pow2(n) with
- * offsets), and a segment skips the stages beyond its own size. */
+ * segment length (next_pow2(seg_size) in fixed mode; with offsets next_pow2
+ * of the host's stated bound, e.g. a tile's pixel count, else of n), and a
+ * segment skips the stages beyond its own size. A segment longer than max_np
+ * (a host bug) is sorted only in runs of max_np, never written outside. */
 __kernel WG_ATTR void segmented_sort(__global uint* keys, __global uint* vals, uint has_values, uint n,
                                      __global const uint* offsets, uint use_offsets, uint seg_size, uint nseg,
                                      uint max_np) {

@@ -28,7 +28,8 @@ constexpr std::uint32_t kPoison = 0xDEADBEEFu;
 // Sorts on the device and checks against the host; `offsets` has one entry
 // more than there are segments.
 void sortAndCheck(SegmentedSorter& sorter, const std::vector<std::uint32_t>& keys,
-                  const std::vector<std::uint32_t>& offsets, bool with_values, std::size_t fixed_size) {
+                  const std::vector<std::uint32_t>& offsets, bool with_values, std::size_t fixed_size,
+                  std::size_t max_segment = 0) {
   auto& rt = test::runtime();
   auto& q = rt.queue();
   const std::size_t n = keys.size();
@@ -42,7 +43,7 @@ void sortAndCheck(SegmentedSorter& sorter, const std::vector<std::uint32_t>& key
   if (fixed_size)
     sorter.sortFixed(q, kb, with_values ? &vb : nullptr, n, fixed_size);
   else
-    sorter.sort(q, kb, with_values ? &vb : nullptr, n, ob, segs);
+    sorter.sort(q, kb, with_values ? &vb : nullptr, n, ob, segs, nullptr, max_segment);
 
   auto got = download<std::uint32_t>(q, kb, n + 1);
   auto got_values = download<std::uint32_t>(q, vb, n + 1);
@@ -146,6 +147,41 @@ TEST_P(SegmentedSortShapeTest, OffsetSegmentsWithGapsEmptyAndLong) {
       SCOPED_TRACE(std::string(keyDistName(dist)) + (with_values ? " pairs" : " keys"));
       sortAndCheck(sorter, makeKeys<std::uint32_t>(n, dist, rng()), offsets, with_values, 0);
     }
+}
+
+// The caller's bound on segment lengths (a tile's pixels): the GPU shape runs
+// only next_pow2(bound)'s stages, exact for segments up to the bound, lengths
+// around powers of two included; a segment past the bound stays unsorted there,
+// which shows the bound really cuts the stages.
+TEST_P(SegmentedSortShapeTest, OffsetSegmentsWithAStatedBound) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  SegmentedSorter sorter(test::runtime(), Options{.shape = GetParam()});
+  std::mt19937_64 rng(seed);
+  for (std::size_t bound : {1u, 31u, 256u, 1024u}) {
+    SCOPED_TRACE("bound=" + std::to_string(bound));
+    std::vector<std::uint32_t> offsets{0};
+    for (int s = 0; s < 300; ++s) {
+      const std::size_t len = s % 7 == 0 ? bound : rng() % (bound + 1);
+      offsets.push_back(offsets.back() + static_cast<std::uint32_t>(len));
+    }
+    const std::size_t n = offsets.back() + 5;
+    sortAndCheck(sorter, makeKeys<std::uint32_t>(n, KeyDist::Random, rng()), offsets, true, 0, bound);
+    if (GetParam() == Shape::GpuWorkGroup) {
+      EXPECT_EQ(sorter.lastStageBound(), detail::nextPow2(bound));
+    }
+  }
+  if (GetParam() != Shape::GpuWorkGroup) return;
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  std::vector<std::uint32_t> keys(64);
+  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = static_cast<std::uint32_t>(keys.size() - i);
+  const std::vector<std::uint32_t> offsets{0, 64};
+  cl::Buffer kb = upload(rt.context(), q, keys), ob = upload(rt.context(), q, offsets);
+  sorter.sort(q, kb, nullptr, keys.size(), ob, 1, nullptr, 8);
+  const auto got = download<std::uint32_t>(q, kb, keys.size());
+  EXPECT_FALSE(std::is_sorted(got.begin(), got.end())) << "a bound of 8 ran the stages of 64";
+  EXPECT_TRUE(std::is_sorted(got.begin(), got.begin() + 8)) << "runs of the bound are sorted";
 }
 
 INSTANTIATE_TEST_SUITE_P(Compute, SegmentedSortShapeTest, kShapes,

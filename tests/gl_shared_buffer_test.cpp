@@ -108,9 +108,64 @@ TEST(SharedBuffer, DefaultModeOnThisDevice) {
   test::glContext();
   ClRuntime& rt = test::runtime();
   const ShareMode m = defaultShareMode(rt);
+  if (std::getenv("MANYLIGHTS_SHARE")) return;
   if (rt.glSharingActive()) EXPECT_EQ(m, ShareMode::Interop);
-  else if (rt.info().isCpu()) EXPECT_EQ(m, ShareMode::HostPtr);
+  else if (rt.zeroCopyHostPtr()) EXPECT_EQ(m, ShareMode::HostPtr);
   else EXPECT_EQ(m, ShareMode::Copy);
+}
+
+// Copy mode moves the bytes in use (the last reserve()), not the capacity with
+// its growth headroom: bytes past them keep what CL had.
+TEST(SharedBuffer, CopyModeMovesOnlyTheBytesInUse) {
+  test::glContext();
+  ClRuntime& rt = test::runtime();
+  cl::CommandQueue& q = rt.queue();
+  SharedBuffer buf(rt, 4096, "in use", ShareMode::Copy);
+  const std::size_t words = buf.size() / 4;
+  std::vector<std::uint32_t> gl_words(words);
+  for (std::size_t i = 0; i < words; ++i) gl_words[i] = std::uint32_t(i) * 2654435761u;
+  buf.upload(gl_words.data(), buf.size());
+  EXPECT_FALSE(buf.reserve(1000));  // in use: 1000 bytes, 250 words
+  EXPECT_EQ(buf.used(), 1000u);
+  q.enqueueFillBuffer(buf.cl(), 0xDEADBEEFu, 0, buf.size());
+  buf.acquireForCl(q, ClAccess::ReadWrite);
+  std::vector<std::uint32_t> cl_words(words);
+  q.enqueueReadBuffer(buf.cl(), CL_TRUE, 0, buf.size(), cl_words.data());
+  for (std::size_t i = 0; i < words; ++i)
+    ASSERT_EQ(cl_words[i], i < 250 ? gl_words[i] : 0xDEADBEEFu) << "word " << i;
+  // Back to GL: CL writes every word, GL receives the words in use only.
+  q.enqueueFillBuffer(buf.cl(), 7u, 0, buf.size());
+  buf.releaseToGl(q);
+  std::vector<std::uint32_t> back(words);
+  buf.download(back.data(), buf.size());
+  for (std::size_t i = 0; i < words; ++i) ASSERT_EQ(back[i], i < 250 ? 7u : gl_words[i]) << "word " << i;
+}
+
+// With a sink set (the frame renderer sets one per frame), hand-overs are
+// named passes: waits as share-acquire/-release, copy mode's transfers as share-copy.
+TEST(SharedBuffer, HandOversAreNamedPasses) {
+  test::glContext();
+  ClRuntime& rt = test::runtime();
+  for (ShareMode mode : {ShareMode::HostPtr, ShareMode::Copy}) {
+    SCOPED_TRACE(shareModeName(mode));
+    SharedBuffer buf(rt, 4096, "timed", mode);
+    PassTimings t;
+    rt.setShareTimings(&t);
+    buf.acquireForCl(rt.queue(), ClAccess::ReadWrite);
+    buf.releaseToGl(rt.queue());
+    rt.setShareTimings(nullptr);
+    buf.acquireForCl(rt.queue(), ClAccess::ReadWrite);  // not timed
+    buf.releaseToGl(rt.queue());
+    std::vector<std::string> names;
+    for (const auto& [n, ms] : t.entries()) {
+      names.push_back(n);
+      EXPECT_GE(ms, 0.0);
+    }
+    const std::vector<std::string> want =
+        mode == ShareMode::Copy ? std::vector<std::string>{"share-copy", "share-release"}
+                                : std::vector<std::string>{"share-acquire", "share-release"};
+    EXPECT_EQ(names, want);
+  }
 }
 
 }  // namespace

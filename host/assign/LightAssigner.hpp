@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/GlPassTimer.hpp"
 #include "gl/ShaderProgram.hpp"
 #include "host/cl/ClPassTimer.hpp"
 #include "host/shared/gpu_types.h"
@@ -48,6 +49,7 @@ struct FrameInputs {
   SharedBuffer* depth = nullptr;
   ClPassTimer& cl_timer;  // name CL passes with it
   PassTimings& host_timings;  // host-side work (e.g. CPU builds), in ms
+  GlPassTimer* gl_timer = nullptr;  // name GL passes with it (uploads), if set
 };
 
 class LightAssigner {

@@ -1,7 +1,9 @@
 #include "host/cl/ClRuntime.hpp"
 
+#include <CL/cl_ext.h>
 #include <CL/cl_gl.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -37,6 +39,24 @@ std::string trimmed(std::string s) {
   return s;
 }
 
+// Device UUID and PCI bus id where the extensions offer them (raw queries:
+// opencl.hpp has no traits for them), for matching with the GL device.
+void queryIdentity(const cl::Device& d, DeviceInfo& i) {
+  if (i.hasExtension("cl_khr_device_uuid")) {
+    std::vector<unsigned char> uuid(CL_UUID_SIZE_KHR);
+    if (clGetDeviceInfo(d(), CL_DEVICE_UUID_KHR, uuid.size(), uuid.data(), nullptr) == CL_SUCCESS) i.uuid = uuid;
+  }
+  if (i.hasExtension("cl_khr_pci_bus_info")) {
+    cl_device_pci_bus_info_khr pci{};
+    if (clGetDeviceInfo(d(), CL_DEVICE_PCI_BUS_INFO_KHR, sizeof pci, &pci, nullptr) == CL_SUCCESS) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%04x:%02x:%02x.%x", pci.pci_domain, pci.pci_bus, pci.pci_device,
+                    pci.pci_function);
+      i.pci_bus_id = buf;
+    }
+  }
+}
+
 }  // namespace
 
 DeviceInfo queryDeviceInfo(const cl::Device& d) {
@@ -56,7 +76,26 @@ DeviceInfo queryDeviceInfo(const cl::Device& d) {
   i.local_mem_size = d.getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
   i.global_mem_size = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
   i.max_alloc_size = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+  i.single_fp_config = d.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>();
+  i.host_unified_memory = d.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
+  queryIdentity(d, i);
   return i;
+}
+
+bool correctlyRoundedDivideSqrt(cl_device_fp_config single_fp_config) {
+  if (const char* hook = std::getenv("MANYLIGHTS_TEST_INEXACT_DIVIDE"); hook && std::string_view(hook) == "1")
+    return false;
+  return (single_fp_config & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
+}
+
+std::string baseBuildOptions(cl_device_fp_config single_fp_config) {
+  std::string options = "-cl-std=CL1.2";
+  if (correctlyRoundedDivideSqrt(single_fp_config)) options += " -cl-fp32-correctly-rounded-divide-sqrt";
+  return options;
+}
+
+std::string baseBuildOptions(const cl::Device& device) {
+  return baseBuildOptions(device.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>());
 }
 
 bool DeviceInfo::hasExtension(std::string_view ext) const {
@@ -118,79 +157,223 @@ std::vector<DeviceListing> listDevices() {
   return out;
 }
 
-std::unique_ptr<ClRuntime> ClRuntime::create(DeviceChoice choice, const GlShareHandles* gl) {
-  auto devices = listDevices();
-  const DeviceListing* pick = nullptr;
+namespace {
+
+const DeviceListing* pickDevice(const std::vector<DeviceListing>& devices, DeviceChoice choice,
+                                const DeviceListing* gl_device) {
+  const auto first = [&](bool (DeviceInfo::*is)() const) -> const DeviceListing* {
+    for (const auto& d : devices)
+      if ((d.info.*is)()) return &d;
+    return nullptr;
+  };
   switch (choice.kind) {
     case DeviceChoice::Kind::Index:
       if (choice.index < 0 || choice.index >= static_cast<int>(devices.size()))
         throw UserError("--device " + std::to_string(choice.index) + ": only " + std::to_string(devices.size()) +
                         " OpenCL device(s) present (see `manylights devices`)");
-      pick = &devices[choice.index];
-      break;
+      return &devices[choice.index];
     case DeviceChoice::Kind::Gpu:
-      for (const auto& d : devices)
-        if (d.info.isGpu()) { pick = &d; break; }
-      if (!pick) throw UserError("--device gpu: no OpenCL GPU device present (see `manylights devices`)");
-      break;
+      if (gl_device && gl_device->info.isGpu()) return gl_device;
+      if (auto* d = first(&DeviceInfo::isGpu)) return d;
+      throw UserError("--device gpu: no OpenCL GPU device present (see `manylights devices`)");
     case DeviceChoice::Kind::Cpu:
-      for (const auto& d : devices)
-        if (d.info.isCpu()) { pick = &d; break; }
-      if (!pick)
-        throw UserError("--device cpu: no OpenCL CPU device present (install pocl-opencl-icd)");
-      break;
+      if (auto* d = first(&DeviceInfo::isCpu)) return d;
+      throw UserError("--device cpu: no OpenCL CPU device present (install pocl-opencl-icd)");
     case DeviceChoice::Kind::Default:
-      for (const auto& d : devices)
-        if (d.info.isGpu()) { pick = &d; break; }
-      if (!pick)
-        for (const auto& d : devices)
-          if (d.info.isCpu()) { pick = &d; break; }
-      if (!pick) pick = &devices.front();
       break;
   }
+  // The GL context's own device first: sharing needs it, and copies stay on one device.
+  if (gl_device) return gl_device;
+  if (auto* d = first(&DeviceInfo::isGpu)) return d;
+  if (auto* d = first(&DeviceInfo::isCpu)) return d;
+  return &devices.front();
+}
+
+std::vector<cl_context_properties> shareProperties(const cl::Platform& platform, const GlShareHandles& gl) {
+  std::vector<cl_context_properties> props = {CL_CONTEXT_PLATFORM, reinterpret_cast<cl_context_properties>(platform())};
+  if (gl.egl_context) {
+    props.insert(props.end(), {CL_GL_CONTEXT_KHR, reinterpret_cast<cl_context_properties>(gl.egl_context),
+                               CL_EGL_DISPLAY_KHR, reinterpret_cast<cl_context_properties>(gl.egl_display)});
+  } else {
+    props.insert(props.end(), {CL_GL_CONTEXT_KHR, reinterpret_cast<cl_context_properties>(gl.glx_context),
+                               CL_GLX_DISPLAY_KHR, reinterpret_cast<cl_context_properties>(gl.glx_display)});
+  }
+  props.push_back(0);
+  return props;
+}
+
+// The device the GL context runs on, as the first platform with
+// cl_khr_gl_sharing reports it (clGetGLContextInfoKHR); null if none can tell.
+const DeviceListing* glContextDevice(const std::vector<DeviceListing>& devices, const GlShareHandles& gl) {
+  for (const auto& d : devices) {
+    if (!d.info.hasExtension("cl_khr_gl_sharing")) continue;
+    auto fn = reinterpret_cast<clGetGLContextInfoKHR_fn>(
+        clGetExtensionFunctionAddressForPlatform(d.platform(), "clGetGLContextInfoKHR"));
+    if (!fn) continue;
+    const auto props = shareProperties(d.platform, gl);
+    cl_device_id id = nullptr;
+    if (fn(props.data(), CL_CURRENT_DEVICE_FOR_GL_CONTEXT_KHR, sizeof id, &id, nullptr) != CL_SUCCESS || !id) continue;
+    for (const auto& e : devices)
+      if (e.device() == id) return &e;
+  }
+  return nullptr;
+}
+
+bool envIs(const char* name, std::string_view value) {
+  const char* v = std::getenv(name);
+  return v && std::string_view(v) == value;
+}
+
+// CL_DEVICE_HOST_UNIFIED_MEMORY, and a CL_MEM_USE_HOST_PTR buffer maps to the
+// host pointer itself (a discrete GPU may keep its own copy, defined on the
+// host only after map/unmap: then hostptr mode would read stale bytes).
+bool probeZeroCopy(const cl::Context& ctx, cl::CommandQueue& queue, const DeviceInfo& info) {
+  if (!info.host_unified_memory) return false;
+  constexpr std::size_t kBytes = 4096;
+  void* host = std::aligned_alloc(kBytes, kBytes);
+  if (!host) return false;
+  bool same = false;
+  try {
+    cl::Buffer b(ctx, CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, kBytes, host);
+    void* mapped = queue.enqueueMapBuffer(b, CL_TRUE, CL_MAP_READ | CL_MAP_WRITE, 0, kBytes);
+    same = mapped == host;
+    queue.enqueueUnmapMemObject(b, mapped);
+    queue.finish();
+  } catch (const cl::Error&) {
+    same = false;
+  }
+  std::free(host);
+  return same;
+}
+
+}  // namespace
+
+std::unique_ptr<ClRuntime> ClRuntime::create(DeviceChoice choice, const GlShareHandles* gl) {
+  const char* share_env_c = std::getenv("MANYLIGHTS_SHARE");
+  const std::string share_env = share_env_c ? share_env_c : "";
+  if (!share_env.empty() && share_env != "interop" && share_env != "hostptr" && share_env != "copy")
+    throw UserError("MANYLIGHTS_SHARE: expected interop, hostptr or copy, got '" + share_env + "'");
+  auto devices = listDevices();
+  const bool with_gl = gl && gl->any();
+  const DeviceListing* gl_device = with_gl ? glContextDevice(devices, *gl) : nullptr;
+  const DeviceListing* pick = pickDevice(devices, choice, gl_device);
 
   std::unique_ptr<ClRuntime> rt(new ClRuntime());
   rt->platform_ = pick->platform;
   rt->device_ = pick->device;
   rt->info_ = pick->info;
+  if (with_gl) {
+    rt->gl_renderer_ = gl->renderer;
+    refuseSoftwareGlBesideGpu(*gl, rt->info_);
+  }
+  std::string failure;
+  if (with_gl && gl_device && gl_device != pick && share_env != "copy" && share_env != "hostptr")
+    failure = "the GL context runs on '" + gl_device->info.name + "', not on the chosen OpenCL device";
   try {
-    bool shared = false;
-    if (gl && gl->any() && rt->info_.hasExtension("cl_khr_gl_sharing")) {
-      std::vector<cl_context_properties> props = {CL_CONTEXT_PLATFORM,
-                                                  reinterpret_cast<cl_context_properties>(rt->platform_())};
-      if (gl->egl_context) {
-        props.insert(props.end(), {CL_GL_CONTEXT_KHR, reinterpret_cast<cl_context_properties>(gl->egl_context),
-                                   CL_EGL_DISPLAY_KHR, reinterpret_cast<cl_context_properties>(gl->egl_display)});
-      } else {
-        props.insert(props.end(), {CL_GL_CONTEXT_KHR, reinterpret_cast<cl_context_properties>(gl->glx_context),
-                                   CL_GLX_DISPLAY_KHR, reinterpret_cast<cl_context_properties>(gl->glx_display)});
-      }
-      props.push_back(0);
-      cl_int err = CL_SUCCESS;
-      cl::Context ctx(rt->device_, props.data(), nullptr, nullptr, &err);
-      if (err == CL_SUCCESS) {
-        rt->context_ = ctx;
-        shared = true;
-      }
-    }
-    if (!shared) rt->context_ = cl::Context(rt->device_);
-    rt->gl_sharing_active_ = shared;
-    rt->queue_ = cl::CommandQueue(rt->context_, rt->device_, CL_QUEUE_PROFILING_ENABLE);
+    rt->createContext(with_gl && failure.empty() ? gl : nullptr, share_env);
   } catch (const cl::Error& e) {
     throw UserError("creating an OpenCL context on '" + rt->info_.name + "' failed: " + describeClError(e));
   }
+  if (rt->failure_.empty()) rt->failure_ = failure;
+  if (!rt->gl_sharing_active_) rt->zero_copy_ = probeZeroCopy(rt->context_, rt->queue_, rt->info_);
+  rt->share_ = chooseShareMode(share_env, rt->gl_sharing_active_, rt->zero_copy_, rt->failure_);
+  if (!rt->share_.note.empty()) std::fprintf(stderr, "manylights: note: %s\n", rt->share_.note.c_str());
+  if (with_gl) rt->match_ = matchDevices(*gl, rt->info_, rt->gl_sharing_active_);
   rt->programs_ = std::make_unique<ProgramBuilder>(rt->context_, rt->device_, rt->info_);
   return rt;
 }
 
+// A sharing context where asked and possible, else (and on its refusal) a plain one.
+void ClRuntime::createContext(const GlShareHandles* gl, std::string_view share_env) {
+  const bool hook = envIs("MANYLIGHTS_TEST_FAIL_SHARING", "1");
+  const bool attempt = gl && share_env != "copy" && share_env != "hostptr" &&
+                       (info_.hasExtension("cl_khr_gl_sharing") || hook);
+  if (attempt) {
+    try {
+      if (hook) throw cl::Error(CL_INVALID_OPERATION, "clCreateContext (MANYLIGHTS_TEST_FAIL_SHARING=1)");
+      context_ = cl::Context(device_, shareProperties(platform_, *gl).data());
+      gl_sharing_active_ = true;
+    } catch (const cl::Error& e) {
+      // Drivers differ in which GL contexts they share with: the run goes on without.
+      failure_ = "the OpenCL driver refused a context sharing with GL (" + describeClError(e) + ")";
+      if (share_env == "interop") throw UserError("MANYLIGHTS_SHARE=interop: " + failure_);
+    }
+  } else if (share_env == "interop") {
+    throw UserError("MANYLIGHTS_SHARE=interop: " +
+                    std::string(gl ? "the OpenCL device '" + info_.name + "' has no cl_khr_gl_sharing"
+                                   : "no GL context to share with"));
+  }
+  if (!gl_sharing_active_) context_ = cl::Context(device_);
+  queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
+}
+
 ClRuntime::~ClRuntime() = default;
+
+bool isSoftwareRenderer(std::string_view r) {
+  return r.find("llvmpipe") != r.npos || r.find("softpipe") != r.npos || r.find("swrast") != r.npos;
+}
+
+std::string DeviceMatch::text() const {
+  const char* s = same == SameDevice::Yes ? "same device" : same == SameDevice::No ? "different devices" : "unknown";
+  return std::string(s) + " (" + how + ")";
+}
+
+DeviceMatch matchDevices(const GlShareHandles& gl, const DeviceInfo& cl, bool sharing_active) {
+  const auto verdict = [](bool same, std::string how) {
+    return DeviceMatch{same ? SameDevice::Yes : SameDevice::No, std::move(how)};
+  };
+  if (sharing_active) return {SameDevice::Yes, "cl_khr_gl_sharing context"};
+  if (!gl.device_uuid.empty() && !cl.uuid.empty())
+    return verdict(gl.device_uuid == cl.uuid, gl.device_uuid == cl.uuid ? "device UUIDs match" : "device UUIDs differ");
+  if (!gl.pci_bus_id.empty() && !cl.pci_bus_id.empty())
+    return verdict(gl.pci_bus_id == cl.pci_bus_id, "PCI " + gl.pci_bus_id + " vs " + cl.pci_bus_id);
+  if (isSoftwareRenderer(gl.renderer))
+    return verdict(cl.isCpu(), cl.isCpu() ? "software GL and OpenCL both on the CPU" : "software GL, OpenCL on a GPU");
+  if (cl.isCpu()) return {SameDevice::No, "hardware GL, OpenCL on the CPU"};
+  return {SameDevice::Unknown, "no device UUID or PCI id on one side"};
+}
+
+void refuseSoftwareGlBesideGpu(const GlShareHandles& gl, const DeviceInfo& cl) {
+  if (!cl.isGpu() || !isSoftwareRenderer(gl.renderer) || envIs("MANYLIGHTS_ALLOW_SOFTWARE_GL", "1")) return;
+  throw UserError("GL renders in software ('" + gl.renderer + "') beside the OpenCL GPU '" + cl.name +
+                  "': install the GPU's GL/EGL driver, choose it with MANYLIGHTS_EGL=device, or set "
+                  "MANYLIGHTS_ALLOW_SOFTWARE_GL=1 to run anyway");
+}
+
+std::string shareModeName(ShareMode m) {
+  switch (m) {
+    case ShareMode::Interop: return "interop";
+    case ShareMode::HostPtr: return "hostptr";
+    case ShareMode::Copy: return "copy";
+  }
+  return "?";
+}
+
+ShareChoice chooseShareMode(std::string_view env, bool sharing_active, bool zero_copy,
+                            std::string_view sharing_failure) {
+  ShareChoice c;
+  if (sharing_active && (env.empty() || env == "interop")) {
+    c.mode = ShareMode::Interop;
+    return c;
+  }
+  c.mode = env != "copy" && zero_copy ? ShareMode::HostPtr : ShareMode::Copy;
+  if (!sharing_failure.empty()) {
+    c.note = std::string(sharing_failure) + ": using " + shareModeName(c.mode) + " mode";
+  } else if (env != "copy" && !zero_copy) {
+    c.note = std::string(env == "hostptr" ? "MANYLIGHTS_SHARE=hostptr: " : "") +
+             "host-pointer buffers are not zero-copy on this device (no CL_DEVICE_HOST_UNIFIED_MEMORY, or "
+             "mapping returned another pointer): using copy mode";
+  }
+  return c;
+}
 
 std::string ClRuntime::describe() const {
   std::ostringstream ss;
   ss << "OpenCL: " << info_.platform_name << " | " << info_.name << " ("
      << (info_.isGpu() ? "GPU" : info_.isCpu() ? "CPU" : "other") << ", " << info_.compute_units
      << " compute units, " << info_.c_version << ")"
-     << " | GL sharing: " << (gl_sharing_active_ ? "cl_khr_gl_sharing" : "fallback");
+     << " | share mode: " << shareModeName(share_.mode);
+  if (!gl_renderer_.empty()) ss << " | GL on '" << gl_renderer_ << "': " << match_.text();
   return ss.str();
 }
 

@@ -81,7 +81,7 @@ cl::Program ProgramBuilder::build(std::string_view file, const Defines& defines)
 
 cl::Program ProgramBuilder::buildSource(std::string_view name, const std::string& source, const Defines& defines) {
   std::string expanded = expandIncludes(name, source);
-  std::string options = "-cl-std=CL1.2";
+  std::string options = baseBuildOptions(device_);
   for (const auto& [k, v] : defines) options += " -D " + k + "=" + v;
   std::uint64_t key = fnv1a64(expanded);
   key = fnv1a64(options, key);

@@ -167,7 +167,9 @@ std::uint32_t ClusterUniquer::uniqueSorted(cl::CommandQueue& q, const ClusterGri
     setArgs(gather_, keys_, cl_uint(g.width), cl_uint(g.height), cl_uint(g.tile_size), cl_uint(g.tiles_x),
             tile_offsets_, sort_keys_, sort_vals_);
     launch1d(q, gather_, n, local_, ev("cluster-tile-gather"));
-    segsort_.sort(q, sort_keys_, &sort_vals_, n, tile_offsets_, n_tiles, timer);
+    // A tile holds at most tile_size^2 pixels: the GPU sort runs only the stages that takes.
+    segsort_.sort(q, sort_keys_, &sort_vals_, n, tile_offsets_, n_tiles, timer,
+                  std::size_t(g.tile_size) * g.tile_size);
   } else {
     setArgs(sort_init_, keys_, cl_uint(n), sort_keys_, sort_vals_);
     launch1d(q, sort_init_, n, local_, ev("cluster-sort-init"));

@@ -29,7 +29,7 @@ SegmentedSorter::SegmentedSorter(const ComputeEnv& env, const Options& options)
 
 void SegmentedSorter::run(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* values, std::size_t n,
                           const cl::Buffer* offsets, std::size_t segment_size, std::size_t num_segments,
-                          ClPassTimer* timer) {
+                          ClPassTimer* timer, std::size_t max_segment) {
   detail::checkCount(n, "SegmentedSorter");
   detail::checkCount(num_segments + 1, "SegmentedSorter segments");
   detail::checkBuffer(keys, n * 4, "SegmentedSorter keys");
@@ -42,11 +42,13 @@ void SegmentedSorter::run(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* val
   std::size_t global, local, last_arg;
   if (tuning_.gpu()) {
     // The GPU kernel's stage loops run to a launch-wide power-of-two bound
-    // (see kernels/segmented_sort.cl for why): exact for fixed sizes, n for
-    // offsets, whose lengths the host does not know.
+    // (see kernels/segmented_sort.cl for why): exact for fixed sizes; with
+    // offsets, whose lengths the host does not know, the caller's bound or n.
     local = tuning_.wg;
     global = num_segments * local;
-    last_arg = detail::nextPow2(offsets ? n : std::min(n, segment_size));
+    const std::size_t longest = offsets ? (max_segment ? max_segment : n) : segment_size;
+    last_arg = detail::nextPow2(std::max<std::size_t>(1, std::min(n, longest)));
+    last_stage_bound_ = last_arg;
   } else {
     // Four runs of segments per chunk slot: segment lengths vary, and more,
     // shorter runs let PoCL's workers balance them.
@@ -61,14 +63,15 @@ void SegmentedSorter::run(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* val
 }
 
 void SegmentedSorter::sort(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* values, std::size_t n,
-                           const cl::Buffer& offsets, std::size_t num_segments, ClPassTimer* timer) {
-  run(q, keys, values, n, &offsets, 0, num_segments, timer);
+                           const cl::Buffer& offsets, std::size_t num_segments, ClPassTimer* timer,
+                           std::size_t max_segment) {
+  run(q, keys, values, n, &offsets, 0, num_segments, timer, max_segment);
 }
 
 void SegmentedSorter::sortFixed(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* values, std::size_t n,
                                 std::size_t segment_size, ClPassTimer* timer) {
   if (segment_size == 0) throw std::invalid_argument("SegmentedSorter::sortFixed: segment_size must be > 0");
-  run(q, keys, values, n, nullptr, segment_size, ceilDiv(n, segment_size), timer);
+  run(q, keys, values, n, nullptr, segment_size, ceilDiv(n, segment_size), timer, 0);
 }
 
 void segmented_sort(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* values, std::size_t n,

@@ -86,8 +86,9 @@ void HashedAssigner::assign(const FrameInputs& in) {
   if (st.full_rebuild) ++full_rebuilds_;
   else ++incremental_updates_;
   in.host_timings.add(st.full_rebuild ? "hashed-build" : "hashed-update", st.total_ms);
+  // GL_TIME_ELAPSED on GPUs (glFinish-bracketed host clock on software GL), not the host clock of the calls.
+  GlPassScope timed(in.gl_timer, "hashed-upload");
   upload();
-  in.host_timings.add("hashed-upload", upload_ms_);
 }
 
 HashedAssigner::Image HashedAssigner::packHost() const {
