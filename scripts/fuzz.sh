@@ -49,6 +49,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus" "$seeds" "$artifacts"
   for f in $(seed_files "$t"); do cp "$f" "$seeds/"; done
   log="build-fuzz/fuzz-$t.log"
+  : >"$log.start"  # artifacts newer than this marker are this run's
   rc=0
   # close_fd_mask=3: the loaders' warnings stay quiet; libFuzzer's and the
   # sanitizers' reports still reach the log.
@@ -58,7 +59,7 @@ for t in "${targets[@]}"; do
   runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
   [[ -n "$runs" ]] || runs="$(sed -n 's/^#\([0-9]*\).*/\1/p' "$log" | tail -1)"
   crashes=0
-  found="$(grep -l . "$artifacts"/* 2>/dev/null | tr '\n' ' ' || true)"
+  found="$(find "$artifacts" -type f -newer "$log.start" 2>/dev/null | tr '\n' ' ')"
   if ((rc != 0)); then
     crashes=1 failed=1
     grep -m1 -E '^==[0-9]+==ERROR|runtime error|deadly signal|ALARM|out-of-memory|uncaught' "$log" | sed 's/^/    /' >&2 || true
