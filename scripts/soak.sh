@@ -36,6 +36,9 @@ bin="${TEST_BIN:-build/tests/manylights-tests}"
 unset MANYLIGHTS_TEST_SEED  # fresh seeds every round
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
+# A private copy: a rebuild during the soak must not make rounds fail.
+cp "$bin" "$work/manylights-tests"
+bin="$work/manylights-tests"
 
 # Prints "test seed(s)" for every failed test case of a gtest XML report.
 failures() {
