@@ -19,6 +19,12 @@ ctest --test-dir build --output-on-failure -j"$jobs"
 
 echo "== Release tests: ${SECONDS}s =="
 
+# A short fuzzing pass over the loaders and the command line (FUZZ_SECONDS per
+# target, 0 skips it); longer runs: scripts/fuzz.sh 300.
+if [[ "${FUZZ_SECONDS:-20}" != 0 ]]; then
+  scripts/fuzz.sh "${FUZZ_SECONDS:-20}"
+fi
+
 if [[ "${1:-}" != "--no-asan" ]]; then
   SECONDS=0
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMANYLIGHTS_SANITIZE=ON -DMANYLIGHTS_WERROR=ON \

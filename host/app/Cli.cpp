@@ -47,29 +47,50 @@ int runDevices() {
   std::printf("render would run:\n  %s\n  %s\n", gl->describe().c_str(), cl->describe().c_str());
   return 0;
 }
+
+// The subcommands and the structs their flags fill.
+struct CommandLine {
+  CLI::App app{"manylights: light assignment for many dynamic point lights (OpenCL + OpenGL)"};
+  RenderArgs render_args;
+  BenchArgs bench_args;
+  CompareReferenceArgs compare_args;
+  CLI::App* devices = app.add_subcommand("devices", "List OpenCL platforms and devices with their indices");
+  CLI::App* techniques_cmd = app.add_subcommand("techniques", "List the registered light-assignment techniques");
+  CLI::App* render = addRenderCommand(app, render_args);
+  CLI::App* bench = addBenchCommand(app, bench_args);
+  CLI::App* compare = addCompareReferenceCommand(app, compare_args);
+
+  CommandLine() { app.require_subcommand(1); }
+  // -1 when a subcommand is to run; else the exit code (help: 0, parse error: 2).
+  int parse(int argc, char** argv) {
+    try {
+      app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+      return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+      return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+      std::fprintf(stderr, "manylights: error: %s\n", e.what());
+      return 2;
+    }
+    return -1;
+  }
+};
 }  // namespace
 
+int parseCli(int argc, char** argv) { return CommandLine().parse(argc, argv); }
+
 int runCli(int argc, char** argv) {
-  CLI::App app{"manylights: light assignment for many dynamic point lights (OpenCL + OpenGL)"};
-  app.require_subcommand(1);
-  auto* devices = app.add_subcommand("devices", "List OpenCL platforms and devices with their indices");
-  auto* techniques_cmd = app.add_subcommand("techniques", "List the registered light-assignment techniques");
-  RenderArgs render_args;
-  auto* render = addRenderCommand(app, render_args);
-  BenchArgs bench_args;
-  auto* bench = addBenchCommand(app, bench_args);
-  CompareReferenceArgs compare_args;
-  auto* compare = addCompareReferenceCommand(app, compare_args);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "manylights: error: %s\n", e.what());
-    return 2;
-  }
+  CommandLine cli;
+  if (const int code = cli.parse(argc, argv); code >= 0) return code;
+  auto* devices = cli.devices;
+  auto* techniques_cmd = cli.techniques_cmd;
+  auto* render = cli.render;
+  auto* bench = cli.bench;
+  auto* compare = cli.compare;
+  auto& render_args = cli.render_args;
+  auto& bench_args = cli.bench_args;
+  auto& compare_args = cli.compare_args;
   try {
     if (devices->parsed()) return runDevices();
     if (techniques_cmd->parsed()) {

@@ -65,7 +65,9 @@ ObjMesh loadObj(const std::string& path) {
       const auto& ix = shape.mesh.indices;
       for (std::size_t t = 0; t + 2 < ix.size(); t += 3) {
         const int a = ix[t].vertex_index, b = ix[t + 1].vertex_index, c = ix[t + 2].vertex_index;
-        if (a < 0 || b < 0 || c < 0) continue;
+        // Faces past the vertices are refused below; skip them here (found by fuzzing).
+        auto bad = [&](int i) { return i < 0 || static_cast<std::size_t>(i) >= nv; };
+        if (bad(a) || bad(b) || bad(c)) continue;
         const glm::vec3 face = glm::cross(pos(b) - pos(a), pos(c) - pos(a));
         smooth[a] += face;
         smooth[b] += face;
