@@ -34,7 +34,6 @@
 /* Stack of pending nodes: at most BVH_BRANCH per level plus the top level. */
 #define BVH_STACK 256
 #define DEPTH_EPS 1e-4f
-#define RECON_EPS 1e-6f
 /* Per BVH node in a sibling block: box lo.xyz, hi.xyz, bounding sphere xyzr. */
 #define NODE_FLOATS 10u
 
@@ -84,23 +83,18 @@ __kernel void cluster_boxes(__global const uint* keys, uint count, CameraParams 
   box_hi[c] = (float4)(x1, y1, zmax, 0.0f);
 }
 
-inline float linear_depth(float d, const CameraParams* cam) {
-  const float ndc = 2.0f * d - 1.0f;
-  return cam->proj[14] / (ndc + cam->proj[10]);
-}
-
 /* Explicit bounds (Olsson et al.): per unique cluster the view-space AABB of
  * the pixel centres that fall in it, reconstructed from the depth buffer.
  * One work-item per screen tile: unique clusters are ascending keys with the
  * tile above the slice, so the clusters of one tile form one index range that
  * no other tile touches; the work-item owns it and needs no atomics. Runs of
  * equal clusters along a row are reduced in registers. box_lo/box_hi start
- * as +inf/-inf (filled by the host). The box is then widened, relative to its
- * extent, by DEPTH_EPS + RECON_EPS z / near, so that the shader's own
- * reconstruction (another float path, or the forward pass's interpolated
- * position) stays inside: near the far plane a float depth pins the distance
- * down only to ~1e-7 z / near (relative), as the float sum ndc + proj[10]
- * cancels; RECON_EPS leaves a margin of 3x over both paths' rounding.
+ * as +inf/-inf (filled by the host). The box is then widened by DEPTH_EPS,
+ * relative to its extent, so that the shader's own position (another float
+ * path, or the forward pass's interpolated position) stays inside: reversed-Z
+ * float depth pins the distance down to ~1e-7 (relative) at any distance and
+ * any near plane (host/shared/depth_convention.h), and DEPTH_EPS leaves room
+ * for the rasteriser's interpolation of both.
  * One division per pixel (the depth); the rest are products with
  * reciprocals computed once, mirrored by host/clustered/ClusterGeometry.cpp. */
 __kernel void cluster_pixel_boxes(__global const float* depth, __global const uint* cluster_of, CameraParams cam,
@@ -146,11 +140,9 @@ __kernel void cluster_pixel_boxes(__global const float* depth, __global const ui
   for (uint c = cmin; c <= cmax && cmin <= cmax; ++c) {
     const float4 lo = box_lo[c], hi = box_hi[c];
     const float ext = fmax(fmax(hi.z, fmax(fabs(lo.x), fabs(hi.x))), fmax(fabs(lo.y), fabs(hi.y)));
-    const float rel_lo = DEPTH_EPS + RECON_EPS * (lo.z / cam.near_plane);
-    const float rel_hi = DEPTH_EPS + RECON_EPS * (hi.z / cam.near_plane);
-    const float pad = ext * rel_hi;
-    box_lo[c] = (float4)(lo.x - pad, lo.y - pad, lo.z - lo.z * rel_lo, 0.0f);
-    box_hi[c] = (float4)(hi.x + pad, hi.y + pad, hi.z + hi.z * rel_hi, 0.0f);
+    const float pad = ext * DEPTH_EPS;
+    box_lo[c] = (float4)(lo.x - pad, lo.y - pad, lo.z - lo.z * DEPTH_EPS, 0.0f);
+    box_hi[c] = (float4)(hi.x + pad, hi.y + pad, hi.z + hi.z * DEPTH_EPS, 0.0f);
   }
 }
 
