@@ -66,6 +66,22 @@ void FrameRenderer::setFrameUniforms(const ShaderProgram& p, const glm::mat4& vi
   p.set("u_light_count", light_count_);
 }
 
+void FrameRenderer::shadeOnlyFirstEqualFragment() {
+  // Depth EQUAL against the pre-pass passes every fragment whose depth ties
+  // with the visible one (coplanar faces, or faces that round to the same
+  // float near their intersection), and the last one drawn would be shaded.
+  // A single GL_GREATER pass keeps the first of them, as the G-buffer does;
+  // the stencil keeps it here too: the first fragment to pass marks the pixel.
+  glDepthFunc(GL_EQUAL);
+  glDepthMask(GL_FALSE);
+  const GLint zero = 0;
+  glClearNamedFramebufferiv(targets_->outputFbo(), GL_STENCIL, 0, &zero);
+  glEnable(GL_STENCIL_TEST);
+  glStencilMask(0xff);
+  glStencilFunc(GL_EQUAL, 0, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+}
+
 void FrameRenderer::exportDepth(bool deferred, PassTimings& passes) {
   // The depth image reaches the kernels as a buffer: a pack-buffer read is a
   // GPU-side copy on real GPUs and a plain memcpy into the shared (mapped)
@@ -83,6 +99,8 @@ void FrameRenderer::exportDepth(bool deferred, PassTimings& passes) {
 }
 
 FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner, const FrameOptions& options) {
+  // Cameras from files were checked naming the file; this catches the rest.
+  checkDepthRange(camera, "camera");
   const auto t0 = std::chrono::steady_clock::now();
   FrameResult result;
   const float aspect = static_cast<float>(width_) / static_cast<float>(height_);
@@ -93,6 +111,9 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
   const bool count = options.count_lights;
 
   glViewport(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_));
+  // Reversed-Z (host/shared/depth_convention.h): [0, 1] clip depth, cleared
+  // to kSkyDepth, nearer wins with GL_GREATER.
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // scenes have thin two-sided walls
   glDisable(GL_BLEND);
@@ -103,14 +124,14 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
   }
   const GLfloat clear_color[4] = {0, 0, 0, 1};
   const GLuint clear_counts[4] = {0, 0, 0, 0};
-  const GLfloat clear_depth = 1.0f;
+  const GLfloat clear_depth = gpu::kSkyDepth;
 
   // 1. Depth: G-buffer (deferred) or pre-pass (forward, only if the technique needs depth).
   if (deferred) {
     GlPassScope s(&gl_timer_, "gbuffer");
     glBindFramebuffer(GL_FRAMEBUFFER, targets_->gbufferFbo());
     glDepthMask(GL_TRUE);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(GL_GREATER);
     glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_COLOR, 0, clear_color);
     glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_COLOR, 1, clear_color);
     glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_DEPTH, 0, &clear_depth);
@@ -122,7 +143,7 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
     GlPassScope s(&gl_timer_, "depth-prepass");
     glBindFramebuffer(GL_FRAMEBUFFER, targets_->outputFbo());
     glDepthMask(GL_TRUE);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(GL_GREATER);
     glClearNamedFramebufferfv(targets_->outputFbo(), GL_DEPTH, 0, &clear_depth);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     const ShaderProgram& p = program("depth", assigner, false);
@@ -183,11 +204,10 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
   } else {
     GlPassScope s(&gl_timer_, "forward-shading");
     if (needs_depth) {
-      glDepthFunc(GL_EQUAL);  // shade only the visible surface laid down by the pre-pass
-      glDepthMask(GL_FALSE);
+      shadeOnlyFirstEqualFragment();
     } else {
       glClearNamedFramebufferfv(targets_->outputFbo(), GL_DEPTH, 0, &clear_depth);
-      glDepthFunc(GL_LESS);
+      glDepthFunc(GL_GREATER);
       glDepthMask(GL_TRUE);
     }
     const ShaderProgram& p = program("forward", assigner, count);
@@ -195,7 +215,7 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
     setFrameUniforms(p, view, proj);
     assigner.bindForShading(p);
     scene_->draw(p, true);
-    glDepthFunc(GL_LESS);
+    glDisable(GL_STENCIL_TEST);
     glDepthMask(GL_TRUE);
   }
   glCheck("shading pass");
@@ -215,7 +235,7 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
     const auto counts = targets_->readCounts();
     const auto depth = targets_->readDepth(deferred);
     for (size_t i = 0; i < depth.size(); ++i) {
-      if (depth[i] >= 1.0f) continue;
+      if (gpu::is_sky_depth(depth[i])) continue;
       ++result.covered_pixels;
       result.light_evaluations += counts[2 * i];
       result.lower_bound += counts[2 * i + 1];

@@ -59,6 +59,7 @@ class FrameRenderer {
  private:
   const ShaderProgram& program(const std::string& kind, const LightAssigner& a, bool count);
   void exportDepth(bool deferred, PassTimings& passes);
+  void shadeOnlyFirstEqualFragment();
   void setFrameUniforms(const ShaderProgram& p, const glm::mat4& view, const glm::mat4& proj) const;
 
   ClRuntime& cl_;

@@ -10,9 +10,16 @@
 namespace ml {
 namespace {
 
+// Shader files, then the headers shared with C++ and OpenCL (host/shared/,
+// e.g. depth_convention.h, written to compile as GLSL too).
+std::string embeddedName(const std::string& file) {
+  const bool shared = !hasEmbeddedFile("shaders/" + file) && hasEmbeddedFile("shared/" + file);
+  return (shared ? "shared/" : "shaders/") + file;
+}
+
 void expandInto(const std::string& file, const ShaderAliases& aliases, std::set<std::string>& seen,
                 std::string& out) {
-  std::istringstream in(readEmbeddedFile("shaders/" + file));
+  std::istringstream in(readEmbeddedFile(embeddedName(file)));
   std::string line;
   int line_no = 0;
   while (std::getline(in, line)) {
@@ -26,7 +33,7 @@ void expandInto(const std::string& file, const ShaderAliases& aliases, std::set<
       std::string inc = line.substr(q1 + 1, q2 - q1 - 1);
       for (const auto& [from, to] : aliases)
         if (inc == from) inc = to;
-      if (!hasEmbeddedFile("shaders/" + inc))
+      if (!hasEmbeddedFile(embeddedName(inc)))
         throw UserError("gl/shaders/" + file + ":" + std::to_string(line_no) + ": no shader file '" + inc + "'");
       if (seen.insert(inc).second) expandInto(inc, aliases, seen, out);
       continue;

@@ -43,7 +43,6 @@
 /* Stack of pending nodes: at most BVH_BRANCH per level plus the top level. */
 #define BVH_STACK 256
 #define DEPTH_EPS 1e-4f
-#define RECON_EPS 1e-6f
 /* Per BVH node in a sibling block: box lo.xyz, hi.xyz, bounding sphere xyzr. */
 #define NODE_FLOATS 10u
 
@@ -93,21 +92,12 @@ __kernel void cluster_boxes(__global const uint* keys, uint count, CameraParams 
   box_hi[c] = (float4)(x1, y1, zmax, 0.0f);
 }
 
-inline float linear_depth(float d, const CameraParams* cam) {
-  const float ndc = 2.0f * d - 1.0f;
-  return cam->proj[14] / (ndc + cam->proj[10]);
-}
-/* The depth of a pixel with no geometry (the one place its convention lives). */
-inline bool is_sky_depth(float d) { return d >= 1.0f; }
-
 /* The widening of an explicit box (see cluster_pixel_boxes), shared by both shapes. */
-inline void widen_pixel_box(float4 lo, float4 hi, const CameraParams* cam, float4* out_lo, float4* out_hi) {
+inline void widen_pixel_box(float4 lo, float4 hi, float4* out_lo, float4* out_hi) {
   const float ext = fmax(fmax(hi.z, fmax(fabs(lo.x), fabs(hi.x))), fmax(fabs(lo.y), fabs(hi.y)));
-  const float rel_lo = DEPTH_EPS + RECON_EPS * (lo.z / cam->near_plane);
-  const float rel_hi = DEPTH_EPS + RECON_EPS * (hi.z / cam->near_plane);
-  const float pad = ext * rel_hi;
-  *out_lo = (float4)(lo.x - pad, lo.y - pad, lo.z - lo.z * rel_lo, 0.0f);
-  *out_hi = (float4)(hi.x + pad, hi.y + pad, hi.z + hi.z * rel_hi, 0.0f);
+  const float pad = ext * DEPTH_EPS;
+  *out_lo = (float4)(lo.x - pad, lo.y - pad, lo.z - lo.z * DEPTH_EPS, 0.0f);
+  *out_hi = (float4)(hi.x + pad, hi.y + pad, hi.z + hi.z * DEPTH_EPS, 0.0f);
 }
 
 /* Explicit bounds (Olsson et al.): per unique cluster the view-space AABB of
@@ -116,12 +106,12 @@ inline void widen_pixel_box(float4 lo, float4 hi, const CameraParams* cam, float
  * tile above the slice, so the clusters of one tile form one index range that
  * no other tile touches; the work-item owns it and needs no atomics. Runs of
  * equal clusters along a row are reduced in registers. box_lo/box_hi start
- * as +inf/-inf (filled by the host). The box is then widened, relative to its
- * extent, by DEPTH_EPS + RECON_EPS z / near, so that the shader's own
- * reconstruction (another float path, or the forward pass's interpolated
- * position) stays inside: near the far plane a float depth pins the distance
- * down only to ~1e-7 z / near (relative), as the float sum ndc + proj[10]
- * cancels; RECON_EPS leaves a margin of 3x over both paths' rounding.
+ * as +inf/-inf (filled by the host). The box is then widened by DEPTH_EPS,
+ * relative to its extent, so that the shader's own position (another float
+ * path, or the forward pass's interpolated position) stays inside: reversed-Z
+ * float depth pins the distance down to ~1e-7 (relative) at any distance and
+ * any near plane (host/shared/depth_convention.h), and DEPTH_EPS leaves room
+ * for the rasteriser's interpolation of both.
  * One division per pixel (the depth); the rest are products with
  * reciprocals computed once, mirrored by host/clustered/ClusterGeometry.cpp. */
 __kernel void cluster_pixel_boxes(__global const float* depth, __global const uint* cluster_of, CameraParams cam,
@@ -166,7 +156,7 @@ __kernel void cluster_pixel_boxes(__global const float* depth, __global const ui
   }
   for (uint c = cmin; c <= cmax && cmin <= cmax; ++c) {
     float4 lo, hi;
-    widen_pixel_box(box_lo[c], box_hi[c], &cam, &lo, &hi);
+    widen_pixel_box(box_lo[c], box_hi[c], &lo, &hi);
     box_lo[c] = lo;
     box_hi[c] = hi;
   }
@@ -670,7 +660,7 @@ __kernel void cluster_boxes_finish(__global float4* box_lo, __global float4* box
   const float4 lo = (float4)(from_ordered_int(l.x), from_ordered_int(l.y), from_ordered_int(l.z), 0.0f);
   const float4 hi = (float4)(from_ordered_int(h.x), from_ordered_int(h.y), from_ordered_int(h.z), 0.0f);
   float4 out_lo, out_hi;
-  widen_pixel_box(lo, hi, &cam, &out_lo, &out_hi);
+  widen_pixel_box(lo, hi, &out_lo, &out_hi);
   box_lo[c] = out_lo;
   box_hi[c] = out_hi;
 }

@@ -1,7 +1,7 @@
 /* Clustered shading: cluster keys per pixel and the unique-cluster list.
  *
  *   cluster_keys          depth -> key = ((j << XB | i) << KB) | k per pixel,
- *                         CLUSTER_INVALID for sky (depth >= 1)
+ *                         CLUSTER_INVALID for sky (is_sky_depth, gpu_types.h)
  *   page table (Karas):   page_mark -> (scan) -> page_store -> (compact of the
  *                         slot flags) -> page_unique -> page_map
  *   sort + unique:        sort_init -> (radix sort) -> head_flags -> (scan) -> run_scatter
@@ -20,11 +20,6 @@
 
 #define CLUSTER_INVALID 0xffffffffu
 
-inline float linear_depth(float d, const CameraParams* cam) {
-  const float ndc = 2.0f * d - 1.0f;
-  return cam->proj[14] / (ndc + cam->proj[10]);
-}
-
 /* Largest k in [0, slices) with bounds[k] <= z (0 when z < near). */
 inline uint slice_of(float z, __global const float* bounds, uint slices) {
   uint lo = 0, hi = slices;
@@ -41,7 +36,7 @@ __kernel void cluster_keys(__global const float* depth, CameraParams cam, __glob
   const uint p = get_global_id(0);
   if (p >= cam.width * cam.height) return;
   const float d = depth[p];
-  if (!(d < 1.0f)) { /* NaN counts as sky too */
+  if (is_sky_depth(d)) { /* NaN counts as sky too */
     keys[p] = CLUSTER_INVALID;
     return;
   }

@@ -42,14 +42,6 @@ inline float4 mat_mul(const float* m, float4 v) {
 }
 inline float4 mat_row(const float* m, int r) { return (float4)(m[r], m[4 + r], m[8 + r], m[12 + r]); }
 
-/* Window depth [0,1] -> positive linear view distance (-z_view). */
-inline float linear_depth(float d, const CameraParams* cam) {
-  const float ndc = 2.0f * d - 1.0f;
-  return cam->proj[14] / (ndc + cam->proj[10]);
-}
-/* The depth of a pixel with no geometry (the one place its convention lives). */
-inline bool is_sky_depth(float d) { return d >= 1.0f; }
-
 /* ---------------------------------------------------------------- bounds */
 
 /* Widening of the tile depth range (relative): the kernel and the shader
@@ -81,7 +73,7 @@ __kernel void tile_depth_bounds(__global const float* depth, CameraParams cam, u
   for (uint y = y0; y < y1; ++y)
     for (uint x = x0; x < x1; ++x) {
       const float d = depth[y * cam.width + x];
-      if (d >= 1.0f) continue;
+      if (is_sky_depth(d)) continue;
       const float z = linear_depth(d, &cam);
       zmin = fmin(zmin, z);
       zmax = fmax(zmax, z);
@@ -93,7 +85,7 @@ __kernel void tile_depth_bounds(__global const float* depth, CameraParams cam, u
     for (uint y = y0; y < y1; ++y)
       for (uint x = x0; x < x1; ++x) {
         const float d = depth[y * cam.width + x];
-        if (d < 1.0f) mask |= 1u << bin_of(linear_depth(d, &cam), zmin, inv);
+        if (!is_sky_depth(d)) mask |= 1u << bin_of(linear_depth(d, &cam), zmin, inv);
       }
   }
 #endif
@@ -120,7 +112,7 @@ __kernel void tile_depth_bounds_wg(__global const float* depth, CameraParams cam
   const uint w = min((uint)TILE_SIZE, cam.width - x0), h = min((uint)TILE_SIZE, cam.height - y0);
   for (uint i = lid; i < w * h; i += lsize) {
     const float d = depth[(y0 + i / w) * cam.width + x0 + i % w];
-    if (d < 1.0f) {
+    if (!is_sky_depth(d)) {
       const uint z = as_uint(linear_depth(d, &cam));
       atomic_min(&lmin, z);
       atomic_max(&lmax, z);
@@ -134,7 +126,7 @@ __kernel void tile_depth_bounds_wg(__global const float* depth, CameraParams cam
     uint mask = 0;
     for (uint i = lid; i < w * h; i += lsize) {
       const float d = depth[(y0 + i / w) * cam.width + x0 + i % w];
-      if (d < 1.0f) mask |= 1u << bin_of(linear_depth(d, &cam), zmin, inv);
+      if (!is_sky_depth(d)) mask |= 1u << bin_of(linear_depth(d, &cam), zmin, inv);
     }
     atomic_or(&lmask, mask);
   }

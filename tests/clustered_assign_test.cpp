@@ -19,6 +19,7 @@
 #include "host/util/Error.hpp"
 #include "shape_support.hpp"
 #include "support/FpTolerance.hpp"
+#include "support/DepthPoints.hpp"
 #include "support/TestDevice.hpp"
 
 namespace ml {
@@ -257,22 +258,16 @@ TEST_P(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
       }
 
       // Conservative: a light containing a pixel's surface point is in its cluster's list.
-      // The point is reconstructed in double: in float, inverting proj * view
-      // loses ~1e-4 of the distance at far/near = 1000, as much as the boxes'
-      // padding, and the reference itself would be wrong.
-      const glm::dmat4 inv = glm::inverse(glm::dmat4(c.camera.projection(float(w) / float(h))) *
-                                          glm::dmat4(c.camera.view()));
+      const gpu::CameraParams cam = c.camera.params(w, h);
       for (unsigned y = 0; y < h; y += 3)
         for (unsigned x = 0; x < w; x += 3) {
           const std::size_t p = std::size_t(y) * w + x;
-          if (c.depth[p] >= 1.0f) continue;
-          const glm::dvec4 ndc{(x + 0.5) / w * 2 - 1, (y + 0.5) / h * 2 - 1, double(c.depth[p]) * 2 - 1, 1};
-          glm::dvec4 wp = inv * ndc;
-          wp /= wp.w;
+          if (gpu::is_sky_depth(c.depth[p])) continue;
+          const glm::dvec3 wp = test::pixelWorldPoint(c.camera, cam, x, y, c.depth[p]);
           const auto& list = t[f.cluster_of[p]];
           for (std::uint32_t i = 0; i < n; ++i) {
             const auto& l = c.lights[i].position_radius;
-            const glm::dvec3 d = glm::dvec3(wp) - glm::dvec3(l.x, l.y, l.z);
+            const glm::dvec3 d = wp - glm::dvec3(l.x, l.y, l.z);
             if (glm::dot(d, d) < double(l.w) * l.w * 0.999) {
               ASSERT_TRUE(std::binary_search(list.begin(), list.end(), i))
                   << "pixel " << x << "," << y << " light " << i;

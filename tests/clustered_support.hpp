@@ -33,11 +33,8 @@ inline ClusterCase randomClusterCase(std::mt19937_64& rng, unsigned w, unsigned 
   c.camera.near_plane = 0.1f;
   c.camera.far_plane = far_plane;
   const glm::mat4 proj = c.camera.projection(float(w) / float(h));
-  auto window_depth = [&](float dist) {
-    const glm::vec4 clip = proj * glm::vec4(0, 0, -dist, 1);
-    return clip.z / clip.w * 0.5f + 0.5f;
-  };
-  c.depth.assign(std::size_t(w) * h, 1.0f);
+  auto window_depth = [&](float dist) { return gpu::distance_to_depth(dist, proj[2][2], proj[3][2]); };
+  c.depth.assign(std::size_t(w) * h, gpu::kSkyDepth);
   for (int r = 0; r < 12; ++r) {
     const unsigned x0 = unsigned(u(rng) * w), y0 = unsigned(u(rng) * h);
     const unsigned x1 = std::min(w, x0 + 1 + unsigned(u(rng) * w / 2)), y1 = std::min(h, y0 + 1 + unsigned(u(rng) * h / 2));

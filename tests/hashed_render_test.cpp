@@ -13,6 +13,7 @@
 #include "host/hashed/HashedAssigner.hpp"
 #include "support/ImageCompare.hpp"
 #include "support/BruteReference.hpp"
+#include "support/DepthPoints.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
@@ -86,16 +87,15 @@ TEST(HashedRender, GlslCountsEqualTheCpuLookup) {
   HashedAssigner hf("hashed-forward", params);
   const Rendered f = render(r, hf, Pipeline::Forward, cam);
   const auto depth = r.targets().readDepth(false);
-  const glm::mat4 inv = glm::inverse(cam.projection(float(kW) / float(kH)) * cam.view());
+  const gpu::CameraParams cam_params = cam.params(kW, kH);
   std::uint64_t cpu = 0;
   std::size_t covered = 0;
   for (unsigned y = 0; y < kH; ++y)
     for (unsigned x = 0; x < kW; ++x) {
       const float dz = depth[y * kW + x];
-      if (dz >= 1.0f) continue;
+      if (gpu::is_sky_depth(dz)) continue;
       ++covered;
-      const glm::vec4 w = inv * glm::vec4((x + 0.5f) / kW * 2 - 1, (y + 0.5f) / kH * 2 - 1, dz * 2 - 1, 1);
-      cpu += hf.structure()->linkless().lightsAt(glm::vec3(w) / w.w).size();
+      cpu += hf.structure()->linkless().lightsAt(glm::vec3(test::pixelWorldPoint(cam, cam_params, x, y, dz))).size();
     }
   EXPECT_EQ(covered, f.result.covered_pixels);
   // Reconstructed points differ from the interpolated ones by rounding, which

@@ -7,6 +7,7 @@
 #include "gl/FrameRenderer.hpp"
 #include "host/app/SceneInputs.hpp"
 #include "host/assign/BruteForceAssigner.hpp"
+#include "support/DepthPoints.hpp"
 #include "support/ImageCompare.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
@@ -34,17 +35,15 @@ const DefaultScene& defaultScene() {
 // surface point, reconstructed from the depth buffer.
 std::uint64_t cpuLowerBound(const std::vector<float>& depth, const Camera& cam,
                             const std::vector<gpu::PointLight>& lights, std::uint64_t& covered) {
-  const glm::mat4 inv = glm::inverse(cam.projection(float(kW) / float(kH)) * cam.view());
+  const gpu::CameraParams params = cam.params(kW, kH);
   std::uint64_t total = 0;
   covered = 0;
   for (unsigned y = 0; y < kH; ++y)
     for (unsigned x = 0; x < kW; ++x) {
       const float d = depth[y * kW + x];
-      if (d >= 1.0f) continue;
+      if (gpu::is_sky_depth(d)) continue;
       ++covered;
-      glm::vec4 ndc((x + 0.5f) / kW * 2 - 1, (y + 0.5f) / kH * 2 - 1, d * 2 - 1, 1);
-      glm::vec4 w = inv * ndc;
-      glm::vec3 p = glm::vec3(w) / w.w;
+      const glm::vec3 p = test::pixelWorldPoint(cam, params, x, y, d);
       for (const auto& l : lights) {
         glm::vec3 dv = glm::vec3(l.position_radius.x, l.position_radius.y, l.position_radius.z) - p;
         if (glm::dot(dv, dv) < l.position_radius.w * l.position_radius.w) ++total;

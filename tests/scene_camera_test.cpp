@@ -49,8 +49,9 @@ TEST(CameraMatrices, MatchGlmLookAtAndPerspective) {
     const ml::Camera c = randomCamera(rng);
     const float aspect = 0.5f + float(i) / 10.0f;
     const glm::mat4 v = c.view(), ref_v = glm::lookAt(c.eye, c.center, c.up);
+    // Reversed-Z into [0, 1] is glm's zero-to-one perspective with near and far swapped.
     const glm::mat4 p = c.projection(aspect),
-                    ref_p = glm::perspective(glm::radians(c.fovy_degrees), aspect, c.near_plane, c.far_plane);
+                    ref_p = glm::perspectiveRH_ZO(glm::radians(c.fovy_degrees), aspect, c.far_plane, c.near_plane);
     for (int col = 0; col < 4; ++col)
       for (int row = 0; row < 4; ++row) {
         EXPECT_NEAR(v[col][row], ref_v[col][row], 1e-5f);
@@ -95,11 +96,13 @@ TEST(CameraMatrices, ProjectionMapsFrustumToGlClipCube) {
   const glm::vec3 centre = ndc(c, aspect, c.center);
   EXPECT_NEAR(centre.x, 0.0f, 1e-6f);
   EXPECT_NEAR(centre.y, 0.0f, 1e-6f);
-  EXPECT_GT(centre.z, -1.0f);
+  EXPECT_GT(centre.z, 0.0f);
   EXPECT_LT(centre.z, 1.0f);
 
-  EXPECT_NEAR(ndc(c, aspect, {1, 2, 3 - 0.5f}).z, -1.0f, 1e-5f);  // near plane -> -1 (GL, not 0)
-  EXPECT_NEAR(ndc(c, aspect, {1, 2, 3 - 50.0f}).z, 1.0f, 1e-4f);  // far plane -> +1
+  // Reversed-Z (host/shared/depth_convention.h): near plane -> 1, far plane -> 0.
+  EXPECT_NEAR(ndc(c, aspect, {1, 2, 3 - 0.5f}).z, 1.0f, 1e-6f);
+  EXPECT_NEAR(ndc(c, aspect, {1, 2, 3 - 50.0f}).z, 0.0f, 1e-7f);
+  EXPECT_NEAR(ndc(c, aspect, {1, 2, 3 - 5.0f}).z, 0.5f / 5.0f * (50.0f - 5.0f) / (50.0f - 0.5f), 1e-7f);
   const float d = 4.0f;
   EXPECT_NEAR(ndc(c, aspect, {1, 2 + d, 3 - d}).y, 1.0f, 1e-5f);          // top edge
   EXPECT_NEAR(ndc(c, aspect, {1 + 2 * d, 2, 3 - d}).x, 1.0f, 1e-5f);      // right edge: aspect 2
@@ -125,7 +128,7 @@ TEST(CameraMatrices, ParamsAreColumnMajorWithLensData) {
   // perspective's -1 (w = -z_view) sits at row 3, column 2 = element 11.
   EXPECT_NE(p.view[14], 0.0f);
   EXPECT_EQ(p.proj[11], -1.0f);
-  EXPECT_EQ(p.proj[14] < 0.0f, true);
+  EXPECT_GT(p.proj[14], 0.0f);  // reversed-Z: clip z = near f / (f - n) at z_view = 0
   EXPECT_NEAR(p.tan_half_fovy, 1.0f / std::sqrt(3.0f), 1e-6f);  // tan(30 deg)
   EXPECT_FLOAT_EQ(p.aspect, 16.0f / 9.0f);
   EXPECT_EQ(p.near_plane, 0.25f);

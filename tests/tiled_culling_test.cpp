@@ -16,6 +16,7 @@
 #include "host/tiled/TileLightCuller.hpp"
 #include "shape_support.hpp"
 #include "support/FpTolerance.hpp"
+#include "support/DepthPoints.hpp"
 #include "support/TestDevice.hpp"
 
 namespace ml {
@@ -42,11 +43,8 @@ CullCase randomCase(std::mt19937_64& rng, unsigned w, unsigned h, std::size_t n_
   c.camera.near_plane = 0.1f;
   c.camera.far_plane = 100.0f;
   const glm::mat4 proj = c.camera.projection(float(w) / float(h));
-  auto window_depth = [&](float dist) {
-    const glm::vec4 clip = proj * glm::vec4(0, 0, -dist, 1);
-    return clip.z / clip.w * 0.5f + 0.5f;
-  };
-  c.depth.assign(std::size_t(w) * h, 1.0f);
+  auto window_depth = [&](float dist) { return gpu::distance_to_depth(dist, proj[2][2], proj[3][2]); };
+  c.depth.assign(std::size_t(w) * h, gpu::kSkyDepth);
   for (int r = 0; r < 12; ++r) {
     const unsigned x0 = unsigned(u(rng) * w), y0 = unsigned(u(rng) * h);
     const unsigned x1 = std::min(w, x0 + 1 + unsigned(u(rng) * w / 2)), y1 = std::min(h, y0 + 1 + unsigned(u(rng) * h / 2));
@@ -145,15 +143,14 @@ TEST_P(TiledCulling, KernelMatchesReferenceAndIsConservative) {
     for (const auto& list : gpu) total += list.size();
     EXPECT_GT(total, 0u);
     // Conservative: every light containing a pixel's point is in its tile's list.
-    const glm::mat4 inv = glm::inverse(c.camera.projection(float(w) / float(h)) * c.camera.view());
+    const gpu::CameraParams cam = c.camera.params(w, h);
     TileGrid g{tile, w, h};
     std::size_t checked = 0;
     for (unsigned y = 0; y < h; ++y)
       for (unsigned x = 0; x < w; ++x) {
         const float d = c.depth[y * w + x];
-        if (d >= 1.0f) continue;
-        glm::vec4 p = inv * glm::vec4((x + 0.5f) / w * 2 - 1, (y + 0.5f) / h * 2 - 1, d * 2 - 1, 1);
-        const glm::vec3 P = glm::vec3(p) / p.w;
+        if (gpu::is_sky_depth(d)) continue;
+        const glm::vec3 P = test::pixelWorldPoint(c.camera, cam, x, y, d);
         const auto& list = gpu[(y / tile) * g.tilesX() + x / tile];
         for (std::uint32_t i = 0; i < c.lights.size(); ++i) {
           const auto& l = c.lights[i].position_radius;

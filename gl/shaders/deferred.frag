@@ -1,4 +1,5 @@
 #include "common.glsl"
+#include "depth_convention.h"
 #include "lookup.glsl"
 #include "shading.glsl"
 #include "octahedral.glsl"
@@ -10,10 +11,13 @@ layout(location = 1) out uvec2 o_counts;
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   float depth = texelFetch(u_gbuffer_depth, px, 0).r;
-  if (depth >= 1.0) discard;  // background keeps the clear colour
-  vec3 ndc = vec3(gl_FragCoord.xy / u_viewport, depth) * 2.0 - 1.0;
-  vec4 v = u_inv_proj * vec4(ndc, 1.0);
-  vec3 view_pos = v.xyz / v.w;
+  if (is_sky_depth(depth)) discard;  // background keeps the clear colour
+  // View position from the distance and the pixel's ray, as the kernels
+  // reconstruct it (kernels/cluster_assign.cl): no inverse projection whose
+  // float rounding would grow with far / near.
+  float z = depth_to_distance(depth, u_proj[2][2], u_proj[3][2]);
+  vec2 ndc = gl_FragCoord.xy / u_viewport * 2.0 - 1.0;
+  vec3 view_pos = z * vec3((ndc + vec2(u_proj[2][0], u_proj[2][1])) / vec2(u_proj[0][0], u_proj[1][1]), -1.0);
   vec3 P = (u_inv_view * vec4(view_pos, 1.0)).xyz;
   vec3 N = octDecode(texelFetch(u_gbuffer_normal, px, 0).xy);
   uvec2 counts;

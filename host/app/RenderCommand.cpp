@@ -197,7 +197,7 @@ int runRender(const RenderArgs& a) {
     if (!a.heatmap.empty()) {
       const auto depth = renderer.targets().readDepth(tech.pipeline == Pipeline::Deferred);
       std::vector<bool> covered(depth.size());
-      for (size_t i = 0; i < depth.size(); ++i) covered[i] = depth[i] < 1.0f;
+      for (size_t i = 0; i < depth.size(); ++i) covered[i] = !gpu::is_sky_depth(depth[i]);
       writeImageAtomically("--heatmap", a.heatmap, width, height, 4,
                            heatmapRgba(renderer.targets().readCounts(), 2, 0, covered, a.heatmap_max));
     }

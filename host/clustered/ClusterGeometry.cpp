@@ -79,8 +79,9 @@ std::vector<std::uint32_t> referenceKeys(const float* depth, const gpu::CameraPa
     for (unsigned x = 0; x < cam.width; ++x) {
       const std::size_t p = std::size_t(y) * cam.width + x;
       const float d = depth[p];
-      keys[p] = d < 1.0f ? g.key(x / g.tile_size, y / g.tile_size, sliceOfDepth(linearDepth(d, cam), g))
-                         : kClusterInvalid;
+      keys[p] = gpu::is_sky_depth(d)
+                    ? kClusterInvalid
+                    : g.key(x / g.tile_size, y / g.tile_size, sliceOfDepth(gpu::linear_depth(d, cam), g));
     }
   return keys;
 }
@@ -126,7 +127,7 @@ std::vector<ClusterBox> pixelBoxes(const float* depth, const std::vector<std::ui
       const std::size_t p = std::size_t(y) * cam.width + x;
       const std::uint32_t c = cluster_of[p];
       if (c == kClusterInvalid) continue;
-      const float z = linearDepth(depth[p], cam);
+      const float z = gpu::linear_depth(depth[p], cam);
       const float fx = ((float(x) + 0.5f) * sx - 1.0f + ox) * ix;
       const float vx = z * fx, vy = z * fy;
       ClusterBox& b = boxes.at(c);
@@ -141,10 +142,8 @@ std::vector<ClusterBox> pixelBoxes(const float* depth, const std::vector<std::ui
   for (ClusterBox& b : boxes) {
     const float ext = std::fmax(std::fmax(b.z1, std::fmax(std::fabs(b.x0), std::fabs(b.x1))),
                                 std::fmax(std::fabs(b.y0), std::fabs(b.y1)));
-    const float rel_lo = kClusterDepthEps + kClusterReconEps * (b.z0 / cam.near_plane);
-    const float rel_hi = kClusterDepthEps + kClusterReconEps * (b.z1 / cam.near_plane);
-    const float pad = ext * rel_hi;
-    b = {b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad, b.z0 - b.z0 * rel_lo, b.z1 + b.z1 * rel_hi};
+    const float pad = ext * kClusterDepthEps, eps = kClusterDepthEps;
+    b = {b.x0 - pad, b.x1 + pad, b.y0 - pad, b.y1 + pad, b.z0 - b.z0 * eps, b.z1 + b.z1 * eps};
   }
   return boxes;
 }

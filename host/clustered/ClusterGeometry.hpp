@@ -18,12 +18,11 @@
 namespace ml {
 
 constexpr std::uint32_t kClusterInvalid = 0xffffffffu;
-// Relative widening of the slice depth range in the cluster boxes: the shader
-// reconstructs depth along another float path than the key kernel.
+// Relative widening of the slice depth range and of the explicit (pixel)
+// bounds in the cluster boxes: the shader reconstructs depth along another
+// float path than the kernels, or interpolates its position (reversed-Z float
+// depth fixes the distance to ~1e-7 relative at any near plane).
 constexpr float kClusterDepthEps = 1e-4f;
-// Explicit (pixel) bounds widen by kClusterDepthEps + kClusterReconEps z / near
-// (relative): float depth fixes the distance only to ~1e-7 z / near near far.
-constexpr float kClusterReconEps = 1e-6f;
 
 struct ClusterGrid {
   unsigned tile_size = 32;
@@ -60,7 +59,7 @@ struct ClusterBox {
 ClusterBox clusterBox(std::uint32_t key, const gpu::CameraParams& cam, const ClusterGrid& g);
 // Explicit bounds: per unique cluster the view-space AABB of the centres of
 // the pixels mapped to it (cluster_of: pixel -> cluster index or
-// kClusterInvalid), widened relative to its extent (see kClusterReconEps). Mirrors
+// kClusterInvalid), widened relative to its extent (see kClusterDepthEps). Mirrors
 // cluster_pixel_boxes in kernels/cluster_assign.cl exactly.
 std::vector<ClusterBox> pixelBoxes(const float* depth, const std::vector<std::uint32_t>& cluster_of,
                                    std::uint32_t clusters, const gpu::CameraParams& cam);

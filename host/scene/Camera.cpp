@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -25,10 +26,13 @@ void validate(const Camera& c, const std::string& where) {
   if (!(glm::length(side) > 1e-6f)) throw UserError(where + ": \"up\" is parallel to the view direction");
   if (!(c.fovy_degrees > 0.0f && c.fovy_degrees < 180.0f))
     throw UserError(where + ": \"fovy\" must be in (0, 180) degrees (got " + std::to_string(c.fovy_degrees) + ")");
-  if (!(c.near_plane > 0.0f)) throw UserError(where + ": \"near\" must be > 0 (got " + std::to_string(c.near_plane) + ")");
-  if (!(c.far_plane > c.near_plane))
-    throw UserError(where + ": \"far\" must exceed \"near\" (got near " + std::to_string(c.near_plane) + ", far " +
-                    std::to_string(c.far_plane) + ")");
+  checkDepthRange(c, where);
+}
+
+std::string num(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", double(v));
+  return buf;
 }
 
 // Reads eye/center/up and the optional lens fields of `obj` over `base`, so path
@@ -63,12 +67,35 @@ void addLens(nlohmann::ordered_json& j, const Camera& c, const Camera* inherited
 
 }  // namespace
 
-// The explicit RH_NO variants keep the GL conventions even if some translation
-// unit defines GLM_FORCE_DEPTH_ZERO_TO_ONE / GLM_FORCE_LEFT_HANDED.
+void checkDepthRange(const Camera& c, const std::string& where) {
+  const float n = c.near_plane, f = c.far_plane;
+  if (!(n > 0.0f)) throw UserError(where + ": \"near\" must be > 0 (got " + num(n) + ")");
+  if (!(f > n)) throw UserError(where + ": \"far\" must exceed \"near\" (got near " + num(n) + ", far " + num(f) + ")");
+  if (n < kMinNearPlane)
+    throw UserError(where + ": \"near\" " + num(n) + " is below " + num(kMinNearPlane) +
+                    ", the smallest the float depth buffer resolves");
+  if (!(f / n <= kMaxFarOverNear))
+    throw UserError(where + ": \"far\" / \"near\" = " + num(f / n) + " (near " + num(n) + ", far " + num(f) +
+                    ") exceeds " + num(kMaxFarOverNear) + ", the largest ratio the float depth buffer resolves");
+}
+
+// The explicit RH variant keeps the GL convention even if some translation
+// unit defines GLM_FORCE_LEFT_HANDED.
 glm::mat4 Camera::view() const { return glm::lookAtRH(eye, center, up); }
 
+// Reversed-Z (host/shared/depth_convention.h): clip z = p22 z_view + p32, w = -z_view,
+// so near maps to 1 and far to 0. Written through r = n / f so that n f cannot
+// overflow for any far a float holds.
 glm::mat4 Camera::projection(float aspect) const {
-  return glm::perspectiveRH_NO(glm::radians(fovy_degrees), aspect, near_plane, far_plane);
+  const float t = std::tan(glm::radians(fovy_degrees) * 0.5f);
+  const float r = near_plane / far_plane;
+  glm::mat4 p(0.0f);
+  p[0][0] = 1.0f / (aspect * t);
+  p[1][1] = 1.0f / t;
+  p[2][2] = r / (1.0f - r);
+  p[2][3] = -1.0f;
+  p[3][2] = near_plane / (1.0f - r);
+  return p;
 }
 
 gpu::CameraParams Camera::params(unsigned width, unsigned height) const {

@@ -1,6 +1,7 @@
 #pragma once
 // Pinhole camera (right-handed, looking down -z in view space, OpenGL clip
-// conventions) and camera paths.
+// conventions with reversed-Z depth: host/shared/depth_convention.h) and
+// camera paths.
 //
 // JSON: a single camera {"eye":[..], "center":[..], "up":[..], "fovy": deg,
 // "near": n, "far": f}, or a path {"frames": [{eye, center, up}, ...], "fovy"...};
@@ -27,6 +28,16 @@ struct Camera {
   // Fills the struct the kernels read (column-major matrices).
   gpu::CameraParams params(unsigned width, unsigned height) const;
 };
+
+// The depth range a reversed-Z float depth buffer resolves: with near at least
+// kMinNearPlane and far / near at most kMaxFarOverNear, the window depth of
+// every visible point is a normal float (drivers may flush denormals to 0,
+// which reads as sky), with a wide margin for the rasteriser's interpolation.
+inline constexpr float kMinNearPlane = 1e-30f;
+inline constexpr float kMaxFarOverNear = 1e30f;
+// Throws UserError "<where>: ..." naming the limit unless 0 < near < far lie
+// within those limits (and are finite).
+void checkDepthRange(const Camera& c, const std::string& where);
 
 struct CameraPath {
   std::vector<Camera> frames;  // never empty after loading

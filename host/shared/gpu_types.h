@@ -6,6 +6,8 @@
 #ifndef MANYLIGHTS_GPU_TYPES_H
 #define MANYLIGHTS_GPU_TYPES_H
 
+#include "depth_convention.h"
+
 #ifdef __OPENCL_VERSION__
 typedef float4 ml_float4;
 typedef uint ml_uint;
@@ -54,6 +56,16 @@ typedef struct CameraParams {
   ml_uint pad1;
 } CameraParams;
 ML_STATIC_ASSERT(sizeof(CameraParams) == 160, "CameraParams layout changed: update kernels and GLSL");
+
+/* Positive view distance (-z_view) of window depth d under this camera's
+ * projection; the convention lives in depth_convention.h. */
+#ifdef __OPENCL_VERSION__
+inline float linear_depth(float d, const CameraParams* cam) {
+  return depth_to_distance(d, cam->proj[10], cam->proj[14]);
+}
+#else
+inline float linear_depth(float d, const CameraParams& cam) { return depth_to_distance(d, cam.proj[10], cam.proj[14]); }
+#endif
 
 #ifndef __OPENCL_VERSION__
 }  // namespace ml::gpu

@@ -63,11 +63,6 @@ const char* tileDepthModeName(TileDepthMode m) {
   return "?";
 }
 
-float linearDepth(float d, const gpu::CameraParams& cam) {
-  const float ndc = 2.0f * d - 1.0f;
-  return cam.proj[14] / (ndc + cam.proj[10]);
-}
-
 TileDepth tileDepth(const float* depth, const gpu::CameraParams& cam, const TileGrid& g, unsigned tx, unsigned ty,
                     TileDepthMode mode) {
   const unsigned x0 = tx * g.tile_size, y0 = ty * g.tile_size;
@@ -76,8 +71,8 @@ TileDepth tileDepth(const float* depth, const gpu::CameraParams& cam, const Tile
   for (unsigned y = y0; y < y1; ++y)
     for (unsigned x = x0; x < x1; ++x) {
       const float d = depth[y * g.width + x];
-      if (d >= 1.0f) continue;
-      const float z = linearDepth(d, cam);
+      if (gpu::is_sky_depth(d)) continue;
+      const float z = gpu::linear_depth(d, cam);
       zmin = std::fmin(zmin, z);
       zmax = std::fmax(zmax, z);
     }
@@ -95,7 +90,7 @@ TileDepth tileDepth(const float* depth, const gpu::CameraParams& cam, const Tile
     for (unsigned y = y0; y < y1; ++y)
       for (unsigned x = x0; x < x1; ++x) {
         const float d = depth[y * g.width + x];
-        if (d < 1.0f) td.mask |= 1u << binOf(linearDepth(d, cam), td.zmin, td.inv_range);
+        if (!gpu::is_sky_depth(d)) td.mask |= 1u << binOf(gpu::linear_depth(d, cam), td.zmin, td.inv_range);
       }
   return td;
 }

@@ -31,8 +31,7 @@ struct TileDepth {
 
 constexpr float kTileDepthEps = 1e-4f;
 
-float linearDepth(float window_depth, const gpu::CameraParams& cam);
-// depth: window-space floats, row 0 at the bottom.
+// depth: window-space floats (host/shared/depth_convention.h), row 0 at the bottom.
 TileDepth tileDepth(const float* depth, const gpu::CameraParams& cam, const TileGrid& g, unsigned tx, unsigned ty,
                     TileDepthMode mode);
 
