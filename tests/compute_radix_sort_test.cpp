@@ -14,6 +14,7 @@
 #include "host/compute/HostIo.hpp"
 #include "host/compute/RadixSort.hpp"
 #include "support/TestDevice.hpp"
+#include "support/TestSizes.hpp"
 
 namespace ml::compute {
 namespace {
@@ -127,7 +128,7 @@ TEST_P(RadixSortTest, MatchesStableSort) {
   RadixSorter sorter(test::runtime(), Options{.shape = shape});
   for (const KeyDist dist : kDists) {
     std::vector<std::size_t> sizes(std::begin(kSmallSizes), std::end(kSmallSizes));
-    if (dist == KeyDist::Random || variant == Variant::Pairs32) sizes.push_back(kBig);
+    if ((dist == KeyDist::Random || variant == Variant::Pairs32) && !test::smallSizes()) sizes.push_back(kBig);
     for (const std::size_t n : sizes) {
       SCOPED_TRACE(std::string(keyDistName(dist)) + " n=" + std::to_string(n));
       runVariant(sorter, n, dist, variant, seed + n * 7 + static_cast<std::uint64_t>(dist));
@@ -159,7 +160,7 @@ TEST(ComputeRadixSort, DigitWidthsAndOddPassCounts) {
       auto& rt = test::runtime();
       auto& q = rt.queue();
       RadixSorter sorter(rt, Options{.shape = shape, .radix_bits = bits});
-      const std::size_t n = 20000;
+      const std::size_t n = test::sizeOr(20000, 3000);
       auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed, 0x3FFFFFu);
       cl::Buffer buf = upload(rt.context(), q, keys);
       sorter.sort(q, buf, nullptr, n, 22);
@@ -174,7 +175,8 @@ TEST(ComputeRadixSort, FreeFunctionsAndReuseAcrossSizes) {
   auto& rt = test::runtime();
   auto& q = rt.queue();
   // Growing then shrinking n reuses (and grows) the shared sorter's scratch.
-  for (std::size_t n : {100u, 70000u, 5u, 300000u}) {
+  for (std::size_t n : test::smallSizes() ? std::vector<std::size_t>{100, 3000, 5, 4100}
+                                          : std::vector<std::size_t>{100, 70000, 5, 300000}) {
     auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed + n);
     std::vector<std::uint32_t> values(n);
     std::iota(values.begin(), values.end(), 0u);
@@ -198,7 +200,7 @@ TEST(ComputeRadixSort, UnalignedHostPointerBuffers) {
   SCOPED_TRACE("seed=" + std::to_string(seed));
   auto& rt = test::runtime();
   auto& q = rt.queue();
-  const std::size_t n = 100003;
+  const std::size_t n = test::sizeOr(100003, 3001);
   auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed);
   std::vector<std::uint32_t> key_store(n + 1), val_store(n + 3);
   std::copy(keys.begin(), keys.end(), key_store.begin() + 1);
