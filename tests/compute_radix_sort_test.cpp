@@ -149,24 +149,26 @@ INSTANTIATE_TEST_SUITE_P(Compute, RadixSortTest,
                                                               Variant::Keys64Bits40)),
                          radixName);
 
-TEST(ComputeRadixSort, DigitWidthsAndOddPassCounts) {
-  // Non-default digit widths on both shapes; 3 and 5 bits give odd pass
-  // counts (result copied back from scratch) and a narrower last pass.
-  for (Shape shape : {Shape::CpuChunked, Shape::GpuWorkGroup})
-    for (unsigned bits : {3u, 5u, 8u}) {
-      SCOPED_TRACE(std::string(shapeName(shape)) + " radix_bits=" + std::to_string(bits));
-      const std::uint64_t seed = test::freshSeed();
-      SCOPED_TRACE("seed=" + std::to_string(seed));
-      auto& rt = test::runtime();
-      auto& q = rt.queue();
-      RadixSorter sorter(rt, Options{.shape = shape, .radix_bits = bits});
-      const std::size_t n = test::sizeOr(20000, 3000);
-      auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed, 0x3FFFFFu);
-      cl::Buffer buf = upload(rt.context(), q, keys);
-      sorter.sort(q, buf, nullptr, n, 22);
-      std::sort(keys.begin(), keys.end());
-      EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, buf, n), keys, "keys"));
-    }
+// Tests per shape (the shape in the name, so that a filter can pick one).
+class RadixShapeTest : public ::testing::TestWithParam<Shape> {};
+
+TEST_P(RadixShapeTest, DigitWidthsAndOddPassCounts) {
+  // Non-default digit widths; 3 and 5 bits give odd pass counts (result
+  // copied back from scratch) and a narrower last pass.
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  for (unsigned bits : {3u, 5u, 8u}) {
+    SCOPED_TRACE("radix_bits=" + std::to_string(bits));
+    const std::uint64_t seed = test::freshSeed();
+    SCOPED_TRACE("seed=" + std::to_string(seed));
+    RadixSorter sorter(rt, Options{.shape = GetParam(), .radix_bits = bits});
+    const std::size_t n = test::sizeOr(20000, 3000);
+    auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed, 0x3FFFFFu);
+    cl::Buffer buf = upload(rt.context(), q, keys);
+    sorter.sort(q, buf, nullptr, n, 22);
+    std::sort(keys.begin(), keys.end());
+    EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, buf, n), keys, "keys"));
+  }
 }
 
 TEST(ComputeRadixSort, FreeFunctionsAndReuseAcrossSizes) {
@@ -193,7 +195,7 @@ TEST(ComputeRadixSort, FreeFunctionsAndReuseAcrossSizes) {
   }
 }
 
-TEST(ComputeRadixSort, UnalignedHostPointerBuffers) {
+TEST_P(RadixShapeTest, UnalignedHostPointerBuffers) {
   // The CPU scatter streams whole 64-byte lines when the buffers allow it; a
   // buffer over an unaligned host allocation must still sort correctly.
   const std::uint64_t seed = test::freshSeed();
@@ -205,20 +207,20 @@ TEST(ComputeRadixSort, UnalignedHostPointerBuffers) {
   std::vector<std::uint32_t> key_store(n + 1), val_store(n + 3);
   std::copy(keys.begin(), keys.end(), key_store.begin() + 1);
   for (std::size_t i = 0; i < n; ++i) val_store[i + 3] = static_cast<std::uint32_t>(i);
-  for (Shape shape : {Shape::CpuChunked, Shape::GpuWorkGroup}) {
-    SCOPED_TRACE(shapeName(shape));
-    std::copy(keys.begin(), keys.end(), key_store.begin() + 1);
-    for (std::size_t i = 0; i < n; ++i) val_store[i + 3] = static_cast<std::uint32_t>(i);
-    cl::Buffer kb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, key_store.data() + 1);
-    cl::Buffer vb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, val_store.data() + 3);
-    RadixSorter sorter(rt, Options{.shape = shape});
-    sorter.sort(q, kb, &vb, n, 32);
-    std::vector<std::uint32_t> order(n);
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
-    EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, vb, n), order, "payload"));
-  }
+  cl::Buffer kb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, key_store.data() + 1);
+  cl::Buffer vb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, val_store.data() + 3);
+  RadixSorter sorter(rt, Options{.shape = GetParam()});
+  sorter.sort(q, kb, &vb, n, 32);
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
+  EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, vb, n), order, "payload"));
 }
+
+INSTANTIATE_TEST_SUITE_P(Compute, RadixShapeTest, ::testing::Values(Shape::CpuChunked, Shape::GpuWorkGroup),
+                         [](const ::testing::TestParamInfo<Shape>& info) {
+                           return std::string(info.param == Shape::CpuChunked ? "Cpu" : "Gpu");
+                         });
 
 TEST(ComputeRadixSort, RejectsBadArguments) {
   auto& rt = test::runtime();
