@@ -19,6 +19,10 @@ ctest --test-dir build --output-on-failure -j"$jobs"
 
 echo "== Release tests: ${SECONDS}s =="
 
+# The GPU-shape kernel tests under Oclgrind (races, uninitialized values,
+# out-of-bounds accesses, API errors), at small sizes.
+scripts/oclgrind.sh
+
 if [[ "${1:-}" != "--no-asan" ]]; then
   SECONDS=0
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMANYLIGHTS_SANITIZE=ON -DMANYLIGHTS_WERROR=ON \
