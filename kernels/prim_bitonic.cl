@@ -279,9 +279,11 @@ ML_INLINE void gcx(__global uint* k, __global uint* v, const int hv, uint a, uin
 }
 
 /* Comparator t of a stage: half-run length h (size / 2 for flip stages, j for
- * half-cleaners). Returns the lower index, *b the upper. */
+ * half-cleaners; a power of two). Returns the lower index, *b the upper. Masks
+ * rather than t / h and t % h: integer division is slow on GPUs, and LLVM
+ * pairs the two into a `freeze` instruction that Oclgrind cannot simulate. */
 ML_INLINE uint stage_pair(uint t, uint h, int flip, uint* b) {
-  const uint base = (t / h) * 2 * h, off = t % h;
+  const uint off = t & (h - 1), base = (t - off) * 2;
   *b = flip ? base + 2 * h - 1 - off : base + off + h;
   return base + off;
 }

@@ -219,12 +219,15 @@ __kernel WG_ATTR void tile_minmax(__global const T* image, uint width, uint heig
                                   uint tiles_y, uint cols_per_item, __global T* out_min, __global T* out_max) {
   __local T tmp[WG];
   const uint t = get_group_id(0);
-  const uint tx = t % tiles_x, ty = t / tiles_x;
+  /* Quotient and remainder without `%`: LLVM pairs x / y with x % y into a
+   * `freeze` instruction that Oclgrind cannot simulate (scripts/oclgrind.sh). */
+  const uint ty = t / tiles_x, tx = t - ty * tiles_x;
   const uint x0 = tx * tile, y0 = ty * tile;
   const uint tw = min(width, x0 + tile) - x0, th = min(height, y0 + tile) - y0;
   T mn = T_MAX, mx = T_LOWEST;
   for (uint i = get_local_id(0); i < tw * th; i += WG) {
-    const T v = image[(size_t)(y0 + i / tw) * width + x0 + i % tw];
+    const uint row = i / tw;
+    const T v = image[(size_t)(y0 + row) * width + x0 + (i - row * tw)];
     mn = min(mn, v);
     mx = max(mx, v);
   }

@@ -13,11 +13,15 @@
 #include "host/compute/Distributions.hpp"
 #include "host/compute/HostIo.hpp"
 #include "support/TestDevice.hpp"
+#include "support/TestSizes.hpp"
 
 namespace ml::compute {
 namespace {
 
-const std::size_t kSizes[] = {0, 1, 2, 31, 32, 33, 1023, 1024, 1025, (1u << 20) + 7};
+// MANYLIGHTS_TEST_SMALL drops the last size (see support/TestSizes.hpp).
+std::vector<std::size_t> testSizes() {
+  return test::sizesUpToLimit({0, 1, 2, 31, 32, 33, 1023, 1024, 1025, (1u << 20) + 7});
+}
 constexpr std::uint32_t kPoison = 0xDEADBEEFu;
 
 enum class Density { None, All, Half, Sparse };
@@ -79,7 +83,7 @@ TEST_P(CompactTest, ValuesAndIndicesMatchCopyIf) {
   auto& rt = test::runtime();
   auto& q = rt.queue();
   Compactor compactor(rt, Options{.shape = shape});
-  for (const std::size_t n : kSizes) {
+  for (const std::size_t n : testSizes()) {
     SCOPED_TRACE("n=" + std::to_string(n));
     std::mt19937_64 rng(seed + n);
     std::vector<std::uint32_t> in(n);
@@ -141,7 +145,7 @@ TEST_P(UniqueTest, MatchesStdUnique) {
   auto& rt = test::runtime();
   auto& q = rt.queue();
   Compactor compactor(rt, Options{.shape = shape});
-  for (const std::size_t n : kSizes) {
+  for (const std::size_t n : testSizes()) {
     SCOPED_TRACE("n=" + std::to_string(n));
     // Small value ranges make long runs of duplicates.
     auto keys = makeKeys<std::uint32_t>(n, dist, seed + n, dist == KeyDist::Random ? 0x3FFu : 0xFFFFFFFFu);

@@ -14,6 +14,7 @@
 #include "host/compute/HostIo.hpp"
 #include "host/compute/RadixSort.hpp"
 #include "support/TestDevice.hpp"
+#include "support/TestSizes.hpp"
 
 namespace ml::compute {
 namespace {
@@ -127,7 +128,7 @@ TEST_P(RadixSortTest, MatchesStableSort) {
   RadixSorter sorter(test::runtime(), Options{.shape = shape});
   for (const KeyDist dist : kDists) {
     std::vector<std::size_t> sizes(std::begin(kSmallSizes), std::end(kSmallSizes));
-    if (dist == KeyDist::Random || variant == Variant::Pairs32) sizes.push_back(kBig);
+    if ((dist == KeyDist::Random || variant == Variant::Pairs32) && !test::smallSizes()) sizes.push_back(kBig);
     for (const std::size_t n : sizes) {
       SCOPED_TRACE(std::string(keyDistName(dist)) + " n=" + std::to_string(n));
       runVariant(sorter, n, dist, variant, seed + n * 7 + static_cast<std::uint64_t>(dist));
@@ -148,24 +149,26 @@ INSTANTIATE_TEST_SUITE_P(Compute, RadixSortTest,
                                                               Variant::Keys64Bits40)),
                          radixName);
 
-TEST(ComputeRadixSort, DigitWidthsAndOddPassCounts) {
-  // Non-default digit widths on both shapes; 3 and 5 bits give odd pass
-  // counts (result copied back from scratch) and a narrower last pass.
-  for (Shape shape : {Shape::CpuChunked, Shape::GpuWorkGroup})
-    for (unsigned bits : {3u, 5u, 8u}) {
-      SCOPED_TRACE(std::string(shapeName(shape)) + " radix_bits=" + std::to_string(bits));
-      const std::uint64_t seed = test::freshSeed();
-      SCOPED_TRACE("seed=" + std::to_string(seed));
-      auto& rt = test::runtime();
-      auto& q = rt.queue();
-      RadixSorter sorter(rt, Options{.shape = shape, .radix_bits = bits});
-      const std::size_t n = 20000;
-      auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed, 0x3FFFFFu);
-      cl::Buffer buf = upload(rt.context(), q, keys);
-      sorter.sort(q, buf, nullptr, n, 22);
-      std::sort(keys.begin(), keys.end());
-      EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, buf, n), keys, "keys"));
-    }
+// Tests per shape (the shape in the name, so that a filter can pick one).
+class RadixShapeTest : public ::testing::TestWithParam<Shape> {};
+
+TEST_P(RadixShapeTest, DigitWidthsAndOddPassCounts) {
+  // Non-default digit widths; 3 and 5 bits give odd pass counts (result
+  // copied back from scratch) and a narrower last pass.
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  for (unsigned bits : {3u, 5u, 8u}) {
+    SCOPED_TRACE("radix_bits=" + std::to_string(bits));
+    const std::uint64_t seed = test::freshSeed();
+    SCOPED_TRACE("seed=" + std::to_string(seed));
+    RadixSorter sorter(rt, Options{.shape = GetParam(), .radix_bits = bits});
+    const std::size_t n = test::sizeOr(20000, 3000);
+    auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed, 0x3FFFFFu);
+    cl::Buffer buf = upload(rt.context(), q, keys);
+    sorter.sort(q, buf, nullptr, n, 22);
+    std::sort(keys.begin(), keys.end());
+    EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, buf, n), keys, "keys"));
+  }
 }
 
 TEST(ComputeRadixSort, FreeFunctionsAndReuseAcrossSizes) {
@@ -174,7 +177,8 @@ TEST(ComputeRadixSort, FreeFunctionsAndReuseAcrossSizes) {
   auto& rt = test::runtime();
   auto& q = rt.queue();
   // Growing then shrinking n reuses (and grows) the shared sorter's scratch.
-  for (std::size_t n : {100u, 70000u, 5u, 300000u}) {
+  for (std::size_t n : test::smallSizes() ? std::vector<std::size_t>{100, 3000, 5, 4100}
+                                          : std::vector<std::size_t>{100, 70000, 5, 300000}) {
     auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed + n);
     std::vector<std::uint32_t> values(n);
     std::iota(values.begin(), values.end(), 0u);
@@ -191,32 +195,32 @@ TEST(ComputeRadixSort, FreeFunctionsAndReuseAcrossSizes) {
   }
 }
 
-TEST(ComputeRadixSort, UnalignedHostPointerBuffers) {
+TEST_P(RadixShapeTest, UnalignedHostPointerBuffers) {
   // The CPU scatter streams whole 64-byte lines when the buffers allow it; a
   // buffer over an unaligned host allocation must still sort correctly.
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
   auto& rt = test::runtime();
   auto& q = rt.queue();
-  const std::size_t n = 100003;
+  const std::size_t n = test::sizeOr(100003, 3001);
   auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed);
   std::vector<std::uint32_t> key_store(n + 1), val_store(n + 3);
   std::copy(keys.begin(), keys.end(), key_store.begin() + 1);
   for (std::size_t i = 0; i < n; ++i) val_store[i + 3] = static_cast<std::uint32_t>(i);
-  for (Shape shape : {Shape::CpuChunked, Shape::GpuWorkGroup}) {
-    SCOPED_TRACE(shapeName(shape));
-    std::copy(keys.begin(), keys.end(), key_store.begin() + 1);
-    for (std::size_t i = 0; i < n; ++i) val_store[i + 3] = static_cast<std::uint32_t>(i);
-    cl::Buffer kb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, key_store.data() + 1);
-    cl::Buffer vb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, val_store.data() + 3);
-    RadixSorter sorter(rt, Options{.shape = shape});
-    sorter.sort(q, kb, &vb, n, 32);
-    std::vector<std::uint32_t> order(n);
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
-    EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, vb, n), order, "payload"));
-  }
+  cl::Buffer kb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, key_store.data() + 1);
+  cl::Buffer vb(rt.context(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, n * 4, val_store.data() + 3);
+  RadixSorter sorter(rt, Options{.shape = GetParam()});
+  sorter.sort(q, kb, &vb, n, 32);
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
+  EXPECT_TRUE(sameVectors(download<std::uint32_t>(q, vb, n), order, "payload"));
 }
+
+INSTANTIATE_TEST_SUITE_P(Compute, RadixShapeTest, ::testing::Values(Shape::CpuChunked, Shape::GpuWorkGroup),
+                         [](const ::testing::TestParamInfo<Shape>& info) {
+                           return std::string(info.param == Shape::CpuChunked ? "Cpu" : "Gpu");
+                         });
 
 TEST(ComputeRadixSort, RejectsBadArguments) {
   auto& rt = test::runtime();

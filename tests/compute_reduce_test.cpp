@@ -16,11 +16,15 @@
 #include "host/compute/HostIo.hpp"
 #include "host/compute/Reduce.hpp"
 #include "support/TestDevice.hpp"
+#include "support/TestSizes.hpp"
 
 namespace ml::compute {
 namespace {
 
-const std::size_t kSizes[] = {0, 1, 2, 31, 32, 33, 1023, 1024, 1025, (1u << 20) + 7};
+// MANYLIGHTS_TEST_SMALL drops the last size (see support/TestSizes.hpp).
+std::vector<std::size_t> testSizes() {
+  return test::sizesUpToLimit({0, 1, 2, 31, 32, 33, 1023, 1024, 1025, (1u << 20) + 7});
+}
 const auto kShapes = ::testing::Values(Shape::CpuChunked, Shape::GpuWorkGroup);
 
 template <class T>
@@ -108,7 +112,7 @@ TEST_P(ReduceTest, MinMaxSumMatchStd) {
   SCOPED_TRACE("seed=" + std::to_string(seed));
   Reducer reducer(test::runtime(), Options{.shape = shape});
   const char* ops[] = {"Min", "Max", "Sum"};
-  for (const std::size_t n : kSizes)
+  for (const std::size_t n : testSizes())
     for (ReduceOp op : {ReduceOp::Min, ReduceOp::Max, ReduceOp::Sum}) {
       SCOPED_TRACE("n=" + std::to_string(n) + " op=" + ops[static_cast<int>(op)]);
       const std::uint64_t case_seed = seed + n * 3 + static_cast<std::uint64_t>(op);
@@ -182,9 +186,13 @@ TEST_P(ReduceShapeTest, SegmentedMinMaxWithOffsets) {
   auto& q = rt.queue();
   Reducer reducer(rt, Options{.shape = GetParam()});
   std::mt19937_64 rng(seed);
-  // Segment lengths 0..700 (empty ones included) plus one long segment.
+  // Segment lengths 0..700 (empty ones included) plus one long segment;
+  // fewer and shorter under MANYLIGHTS_TEST_SMALL.
+  const int nseg = test::smallSizes() ? 12 : 600;
+  const std::uint32_t long_len = test::smallSizes() ? 1500 : 50000;
   std::vector<std::uint32_t> offsets{0};
-  for (int s = 0; s < 600; ++s) offsets.push_back(offsets.back() + (s == 300 ? 50000 : rng() % 701 * (rng() % 4 != 0)));
+  for (int s = 0; s < nseg; ++s)
+    offsets.push_back(offsets.back() + (s == nseg / 2 ? long_len : rng() % 701 * (rng() % 4 != 0)));
   const std::size_t n = offsets.back();
   const std::size_t segs = offsets.size() - 1;
   const auto v = randomValues<float>(n, rng);
@@ -211,7 +219,7 @@ TEST_P(ReduceShapeTest, SegmentedMinMaxFixedSize) {
   auto& q = rt.queue();
   Reducer reducer(rt, Options{.shape = GetParam()});
   std::mt19937_64 rng(seed);
-  for (std::size_t n : {0u, 1u, 255u, 256u, 257u, 100000u})
+  for (std::size_t n : test::sizesUpToLimit({0u, 1u, 255u, 256u, 257u, 100000u}))
     for (std::size_t size : {1u, 7u, 256u, 4096u}) {
       SCOPED_TRACE("n=" + std::to_string(n) + " segment_size=" + std::to_string(size));
       const auto v = randomValues<std::int32_t>(n, rng);
@@ -238,7 +246,9 @@ TEST_P(ReduceShapeTest, TileMinMaxOfDepthImage) {
   struct Dims {
     std::size_t w, h, tile;
   };
-  for (const Dims d : {Dims{1, 1, 16}, Dims{17, 9, 4}, Dims{33, 65, 32}, Dims{5, 3, 64}, Dims{1920, 1080, 16}}) {
+  std::vector<Dims> dims = {{1, 1, 16}, {17, 9, 4}, {33, 65, 32}, {5, 3, 64}};
+  if (!test::smallSizes()) dims.push_back({1920, 1080, 16});
+  for (const Dims d : dims) {
     SCOPED_TRACE(std::to_string(d.w) + "x" + std::to_string(d.h) + " tile " + std::to_string(d.tile));
     std::vector<float> depth(d.w * d.h);
     for (auto& z : depth) z = std::uniform_real_distribution<float>(0.f, 1.f)(rng);

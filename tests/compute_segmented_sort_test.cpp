@@ -16,11 +16,14 @@
 #include "host/compute/HostIo.hpp"
 #include "host/compute/SegmentedSort.hpp"
 #include "support/TestDevice.hpp"
+#include "support/TestSizes.hpp"
 
 namespace ml::compute {
 namespace {
 
-const std::size_t kSizes[] = {0, 1, 2, 31, 32, 33, 1023, 1024, 1025, (1u << 20) + 7};
+const std::size_t kBig = (1u << 20) + 7;
+// MANYLIGHTS_TEST_SMALL drops kBig (see support/TestSizes.hpp).
+std::vector<std::size_t> testSizes() { return test::sizesUpToLimit({0, 1, 2, 31, 32, 33, 1023, 1024, 1025, kBig}); }
 const KeyDist kDists[] = {KeyDist::Random,   KeyDist::AllEqual,   KeyDist::Sorted,
                           KeyDist::Reversed, KeyDist::AllBitsSet, KeyDist::FewDistinct};
 constexpr std::uint32_t kPoison = 0xDEADBEEFu;
@@ -91,8 +94,8 @@ TEST_P(SegmentedSortFixedTest, EverySegmentSorted) {
   SegmentedSorter sorter(test::runtime(), Options{.shape = shape});
   const std::size_t size = 256;
   for (const KeyDist dist : kDists)
-    for (const std::size_t n : kSizes) {
-      if (n == kSizes[std::size(kSizes) - 1] && dist != KeyDist::Random && shape != Shape::CpuChunked) continue;
+    for (const std::size_t n : testSizes()) {
+      if (n == kBig && dist != KeyDist::Random && shape != Shape::CpuChunked) continue;
       SCOPED_TRACE(std::string(keyDistName(dist)) + " n=" + std::to_string(n));
       std::vector<std::uint32_t> offsets;
       for (std::size_t b = 0; b < n; b += size) offsets.push_back(static_cast<std::uint32_t>(b));
@@ -120,7 +123,7 @@ TEST_P(SegmentedSortShapeTest, FixedSizesAroundPowersOfTwo) {
   SegmentedSorter sorter(test::runtime(), Options{.shape = GetParam()});
   for (std::size_t size : {1u, 2u, 3u, 31u, 32u, 33u, 1000u, 5000u}) {
     SCOPED_TRACE("segment_size=" + std::to_string(size));
-    const std::size_t n = 20011;
+    const std::size_t n = test::sizeOr(20011, 2011);
     std::vector<std::uint32_t> offsets;
     for (std::size_t b = 0; b < n; b += size) offsets.push_back(static_cast<std::uint32_t>(b));
     offsets.push_back(static_cast<std::uint32_t>(n));
@@ -135,9 +138,10 @@ TEST_P(SegmentedSortShapeTest, OffsetSegmentsWithGapsEmptyAndLong) {
   std::mt19937_64 rng(seed);
   // Variable lengths (0 .. 600), one segment longer than the GPU shape's
   // local capacity, and a tail past the last segment that must not move.
+  const int nseg = test::smallSizes() ? 10 : 500;
   std::vector<std::uint32_t> offsets{0};
-  for (int s = 0; s < 500; ++s) {
-    const std::uint32_t len = s == 250 ? static_cast<std::uint32_t>(sorter.localCapacity() * 3 + 5)
+  for (int s = 0; s < nseg; ++s) {
+    const std::uint32_t len = s == nseg / 2 ? static_cast<std::uint32_t>(sorter.localCapacity() * 3 + 5)
                                        : static_cast<std::uint32_t>(rng() % 601) * (rng() % 5 != 0);
     offsets.push_back(offsets.back() + len);
   }

@@ -10,7 +10,10 @@
 namespace ml::test {
 
 ClRuntime& runtime() {
-  static std::unique_ptr<ClRuntime> rt = ClRuntime::create(DeviceChoice::resolve(""));
+  // Never destroyed: CL calls from static destructors run after the driver's
+  // own exit handlers (Oclgrind's thread-local API state is gone by then: a
+  // release at exit corrupted the heap and aborted the process).
+  static ClRuntime* rt = ClRuntime::create(DeviceChoice::resolve("")).release();
   return *rt;
 }
 
