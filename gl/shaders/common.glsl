@@ -19,3 +19,18 @@ uniform uint u_light_count;
 // [0]: light evaluations summed over every shaded fragment (overdraw included).
 layout(std430, binding = 7) buffer StatsBuffer { uint fragment_evaluations_lo; uint fragment_evaluations_hi; };
 #endif
+
+// Window space (pixel centre, depth in [0,1]) -> view and world space: the
+// one place shaders undo the projection. The exact lower bound's kernel
+// (kernels/exact_lower_bound.cl, window_to_world) repeats these operations in
+// this order, hence `precise` (no fused multiply-adds).
+vec3 windowToView(vec2 frag_coord, float depth) {
+  precise vec3 ndc = vec3(frag_coord / u_viewport, depth) * 2.0 - 1.0;
+  precise vec4 v = u_inv_proj * vec4(ndc, 1.0);
+  precise vec3 view_pos = v.xyz / v.w;
+  return view_pos;
+}
+vec3 viewToWorld(vec3 view_pos) {
+  precise vec4 w = u_inv_view * vec4(view_pos, 1.0);
+  return w.xyz;
+}

@@ -11,13 +11,11 @@ void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
   float depth = texelFetch(u_gbuffer_depth, px, 0).r;
   if (depth >= 1.0) discard;  // background keeps the clear colour
-  vec3 ndc = vec3(gl_FragCoord.xy / u_viewport, depth) * 2.0 - 1.0;
-  vec4 v = u_inv_proj * vec4(ndc, 1.0);
-  vec3 view_pos = v.xyz / v.w;
-  vec3 P = (u_inv_view * vec4(view_pos, 1.0)).xyz;
+  vec3 view_pos = windowToView(gl_FragCoord.xy, depth);
+  vec3 P = viewToWorld(view_pos);
   vec3 N = octDecode(texelFetch(u_gbuffer_normal, px, 0).xy);
   uvec2 counts;
-  vec3 c = shadePoint(P, N, view_pos, gl_FragCoord.xy, texelFetch(u_gbuffer_albedo, px, 0).rgb, counts);
+  vec3 c = shadePoint(P, N, view_pos, gl_FragCoord.xy, P, texelFetch(u_gbuffer_albedo, px, 0).rgb, counts);
   o_color = vec4(c, 1.0);
   o_counts = counts;
 }
