@@ -33,6 +33,7 @@ void FrameRenderer::setLights(const std::vector<gpu::PointLight>& lights) {
   light_count_ = static_cast<std::uint32_t>(lights.size());
   host_lights_ = lights;
   lights_changed_ = true;
+  bound_lights_stale_ = true;
 }
 
 const ShaderProgram& FrameRenderer::program(const std::string& kind, const LightAssigner& a, bool count) {
@@ -88,6 +89,10 @@ void FrameRenderer::exportDepth(bool deferred, PassTimings& passes) {
   // storage on llvmpipe.
   GlPassScope scope(&gl_timer_, "depth-export");
   (void)passes;
+  readDepthInto(deferred);
+}
+
+void FrameRenderer::readDepthInto(bool deferred) {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, deferred ? targets_->gbufferFbo() : targets_->outputFbo());
   glBindBuffer(GL_PIXEL_PACK_BUFFER, depth_->gl());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
@@ -231,21 +236,39 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
   result.passes = gl_cl;
   result.memory_bytes = assigner.memoryBytes();
 
-  if (count) {
-    const auto counts = targets_->readCounts();
-    const auto depth = targets_->readDepth(deferred);
-    for (size_t i = 0; i < depth.size(); ++i) {
-      if (gpu::is_sky_depth(depth[i])) continue;
-      ++result.covered_pixels;
-      result.light_evaluations += counts[2 * i];
-      result.lower_bound += counts[2 * i + 1];
-    }
-    GLuint stats[2] = {0, 0};
-    glGetNamedBufferSubData(stats_ssbo_, 0, sizeof stats, stats);
-    result.fragment_evaluations = (static_cast<std::uint64_t>(stats[1]) << 32) | stats[0];
-    glCheck("reading light counts");
-  }
+  if (count) countLights(deferred, view, proj, result);
   return result;
+}
+
+void FrameRenderer::countLights(bool deferred, const glm::mat4& view, const glm::mat4& proj, FrameResult& result) {
+  // The exact lower bound from this frame's depth: one CL pass, the same for
+  // every technique (untimed: counted frames are not timed).
+  cl::CommandQueue& q = cl_.queue();
+  if (!bound_) bound_ = std::make_unique<ExactLowerBound>(cl_);
+  if (bound_lights_stale_) bound_->setLights(q, host_lights_);
+  bound_lights_stale_ = false;
+  const std::size_t px = static_cast<std::size_t>(width_) * height_;
+  if (!bound_counts_()) bound_counts_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, px * sizeof(cl_uint));
+  readDepthInto(deferred);
+  depth_->acquireForCl(q, ClAccess::Read);
+  bound_->count(q, depth_->cl(), boundParams(view, proj, width_, height_), bound_counts_);
+  std::vector<std::uint32_t> bound(px);
+  q.enqueueReadBuffer(bound_counts_, CL_TRUE, 0, px * sizeof(cl_uint), bound.data());
+  depth_->releaseToGl(q);
+
+  const auto counts = targets_->readCounts();  // (evaluated, of those in range) per pixel
+  const auto depth = targets_->readDepth(deferred);
+  for (std::size_t i = 0; i < depth.size(); ++i) {
+    if (gpu::is_sky_depth(depth[i])) continue;
+    ++result.covered_pixels;
+    result.light_evaluations += counts[2 * i];
+    result.lower_bound += bound[i];
+    if (bound[i] > counts[2 * i + 1]) result.missed_lights += bound[i] - counts[2 * i + 1];
+  }
+  GLuint stats[2] = {0, 0};
+  glGetNamedBufferSubData(stats_ssbo_, 0, sizeof stats, stats);
+  result.fragment_evaluations = (static_cast<std::uint64_t>(stats[1]) << 32) | stats[0];
+  glCheck("reading light counts");
 }
 
 }  // namespace ml

@@ -16,6 +16,7 @@
 #include "gl/SceneGpu.hpp"
 #include "gl/ShaderProgram.hpp"
 #include "gl/SharedBuffer.hpp"
+#include "host/assign/ExactLowerBound.hpp"
 #include "host/assign/LightAssigner.hpp"
 #include "host/cl/ClPassTimer.hpp"
 #include "host/scene/Camera.hpp"
@@ -27,8 +28,9 @@ enum class Pipeline { Forward, Deferred };
 
 struct FrameOptions {
   Pipeline pipeline = Pipeline::Forward;
-  // Count light evaluations per pixel (and the exact lower bound). Costs a
-  // little shading time; timings of counted frames are not comparable.
+  // Count light evaluations per pixel, and compute the exact lower bound
+  // (host/assign/ExactLowerBound.hpp) from the frame's depth. Costs shading
+  // time and a CL pass; timings of counted frames are not comparable.
   bool count_lights = false;
 };
 
@@ -38,6 +40,10 @@ struct FrameResult {
   // With count_lights:
   std::uint64_t light_evaluations = 0;     // sum over pixels of lights evaluated for the visible surface
   std::uint64_t lower_bound = 0;           // sum over pixels of lights whose sphere contains the surface point
+  // Sum over pixels of the bound's lights that the shader did not evaluate
+  // (the pixel's bound minus its evaluated lights in range): 0 unless a
+  // technique's list or the shader's loop dropped a light.
+  std::uint64_t missed_lights = 0;
   std::uint64_t fragment_evaluations = 0;  // over every shaded fragment, overdraw included
   std::uint64_t covered_pixels = 0;
   std::size_t memory_bytes = 0;            // assigner structures
@@ -60,6 +66,8 @@ class FrameRenderer {
   const ShaderProgram& program(const std::string& kind, const LightAssigner& a, bool count);
   void exportDepth(bool deferred, PassTimings& passes);
   void shadeOnlyFirstEqualFragment();
+  void readDepthInto(bool deferred);
+  void countLights(bool deferred, const glm::mat4& view, const glm::mat4& proj, FrameResult& result);
   void setFrameUniforms(const ShaderProgram& p, const glm::mat4& view, const glm::mat4& proj) const;
 
   ClRuntime& cl_;
@@ -73,6 +81,9 @@ class FrameRenderer {
   std::uint32_t light_count_ = 0;
   std::vector<gpu::PointLight> host_lights_;
   bool lights_changed_ = true;
+  std::unique_ptr<ExactLowerBound> bound_;  // created by the first counted frame
+  bool bound_lights_stale_ = true;
+  cl::Buffer bound_counts_;                 // uint per pixel
   std::map<std::string, ShaderProgram> programs_;
   GlPassTimer gl_timer_;
   ClPassTimer cl_timer_;

@@ -21,6 +21,7 @@ LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {
   uvec2 r = cluster_ranges[c];
   return LightList(r.x, r.x + r.y, 0u, 0u);
 }
+bool listEnded(LightList list) { return list.mask == 0u && list.record == list.record_end; }
 bool nextLight(inout LightList list, out uint light_index) {
   light_index = 0u;
   if (list.mask == 0u) {

@@ -9,22 +9,22 @@
 // never matches: it reads as "no lights". Index list entries are
 // light | octant mask << 24 (host/hashed/OctantMask.hpp): a light is
 // evaluated only if it reaches the point's octant of its leaf cell.
+// The layer loop below runs at most hs_info.z (the layer count) times.
 struct LightList {
   uint offset;
   uint end;
   uint octant_bit;  // 1 << (24 + the point's octant)
 };
 layout(std430, binding = 1) readonly buffer LightIndexBuffer { uint light_indices[]; };
+bool listEnded(LightList list) { return list.offset >= list.end; }
+// One entry per call, no loop (see LightAssigner.hpp): false at the end and
+// for an entry whose light does not reach the point's octant.
 bool nextLight(inout LightList list, out uint light_index) {
-  while (list.offset < list.end) {
-    uint e = light_indices[list.offset++];
-    if ((e & list.octant_bit) != 0u) {
-      light_index = e & 0xFFFFFFu;
-      return true;
-    }
-  }
   light_index = 0u;
-  return false;
+  if (list.offset >= list.end) return false;
+  uint e = light_indices[list.offset++];
+  light_index = e & 0xFFFFFFu;
+  return (e & list.octant_bit) != 0u;
 }
 layout(std430, binding = 2) readonly buffer HashedHeader {
   vec4 hs_origin_scale;  // octree origin (xyz), cells per world unit (w)

@@ -5,6 +5,7 @@ struct LightList {
   uint count;
 };
 layout(std430, binding = 1) readonly buffer LightIndexBuffer { uint light_indices[]; };
+bool listEnded(LightList list) { return list.count == 0u; }
 bool nextLight(inout LightList list, out uint light_index) {
   light_index = 0u;
   if (list.count == 0u) return false;

@@ -207,6 +207,8 @@ int runRender(const RenderArgs& a) {
                 static_cast<unsigned long long>(counted.light_evaluations), per_px);
     std::printf("exact lower bound   %14llu  (%.2f per covered pixel)\n",
                 static_cast<unsigned long long>(counted.lower_bound), lb_px);
+    std::printf("missed lights       %14llu  (bound lights not evaluated: must be 0)\n",
+                static_cast<unsigned long long>(counted.missed_lights));
     std::printf("ratio to bound      %14.3f\n",
                 counted.lower_bound ? double(counted.light_evaluations) / counted.lower_bound : 0.0);
     std::printf("covered pixels      %14llu\n", static_cast<unsigned long long>(counted.covered_pixels));
@@ -245,6 +247,7 @@ int runRender(const RenderArgs& a) {
     j["frame_host_ms"] = host_ms;
     j["light_evaluations"] = counted.light_evaluations;
     j["lower_bound"] = counted.lower_bound;
+    j["missed_lights"] = counted.missed_lights;
     j["covered_pixels"] = counted.covered_pixels;
     j["fragment_evaluations"] = counted.fragment_evaluations;
     j["memory_bytes"] = counted.memory_bytes;

@@ -5,14 +5,20 @@
 //   2. assign(inputs)       -- builds/updates the structure, on the CL device,
 //   3. bindForShading(prog) -- binds the structure's buffers for GLSL,
 // and the shared forward/deferred shaders include lookupShader(), which must
-// define `struct LightList` (a cursor over the point's lights), `LightList
-// lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord)` and `bool
-// nextLight(inout LightList, out uint light_index)` (false past the end). A
-// cursor rather than (offset, count) lets a list be stored compressed
-// (clustered shading's hit masks).
+// define `struct LightList` (a cursor over the point's list entries),
+// `LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord)`,
+// `bool listEnded(LightList)` and `bool nextLight(inout LightList, out uint
+// light_index)`, which consumes at most one entry and returns whether it names
+// a light to evaluate (false past the end, or for an entry the technique
+// skips). nextLight must not loop: llvmpipe caps the loop iterations of a
+// shader invocation at 65,535 in total, so the shader's one list loop
+// visits 32 entries per iteration (gl/shaders/shading.glsl). A cursor rather
+// than (offset, count) lets a list be stored compressed (clustered shading's
+// hit masks).
 // Every technique's lists must be conservative: each light whose sphere
 // contains the shaded point is in its list (tests hold them to it), which is
-// what makes the per-frame lower bound exact.
+// what makes the per-frame lower bound (host/assign/ExactLowerBound.hpp) a
+// lower bound of every technique's evaluations.
 #include <glm/glm.hpp>
 
 #include <cstddef>

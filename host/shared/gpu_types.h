@@ -66,6 +66,25 @@ inline float linear_depth(float d, const CameraParams* cam) {
 #else
 inline float linear_depth(float d, const CameraParams& cam) { return depth_to_distance(d, cam.proj[10], cam.proj[14]); }
 #endif
+/* The exact lower bound (kernels/exact_lower_bound.cl): the frame's inverse
+ * view matrix and projection (column-major, as uploaded to the shaders) and viewport. */
+typedef struct BoundParams {
+  float inv_view[16];
+  float proj[16];
+  ml_uint width;
+  ml_uint height;
+  ml_uint level_count;  /* BoundGridLevel entries */
+  ml_uint pad0;
+} BoundParams;
+ML_STATIC_ASSERT(sizeof(BoundParams) == 144, "BoundParams layout changed: update exact_lower_bound.cl");
+
+/* One level of the lower bound's light grid: a dense grid of cubic cells;
+ * cell (x, y, z) is global cell first_cell + x + nx * (y + ny * z). */
+typedef struct BoundGridLevel {
+  float origin_cell[4];  /* origin x, y, z; cell edge length */
+  ml_uint dims[4];       /* nx, ny, nz, first_cell */
+} BoundGridLevel;
+ML_STATIC_ASSERT(sizeof(BoundGridLevel) == 32, "BoundGridLevel layout changed: update exact_lower_bound.cl");
 
 #ifndef __OPENCL_VERSION__
 }  // namespace ml::gpu
