@@ -20,6 +20,7 @@ uniform uint u_light_count;
 layout(std430, binding = 7) buffer StatsBuffer { uint fragment_evaluations_lo; uint fragment_evaluations_hi; };
 #endif
 
+#include "depth_convention.h"
 // Window space (pixel centre, reversed-Z depth) -> view and world space: the
 // one place shaders undo the projection. The view position comes from the
 // distance (depth_convention.h) along the pixel's ray, as the kernels

@@ -1,5 +1,4 @@
 #include "common.glsl"
-#include "depth_convention.h"
 #include "lookup.glsl"
 #include "shading.glsl"
 #include "octahedral.glsl"
