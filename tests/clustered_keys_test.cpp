@@ -180,11 +180,11 @@ TEST_P(ClusteredUnique, EmptyFrameIsAllSky) {
   ClusterUniquer u(test::runtime(), UniqueMethod::PageTable, 6, GetParam());
   const ClusterGrid g = syntheticGrid(64, 48, 16, 7);
   checkAllMethods(u, std::vector<std::uint32_t>(64 * 48, kClusterInvalid), g);
-  // And through the key kernel: depth 1 everywhere.
+  // And through the key kernel: sky depth everywhere.
   test::ClusterCase c;
   c.width = 64;
   c.height = 48;
-  c.depth.assign(64 * 48, 1.0f);
+  c.depth.assign(64 * 48, gpu::kSkyDepth);
   const ClusterGrid real = ClusterGrid::make(c.cam(), 16);
   const auto keys = deviceKeys(u, c, real);
   for (auto k : keys) ASSERT_EQ(k, kClusterInvalid);

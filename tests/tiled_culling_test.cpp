@@ -196,7 +196,9 @@ TEST_P(TiledCullingEdges, EmptyRectanglesBetweenLightsWithMasks) {
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
   CullCase c = randomCase(rng, 90, 50, 0);
-  std::fill(c.depth.begin(), c.depth.end(), 0.95f);
+  // Geometry everywhere at view distance 8, among the lights in front.
+  const glm::mat4 proj = c.camera.projection(90.0f / 50.0f);
+  std::fill(c.depth.begin(), c.depth.end(), gpu::distance_to_depth(8.0f, proj[2][2], proj[3][2]));
   const glm::mat4 inv_view = glm::inverse(c.camera.view());
   for (int i = 0; i < 200; ++i) {
     const bool behind = rng() % 2 == 0;  // behind the camera: no tile at all
