@@ -51,21 +51,12 @@ void expectRefused(const CommandResult& r, std::initializer_list<std::string> me
 
 // Runs the binary under `ulimit -v kib` (an address-space limit).
 CommandResult runLimited(const std::string& args, long kib) {
-  const std::string base = test::tempDir() + "/limited" + std::to_string(::getpid());
-  const std::string cmd = "sh -c 'ulimit -v " + std::to_string(kib) + " && exec " + MANYLIGHTS_BINARY + " " + args +
-                          "' >" + base + ".out 2>" + base + ".err </dev/null";
-  const int status = std::system(cmd.c_str());
-  CommandResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  auto slurp = [](const std::string& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  };
-  r.out = slurp(base + ".out");
-  r.err = slurp(base + ".err");
-  return r;
+  std::string cmd = "sh -c 'ulimit -v ";
+  cmd += std::to_string(kib);
+  cmd += " && exec ";
+  cmd += MANYLIGHTS_BINARY;
+  cmd += " " + args + "'";
+  return test::runShell(cmd);
 }
 
 TEST(CliInputs, LightCountAboveTheMaximumBeforeGeneration) {

@@ -21,11 +21,10 @@ std::string tempDir() {
   return dir;
 }
 
-CommandResult runManylights(const std::string& args, const std::string& env) {
+CommandResult runShell(const std::string& command) {
   static int counter = 0;
   const std::string base = tempDir() + "/cmd" + std::to_string(counter++);
-  const std::string cmd = (env.empty() ? "" : "env " + env + " ") + std::string(MANYLIGHTS_BINARY) + " " + args +
-                          " >" + base + ".out 2>" + base + ".err </dev/null";
+  const std::string cmd = command + " >" + base + ".out 2>" + base + ".err </dev/null";
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -38,6 +37,10 @@ CommandResult runManylights(const std::string& args, const std::string& env) {
   r.out = slurp(base + ".out");
   r.err = slurp(base + ".err");
   return r;
+}
+
+CommandResult runManylights(const std::string& args, const std::string& env) {
+  return runShell((env.empty() ? "" : "env " + env + " ") + std::string(MANYLIGHTS_BINARY) + " " + args);
 }
 
 }  // namespace ml::test
