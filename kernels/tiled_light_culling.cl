@@ -109,9 +109,25 @@ inline float4 widen(float zmin, float zmax) {
   return (float4)(zmin - zmin * DEPTH_EPS, zmax + zmax * DEPTH_EPS, zmin, 1.0f / fmax(zmax - zmin, 1e-20f));
 }
 
+/* The tile records again as six planes of n_tiles + LANE_PAD floats (widened
+ * zmin, zmax, box x0, x1, y0, y1), so that the CPU culler tests 8 tiles of a
+ * row with one float8 load per plane; the pad keeps a load at the last tile
+ * inside the buffer (lanes past a row's end are masked off). */
+#define LANE_PAD 8
+inline void write_lanes(__global float* lanes, uint t, uint n_tiles, float4 zb, float4 box) {
+  const size_t s = (size_t)n_tiles + LANE_PAD;
+  lanes[t] = zb.x;
+  lanes[s + t] = zb.y;
+  lanes[2 * s + t] = box.x;
+  lanes[3 * s + t] = box.y;
+  lanes[4 * s + t] = box.z;
+  lanes[5 * s + t] = box.w;
+}
+
 /* CPU shape: one work-item per tile walks its pixels. */
 __kernel void tile_depth_bounds(__global const float* depth, CameraParams cam, uint tiles_x, uint tiles_y,
-                                __global float4* bounds, __global uint* masks, __global float4* boxes) {
+                                __global float4* bounds, __global uint* masks, __global float4* boxes,
+                                __global float* lanes) {
   const uint t = get_global_id(0);
   if (t >= tiles_x * tiles_y) return;
   const uint tx = t % tiles_x, ty = t / tiles_x;
@@ -141,13 +157,15 @@ __kernel void tile_depth_bounds(__global const float* depth, CameraParams cam, u
   bounds[t] = zb;
   masks[t] = mask;
   boxes[t] = tile_box(tx, ty, zb, &cam);
+  write_lanes(lanes, t, tiles_x * tiles_y, zb, boxes[t]);
 }
 
 /* GPU shape: one work-group (TILE_SIZE x TILE_SIZE work-items, or fewer
  * that stride) per tile, local atomics on the float bits (positive floats
  * order like their uint bits). */
 __kernel void tile_depth_bounds_wg(__global const float* depth, CameraParams cam, uint tiles_x, uint tiles_y,
-                                   __global float4* bounds, __global uint* masks, __global float4* boxes) {
+                                   __global float4* bounds, __global uint* masks, __global float4* boxes,
+                                   __global float* lanes) {
   __local uint lmin, lmax, lmask;
   const uint t = get_group_id(0);
   const uint lid = get_local_id(0), lsize = get_local_size(0);
@@ -187,6 +205,7 @@ __kernel void tile_depth_bounds_wg(__global const float* depth, CameraParams cam
     bounds[t] = zb;
     masks[t] = lmask;
     boxes[t] = tile_box(tx, ty, zb, &cam);
+    write_lanes(lanes, t, tiles_x * tiles_y, zb, boxes[t]);
   }
 }
 
@@ -449,12 +468,34 @@ __kernel void cull_scatter(__global const LightRect* rects, uint n, uint tiles_x
  * wider rectangles test the rest per tile. */
 #define COL_WORDS 8
 
+/* depth_and_box_ok for the 8 tiles t0 .. t0 + 7 of a row, as bits 0..7: the
+ * same comparisons lane by lane (the 2.5D mask term, when on, is left to the
+ * caller). A comparison is -1 where true, and a NaN fails it as in the
+ * scalar code; ~ turns "reject" into "keep" without changing that. */
+inline uint depth_and_box_bits8(float4 c, uint t0, size_t s, __global const float* lanes) {
+  const float8 zlo = vload8(0, lanes + t0), zhi = vload8(0, lanes + s + t0);
+  const float8 x0 = vload8(0, lanes + 2 * s + t0), x1 = vload8(0, lanes + 3 * s + t0);
+  const float8 y0 = vload8(0, lanes + 4 * s + t0), y1 = vload8(0, lanes + 5 * s + t0);
+  const float lz = -c.z, r = c.w;
+  const float8 cx = (float8)(c.x), cy = (float8)(c.y), cz = (float8)(-c.z);
+  const float8 dx = cx - clamp(cx, x0, x1), dy = cy - clamp(cy, y0, y1), dz = cz - clamp(cz, zlo, zhi);
+  const int8 ok = ~(zlo > zhi) & ~((float8)(lz + r) < zlo) & ~((float8)(lz - r) > zhi) &
+                  (dx * dx + dy * dy + dz * dz <= (float8)(c.w * c.w * (1.0f + 4.0f * DEPTH_EPS)));
+  return (uint)((ok.s0 & 1) | (ok.s1 & 2) | (ok.s2 & 4) | (ok.s3 & 8) | (ok.s4 & 16) | (ok.s5 & 32) |
+                (ok.s6 & 64) | (ok.s7 & 128));
+}
+
+/* Columns of a light's rectangle whose side test mark_light caches (8 x 32);
+ * wider rectangles test the rest per tile. */
+#define COL_WORDS 8
+
 /* Hit mask of one light (a bit per tile of its rectangle, row-major) and its
  * counts. The side tests are separable: a row's once per row (a row that the
- * sphere misses is skipped whole), a column's once per column. */
-inline void mark_light(const LightRect* lr, uint tiles_x, __global const float4* bounds, __global const uint* masks,
-                       __global const float4* boxes, __global const TileSide* sides, __global uint* out,
-                       __global uint* counts) {
+ * sphere misses is skipped whole), a column's once per column; the depth and
+ * box terms 8 tiles at a time. */
+inline void mark_light(const LightRect* lr, uint tiles_x, uint n_tiles, __global const float4* bounds,
+                       __global const uint* masks, __global const float4* boxes, __global const float* lanes,
+                       __global const TileSide* sides, __global uint* out, __global uint* counts) {
   const uint w = (uint)(lr->tx1 - lr->tx0 + 1), area = w * (uint)(lr->ty1 - lr->ty0 + 1);
   for (uint k = 0; k < (area + 31u) / 32u; ++k) out[k] = 0u;
   const float4 c = lr->center;
@@ -467,15 +508,28 @@ inline void mark_light(const LightRect* lr, uint tiles_x, __global const float4*
       if (inside_side(col_sides + j + b, c)) bits |= 1u << b;
     cols[j / 32u] = bits;
   }
+  const size_t s = (size_t)n_tiles + LANE_PAD;
   uint k = 0; /* bit of the row's first tile */
   for (int ty = lr->ty0; ty <= lr->ty1; ++ty, k += w) {
     if (!inside_side(sides + tiles_x + ty, c)) continue;
     const uint row = (uint)ty * tiles_x + (uint)lr->tx0;
-    for (uint j = 0; j < w; ++j) {
-      const bool col = j < wc ? ((cols[j / 32u] >> (j & 31u)) & 1u) != 0u : inside_side(col_sides + j, c);
-      if (col && depth_and_box_ok(c, row + j, bounds, masks, boxes)) {
-        out[(k + j) / 32u] |= 1u << ((k + j) & 31u);
-        ++counts[row + j];
+    for (uint j = 0; j < w; j += 8u) {
+      uint col = (j + 8u <= wc) ? (cols[j / 32u] >> (j & 31u)) & 0xffu : 0u;
+      for (uint l = 0; j + 8u > wc && l < 8u && j + l < w; ++l)
+        if (j + l < wc ? ((cols[(j + l) / 32u] >> ((j + l) & 31u)) & 1u) : inside_side(col_sides + j + l, c))
+          col |= 1u << l;
+      if (w - j < 8u) col &= (1u << (w - j)) - 1u;
+#if DEPTH_MODE != DEPTH_NONE
+      if (col) col &= depth_and_box_bits8(c, row + j, s, lanes);
+#endif
+      while (col) {
+        const uint l = 31u - clz(col & (~col + 1u));
+        col &= col - 1u;
+#if DEPTH_MODE == DEPTH_MASK
+        if (!depth_and_box_ok(c, row + j + l, bounds, masks, boxes)) continue;
+#endif
+        out[(k + j + l) / 32u] |= 1u << ((k + j + l) & 31u);
+        ++counts[row + j + l];
       }
     }
   }
@@ -483,9 +537,9 @@ inline void mark_light(const LightRect* lr, uint tiles_x, __global const float4*
 
 __kernel void cull_mark_chunked(__global const LightRect* rects, uint n, uint per, uint n_tiles, uint tiles_x,
                                 __global const float4* bounds, __global const uint* masks,
-                                __global const float4* boxes, __global const TileSide* sides,
-                                __global const uint* mask_offsets, __global uint* hit_masks,
-                                __global uint* chunk_counts) {
+                                __global const float4* boxes, __global const float* lanes,
+                                __global const TileSide* sides, __global const uint* mask_offsets,
+                                __global uint* hit_masks, __global uint* chunk_counts) {
   const size_t c = get_global_id(0);
   const ulong i0 = (ulong)c * per;
   if (i0 >= n) return;
@@ -495,7 +549,7 @@ __kernel void cull_mark_chunked(__global const LightRect* rects, uint n, uint pe
   for (uint i = (uint)i0; i < i1; ++i) {
     const LightRect lr = rects[i];
     if (lr.tx0 <= lr.tx1 && lr.ty0 <= lr.ty1)
-      mark_light(&lr, tiles_x, bounds, masks, boxes, sides, hit_masks + mask_offsets[i], counts);
+      mark_light(&lr, tiles_x, n_tiles, bounds, masks, boxes, lanes, sides, hit_masks + mask_offsets[i], counts);
   }
 }
 

@@ -16,6 +16,7 @@ namespace {
 constexpr std::size_t kMarkWg = 256;  // MARK_WG in the kernel: most items of a cull_mark_wg group
 constexpr std::uint64_t kMax32 = 0xffffffffull;
 constexpr std::size_t kTileSideBytes = 48;     // TileSide in the kernel
+constexpr std::size_t kLanePad = 8;            // LANE_PAD in the kernel
 constexpr std::size_t kChunksPerUnit = 8;      // CPU shape: work-items per compute unit, for load balance
 constexpr std::uint32_t kMinPerChunk = 64;     // ... but no fewer lights per work-item than this
 constexpr std::size_t kMaxChunkCounters = std::size_t(1) << 24;  // chunks x tiles (64 MiB of counters)
@@ -75,6 +76,7 @@ void TileLightCuller::ensureTiles(const gpu::CameraParams& cam) {
   tile_bounds_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_float4), "tile depth bounds");
   tile_masks_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile depth masks");
   tile_boxes_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_float4), "tile depth boxes");
+  tile_lanes_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, (n + kLanePad) * 6 * sizeof(cl_float), "tile depth lanes");
   counts_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile light counts");
   offsets_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile light offsets");
   cursor_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile light cursors");
@@ -106,7 +108,7 @@ void TileLightCuller::ensureLights(std::uint32_t n) {
 }
 
 std::size_t TileLightCuller::scratchBytes() const {
-  return tile_capacity_ * (2 * 16 + 4 * 4) + side_capacity_ * kTileSideBytes + light_capacity_ * (32 + 8) +
+  return tile_capacity_ * (2 * 16 + 4 * 4 + 6 * 4) + side_capacity_ * kTileSideBytes + light_capacity_ * (32 + 8) +
          mask_capacity_ * 4 + chunk_capacity_ * 4;
 }
 
@@ -130,7 +132,7 @@ std::uint32_t TileLightCuller::count(cl::CommandQueue& q, const cl::Buffer& ligh
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
 
   if (mode_ != TileDepthMode::None) {
-    setArgs(bounds_, *depth, cam, tiles_x, tiles_y, tile_bounds_, tile_masks_, tile_boxes_);
+    setArgs(bounds_, *depth, cam, tiles_x, tiles_y, tile_bounds_, tile_masks_, tile_boxes_, tile_lanes_);
     // GPU: one work-group per tile; CPU: one work-item per tile.
     launch1d(q, bounds_, gpu_shape_ ? std::size_t(n_tiles) * bounds_local_ : n_tiles, bounds_local_,
              ev("tile-depth-bounds"));
@@ -197,8 +199,8 @@ void TileLightCuller::markChunked(cl::CommandQueue& q, std::uint32_t n, const gp
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
   writeSides(q, cam, timer);
   ensureChunks(n, n_tiles);
-  setArgs(mark_, rects_, n, per_chunk_, n_tiles, tiles_x, tile_bounds_, tile_masks_, tile_boxes_, tile_sides_,
-          mask_offsets_, hit_masks_, chunk_counts_);
+  setArgs(mark_, rects_, n, per_chunk_, n_tiles, tiles_x, tile_bounds_, tile_masks_, tile_boxes_, tile_lanes_,
+          tile_sides_, mask_offsets_, hit_masks_, chunk_counts_);
   launch1d(q, mark_, chunks_, 1, ev("tile-cull"));
   setArgs(totals_k_, chunk_counts_, chunks_, n_tiles, counts_);
   launch1d(q, totals_k_, n_tiles, grid_local_, ev("tile-chunk-totals"));

@@ -75,7 +75,7 @@ class TileLightCuller {
   std::size_t bounds_local_ = 1, element_local_ = 1, mark_local_ = 32, rects_local_ = 1, grid_local_ = 1;
   cl::Program program_;
   cl::Kernel bounds_, rects_k_, mark_, scatter_, write_grid_, sides_k_, totals_k_, bases_k_;
-  cl::Buffer tile_bounds_, tile_masks_, tile_boxes_, tile_sides_, counts_, offsets_, cursor_, chunk_counts_;
+  cl::Buffer tile_bounds_, tile_masks_, tile_boxes_, tile_lanes_, tile_sides_, counts_, offsets_, cursor_, chunk_counts_;
   cl::Buffer rects_, mask_words_, mask_offsets_, hit_masks_;
   std::size_t tile_capacity_ = 0, light_capacity_ = 0, mask_capacity_ = 0;
   std::uint32_t words_ = 0;  // hit-mask words of the last count()
