@@ -1,7 +1,9 @@
 // manylights-tiled-bench: the OpenCL tile light culler against the plain C++
-// culler (same algorithm and tests, multi-threaded with TBB) on the same
-// device, depth buffer and lights, in one run; plus per-pass frame breakdowns
-// of tiled forward/deferred. Prints a table and, with --json, writes one record
+// culler (same algorithm and tests, multi-threaded with TBB) and against the
+// previous OpenCL culler (TileCullAlgorithm::PairAtomics: an atomic per list
+// entry; --no-legacy skips it) on the same device, depth buffer and lights, in
+// one run, all three held to the same list total; plus per-pass frame
+// breakdowns of tiled forward/deferred. Prints a table and, with --json, writes one record
 // per case: name, resolution, lights, seconds (median), items_per_second.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -15,8 +17,10 @@
 #include "gl/GlContext.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/app/SceneInputs.hpp"
+#include "host/cl/ClPassTimer.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/tiled/TileCullerReference.hpp"
+#include "host/tiled/TileLightCuller.hpp"
 #include "host/tiled/TiledAssigner.hpp"
 #include "host/util/Error.hpp"
 #include "host/bench/BenchInputs.hpp"
@@ -35,7 +39,10 @@ int run(int argc, char** argv) {
   unsigned tile = 16;
   int reps = 5;
   std::string device;
+  bool no_legacy = false, passes = false;
   app.add_option("--json", json_path, "write records as JSON");
+  app.add_flag("--no-legacy", no_legacy, "skip the previous (per-entry atomics) kernel");
+  app.add_flag("--passes", passes, "print the culler's per-pass device times (last repetition)");
   app.add_option("--sizes", sizes, "culling resolutions")->capture_default_str();
   app.add_option("--lights", light_counts, "culling light counts")->capture_default_str();
   app.add_option("--frame-sizes", frame_sizes, "resolutions of the frame breakdowns ('' for none)")->capture_default_str();
@@ -59,8 +66,8 @@ int run(int argc, char** argv) {
   nlohmann::ordered_json records = nlohmann::ordered_json::array();
 
   std::printf("\nTile light culling, tile %u, depth %s (median of %d)\n", tile, depth_mode.c_str(), reps);
-  std::printf("%-11s %8s %12s %12s %10s %12s\n", "resolution", "lights", "kernel ms", "C++ (TBB) ms", "speed-up",
-              "list entries");
+  std::printf("%-11s %8s %12s %12s %12s %10s %10s %12s\n", "resolution", "lights", "kernel ms", "old kernel ms",
+              "C++ (TBB) ms", "vs C++", "vs old", "list entries");
   for (const auto& size : splitList(sizes)) {
     unsigned w = 0, h = 0;
     parseSize(size, "--sizes", w, h);
@@ -84,29 +91,46 @@ int run(int argc, char** argv) {
       if (n) q.enqueueWriteBuffer(lbuf, CL_TRUE, 0, n * sizeof(gpu::PointLight), lights.data());
       cl::Buffer dbuf(rt->context(), CL_MEM_READ_ONLY, depth.size() * 4);
       q.enqueueWriteBuffer(dbuf, CL_TRUE, 0, depth.size() * 4, depth.data());
-      TileLightCuller culler(*rt, tile, mode);
       cl::Buffer grid(rt->context(), CL_MEM_READ_WRITE, std::size_t(TileGrid{tile, w, h}.count()) * 8);
       cl::Buffer indices;
       std::size_t cap = 0;
-      std::uint32_t total = 0;
-      const double t_kernel = timeMedian(reps, [&] {
-        total = culler.count(q, lbuf, n, cam, &dbuf);
-        if (total * 4u > cap) {
-          cap = std::max<std::size_t>(16, total * 4u * 3 / 2);
-          indices = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
+      auto time_culler = [&](TileCullAlgorithm algo, std::uint32_t& total) {
+        TileLightCuller culler(*rt, tile, mode, KernelShape::Auto, algo);
+        ClPassTimer timer;
+        PassTimings pt;
+        const double t = timeMedian(reps, [&] {
+          pt = PassTimings{};
+          total = culler.count(q, lbuf, n, cam, &dbuf, passes ? &timer : nullptr);
+          if (std::size_t(total) * 4 > cap) {
+            cap = std::max<std::size_t>(16, std::size_t(total) * 4 * 3 / 2);
+            indices = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
+          }
+          culler.fill(q, lbuf, n, cam, grid, indices, passes ? &timer : nullptr);
+          q.finish();
+          if (passes) timer.collect(pt);
+        });
+        if (passes) {
+          std::printf("  %s passes:", algo == TileCullAlgorithm::PairAtomics ? "old" : "new");
+          for (const auto& [name, ms] : pt.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
+          std::printf("\n");
         }
-        culler.fill(q, lbuf, n, cam, grid, indices);
-        q.finish();
-      });
+        return t;
+      };
+      std::uint32_t total = 0, legacy_total = 0;
+      const double t_kernel = time_culler(TileCullAlgorithm::ChunkCounts, total);
+      const double t_legacy = no_legacy ? 0.0 : time_culler(TileCullAlgorithm::PairAtomics, legacy_total);
+      if (!no_legacy && legacy_total != total) throw std::runtime_error("new and old kernels disagree on the list size");
       const TileGrid g{tile, w, h};
       std::size_t ref_total = 0;
       const double t_ref = timeMedian(reps, [&] {
         ref_total = cullTilesReference(lights, depth.data(), cam, g, mode, true).indices.size();
       });
       if (ref_total != total) throw std::runtime_error("kernel and C++ culler disagree on the list size");
-      std::printf("%-11s %8u %12.3f %12.3f %9.2fx %12u\n", size.c_str(), n, t_kernel * 1e3, t_ref * 1e3,
-                  t_ref / t_kernel, total);
-      for (auto [name, t] : {std::pair{"tile_cull_opencl", t_kernel}, std::pair{"tile_cull_cpp_tbb", t_ref}})
+      std::printf("%-11s %8u %12.3f %12.3f %12.3f %9.2fx %9.2fx %12u\n", size.c_str(), n, t_kernel * 1e3,
+                  t_legacy * 1e3, t_ref * 1e3, t_ref / t_kernel, t_legacy / t_kernel, total);
+      std::vector<std::pair<const char*, double>> timed{{"tile_cull_opencl", t_kernel}, {"tile_cull_cpp_tbb", t_ref}};
+      if (!no_legacy) timed.emplace_back("tile_cull_opencl_pair_atomics", t_legacy);
+      for (auto [name, t] : timed)
         records.push_back({{"name", name}, {"resolution", size}, {"n", n}, {"lights", n}, {"tile", tile},
                            {"depth_mode", depth_mode}, {"seconds", t}, {"items_per_second", n / t},
                            {"bytes_per_second", (depth.size() * 4.0 + n * 32.0) / t}, {"list_entries", total},

@@ -18,102 +18,15 @@
 #include "support/FpTolerance.hpp"
 #include "support/DepthPoints.hpp"
 #include "support/TestDevice.hpp"
+#include "tiled_support.hpp"
 
 namespace ml {
 namespace {
 
-struct CullCase {
-  Camera camera;
-  unsigned width, height;
-  std::vector<float> depth;  // window depth, row 0 bottom
-  std::vector<gpu::PointLight> lights;
-};
-
-// A random view of a random "scene" depth: the buffer is made of rectangles at
-// random distances over a background, so tiles see empty space, single
-// surfaces and depth discontinuities.
-CullCase randomCase(std::mt19937_64& rng, unsigned w, unsigned h, std::size_t n_lights) {
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  CullCase c;
-  c.width = w;
-  c.height = h;
-  c.camera.eye = {u(rng) * 4 - 2, u(rng) * 2, u(rng) * 4 - 2};
-  c.camera.center = c.camera.eye + glm::vec3(u(rng) - 0.5f, u(rng) * 0.4f - 0.2f, -1.0f);
-  c.camera.fovy_degrees = 30 + u(rng) * 60;
-  c.camera.near_plane = 0.1f;
-  c.camera.far_plane = 100.0f;
-  const glm::mat4 proj = c.camera.projection(float(w) / float(h));
-  auto window_depth = [&](float dist) { return gpu::distance_to_depth(dist, proj[2][2], proj[3][2]); };
-  c.depth.assign(std::size_t(w) * h, gpu::kSkyDepth);
-  for (int r = 0; r < 12; ++r) {
-    const unsigned x0 = unsigned(u(rng) * w), y0 = unsigned(u(rng) * h);
-    const unsigned x1 = std::min(w, x0 + 1 + unsigned(u(rng) * w / 2)), y1 = std::min(h, y0 + 1 + unsigned(u(rng) * h / 2));
-    const float d0 = 0.5f + u(rng) * 30, slope = (u(rng) - 0.5f) * 0.2f;
-    for (unsigned y = y0; y < y1; ++y)
-      for (unsigned x = x0; x < x1; ++x) c.depth[y * w + x] = window_depth(std::max(0.2f, d0 + slope * float(x - x0)));
-  }
-  // Lights around the view: in front, behind, containing the camera, straddling the near plane, huge.
-  const glm::mat4 inv_view = glm::inverse(c.camera.view());
-  for (std::size_t i = 0; i < n_lights; ++i) {
-    glm::vec3 v{u(rng) * 40 - 20, u(rng) * 30 - 15, -u(rng) * 40 + 5};
-    float r = 0.2f + u(rng) * 4;
-    if (i % 17 == 0) r = 20 + u(rng) * 30;              // huge
-    if (i % 23 == 0) v = {u(rng) - 0.5f, u(rng) - 0.5f, -0.1f};  // at the near plane / around the eye
-    const glm::vec3 world = glm::vec3(inv_view * glm::vec4(v, 1));
-    c.lights.push_back(makeLight(world, r, {u(rng), u(rng), u(rng)}));
-  }
-  return c;
-}
-
-std::vector<std::vector<std::uint32_t>> runKernel(const CullCase& c, unsigned tile, TileDepthMode mode,
-                                                   KernelShape shape) {
-  ClRuntime& rt = test::runtime();
-  auto& q = rt.queue();
-  TileLightCuller culler(rt, tile, mode, shape);
-  EXPECT_EQ(culler.shape(), shape);
-  const auto cam = c.camera.params(c.width, c.height);
-  cl::Buffer lights(rt.context(), CL_MEM_READ_ONLY, std::max<std::size_t>(16, c.lights.size() * 32));
-  if (!c.lights.empty()) q.enqueueWriteBuffer(lights, CL_TRUE, 0, c.lights.size() * 32, c.lights.data());
-  cl::Buffer depth(rt.context(), CL_MEM_READ_ONLY, c.depth.size() * 4);
-  q.enqueueWriteBuffer(depth, CL_TRUE, 0, c.depth.size() * 4, c.depth.data());
-  const auto n = std::uint32_t(c.lights.size());
-  const std::uint32_t total = culler.count(q, lights, n, cam, &depth);
-  const unsigned tiles = culler.tileGrid().count();
-  cl::Buffer grid(rt.context(), CL_MEM_READ_WRITE, tiles * 8);
-  cl::Buffer indices(rt.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, total * 4 + 64));
-  q.enqueueFillBuffer(grid, 0xDEADBEEFu, 0, tiles * 8);  // poison
-  q.enqueueFillBuffer(indices, 0xDEADBEEFu, 0, std::max<std::size_t>(16, total * 4 + 64));
-  culler.fill(q, lights, n, cam, grid, indices);
-  std::vector<gpu::LightRange> g(tiles);
-  std::vector<std::uint32_t> idx(total + 16);
-  q.enqueueReadBuffer(grid, CL_TRUE, 0, tiles * 8, g.data());
-  q.enqueueReadBuffer(indices, CL_TRUE, 0, idx.size() * 4, idx.data());
-  // Nothing written past the total.
-  for (std::size_t i = total; i < idx.size(); ++i) EXPECT_EQ(idx[i], 0xDEADBEEFu) << "write past the list end";
-  std::vector<std::vector<std::uint32_t>> lists(tiles);
-  std::uint32_t expected_offset = 0;
-  for (unsigned t = 0; t < tiles; ++t) {
-    EXPECT_EQ(g[t].offset, expected_offset) << "tile " << t;
-    expected_offset += g[t].count;
-    if (g[t].offset + g[t].count > total) {
-      ADD_FAILURE() << "tile " << t << " out of range";
-      continue;
-    }
-    lists[t].assign(idx.begin() + g[t].offset, idx.begin() + g[t].offset + g[t].count);
-    std::sort(lists[t].begin(), lists[t].end());
-  }
-  EXPECT_EQ(expected_offset, total);
-  return lists;
-}
-
-std::vector<std::vector<std::uint32_t>> runReference(const CullCase& c, unsigned tile, TileDepthMode mode) {
-  TileGrid g{tile, c.width, c.height};
-  const auto ref = cullTilesReference(c.lights, c.depth.data(), c.camera.params(c.width, c.height), g, mode);
-  std::vector<std::vector<std::uint32_t>> lists(g.count());
-  for (unsigned t = 0; t < g.count(); ++t)
-    lists[t].assign(ref.indices.begin() + ref.grid[t].offset, ref.indices.begin() + ref.grid[t].offset + ref.grid[t].count);
-  return lists;
-}
+using test::CullCase;
+using test::randomCase;
+using test::runKernel;
+using test::runReference;
 
 struct Param {
   unsigned tile;

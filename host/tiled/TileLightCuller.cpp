@@ -15,9 +15,15 @@ namespace ml {
 namespace {
 constexpr std::size_t kMarkWg = 256;  // MARK_WG in the kernel: most items of a cull_mark_wg group
 constexpr std::uint64_t kMax32 = 0xffffffffull;
+constexpr std::size_t kTileSideBytes = 48;     // TileSide in the kernel
+constexpr std::size_t kLanePad = 8;            // LANE_PAD in the kernel
+constexpr std::size_t kChunksPerUnit = 8;      // CPU shape: work-items per compute unit, for load balance
+constexpr std::uint32_t kMinPerChunk = 64;     // ... but no fewer lights per work-item than this
+constexpr std::size_t kMaxChunkCounters = std::size_t(1) << 24;  // chunks x tiles (64 MiB of counters)
 }  // namespace
 
-TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape)
+TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape,
+                                 TileCullAlgorithm algorithm)
     : rt_(rt), mode_(mode), shape_(resolveKernelShape(rt.info(), shape)), scan_(rt, compute::Options{shape_}) {
   if (tile_size < 1 || tile_size > 256) throw UserError("--tile: tile size must be 1..256, got " + std::to_string(tile_size));
   grid_.tile_size = tile_size;
@@ -25,13 +31,19 @@ TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMod
   // tile) pair; on CPU devices a work-item walking its tile or its light's
   // rectangle is a plain loop (see the PoCL notes).
   gpu_shape_ = shape_ == KernelShape::GpuWorkGroup;
+  const bool legacy = algorithm == TileCullAlgorithm::PairAtomics;
+  chunked_ = !gpu_shape_ && !legacy;
   program_ = rt.programs().build("tiled_light_culling.cl", {{"TILE_SIZE", std::to_string(tile_size)},
-                                                            {"DEPTH_MODE", std::to_string(static_cast<int>(mode))}});
+                                                            {"DEPTH_MODE", std::to_string(static_cast<int>(mode))},
+                                                            {"CULL_LEGACY", legacy ? "1" : "0"}});
   bounds_ = cl::Kernel(program_, gpu_shape_ ? "tile_depth_bounds_wg" : "tile_depth_bounds");
   rects_k_ = cl::Kernel(program_, "light_rects");
-  mark_ = cl::Kernel(program_, gpu_shape_ ? "cull_mark_wg" : "cull_mark");
-  scatter_ = cl::Kernel(program_, gpu_shape_ ? "cull_scatter_wg" : "cull_scatter");
+  mark_ = cl::Kernel(program_, gpu_shape_ ? "cull_mark_wg" : chunked_ ? "cull_mark_chunked" : "cull_mark");
+  scatter_ = cl::Kernel(program_, gpu_shape_ ? "cull_scatter_wg" : chunked_ ? "cull_scatter_chunked" : "cull_scatter");
   write_grid_ = cl::Kernel(program_, "write_grid");
+  sides_k_ = cl::Kernel(program_, "tile_sides");
+  totals_k_ = cl::Kernel(program_, "tile_chunk_totals");
+  bases_k_ = cl::Kernel(program_, "tile_chunk_bases");
   const cl::Device& dev = rt.device();
   const DeviceInfo& info = rt.info();
   rects_local_ = elementLocalSize(rects_k_, dev, info);
@@ -43,13 +55,16 @@ TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMod
     mark_local_ = fitLocalSize(mark_, dev, kMarkWg, 32, 0, "cull_mark_wg");
   } else {
     bounds_local_ = elementLocalSize(bounds_, dev, info);
-    mark_local_ = elementLocalSize(mark_, dev, info);
+    // Chunked: a work-item per chunk of lights, local size 1 (a plain loop on PoCL).
+    mark_local_ = chunked_ ? 1 : elementLocalSize(mark_, dev, info);
+    if (chunked_) element_local_ = 1;
   }
   // Buffers are never zero-sized: "no lights" is a normal frame.
   rects_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 32, "tiled culling");
   mask_words_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "tiled culling");
   mask_offsets_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "tiled culling");
   hit_masks_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "tiled culling");
+  chunk_counts_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "tiled culling");
 }
 
 void TileLightCuller::ensureTiles(const gpu::CameraParams& cam) {
@@ -60,9 +75,28 @@ void TileLightCuller::ensureTiles(const gpu::CameraParams& cam) {
   tile_capacity_ = n;
   tile_bounds_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_float4), "tile depth bounds");
   tile_masks_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile depth masks");
+  tile_boxes_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_float4), "tile depth boxes");
+  tile_lanes_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, (n + kLanePad) * 6 * sizeof(cl_float), "tile depth lanes");
   counts_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile light counts");
   offsets_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile light offsets");
   cursor_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile light cursors");
+}
+
+// CPU shape: as many chunks as keep the compute units balanced, each holding
+// at least one light (the kernels leave the rows of empty chunks unwritten)
+// and, past kMinPerChunk lights, no fewer than that.
+void TileLightCuller::ensureChunks(std::uint32_t n, std::size_t n_tiles) {
+  const std::size_t most = std::max<std::size_t>(
+      1, std::min<std::size_t>(std::size_t(std::max<cl_uint>(rt_.info().compute_units, 1)) * kChunksPerUnit,
+                               kMaxChunkCounters / std::max<std::size_t>(n_tiles, 1)));
+  const std::size_t want = std::clamp<std::size_t>(n / kMinPerChunk, 1, most);
+  per_chunk_ = std::uint32_t((std::uint64_t(n) + want - 1) / want);
+  chunks_ = std::uint32_t((std::uint64_t(n) + per_chunk_ - 1) / per_chunk_);
+  const std::size_t need = std::size_t(chunks_) * n_tiles;
+  if (need <= chunk_capacity_) return;
+  chunk_capacity_ = need;
+  chunk_counts_ = cl::Buffer();
+  chunk_counts_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, need * sizeof(cl_uint), "tiled culling chunk counters");
 }
 
 void TileLightCuller::ensureLights(std::uint32_t n) {
@@ -74,7 +108,8 @@ void TileLightCuller::ensureLights(std::uint32_t n) {
 }
 
 std::size_t TileLightCuller::scratchBytes() const {
-  return tile_capacity_ * (16 + 4 * 4) + light_capacity_ * (32 + 8) + mask_capacity_ * 4;
+  return tile_capacity_ * (2 * 16 + 4 * 4 + 6 * 4) + side_capacity_ * kTileSideBytes + light_capacity_ * (32 + 8) +
+         mask_capacity_ * 4 + chunk_capacity_ * 4;
 }
 
 // The scan wraps mod 2^32. When n values of at most per_item_max each could
@@ -97,7 +132,7 @@ std::uint32_t TileLightCuller::count(cl::CommandQueue& q, const cl::Buffer& ligh
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
 
   if (mode_ != TileDepthMode::None) {
-    setArgs(bounds_, *depth, cam, tiles_x, tiles_y, tile_bounds_, tile_masks_);
+    setArgs(bounds_, *depth, cam, tiles_x, tiles_y, tile_bounds_, tile_masks_, tile_boxes_, tile_lanes_);
     // GPU: one work-group per tile; CPU: one work-item per tile.
     launch1d(q, bounds_, gpu_shape_ ? std::size_t(n_tiles) * bounds_local_ : n_tiles, bounds_local_,
              ev("tile-depth-bounds"));
@@ -120,8 +155,12 @@ std::uint32_t TileLightCuller::count(cl::CommandQueue& q, const cl::Buffer& ligh
       hit_masks_ = cl::Buffer();  // release first: the old and new buffer need not coexist
       hit_masks_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, mask_capacity_ * 4, "tiled culling hit masks");
     }
-    if (gpu_shape_) {
-      setArgs(mark_, rects_, n, words_, cam, tiles_x, tile_bounds_, tile_masks_, mask_offsets_, hit_masks_, counts_);
+    if (chunked_) {
+      markChunked(q, n, cam, timer);
+    } else if (gpu_shape_) {
+      writeSides(q, cam, timer);
+      setArgs(mark_, rects_, n, words_, cam, tiles_x, tile_bounds_, tile_masks_, tile_boxes_, tile_sides_,
+              mask_offsets_, hit_masks_, counts_);
       launch1d(q, mark_, std::size_t(words_) * 32, mark_local_, ev("tile-cull"));
     } else {
       setArgs(mark_, rects_, n, cam, tiles_x, tile_bounds_, tile_masks_, mask_offsets_, hit_masks_, counts_);
@@ -134,7 +173,37 @@ std::uint32_t TileLightCuller::count(cl::CommandQueue& q, const cl::Buffer& ligh
     throw UserError("tiled culling: the tile light lists hold " + std::to_string(total) +
                     " entries, more than 32-bit offsets or one device allocation hold (fewer --lights, a smaller "
                     "--size or --tile-depth minmax)");
+  if (chunked_ && n > 0) {  // each chunk's write cursors, from the tile offsets
+    setArgs(bases_k_, chunk_counts_, chunks_, n_tiles, offsets_);
+    launch1d(q, bases_k_, n_tiles, grid_local_, ev("tile-chunk-bases"));
+  }
   return std::uint32_t(total);
+}
+
+void TileLightCuller::writeSides(cl::CommandQueue& q, const gpu::CameraParams& cam, ClPassTimer* timer) {
+  const cl_uint tiles_x = grid_.tilesX(), tiles_y = grid_.tilesY();
+  const std::size_t sides = std::size_t(tiles_x) + tiles_y;
+  if (sides > side_capacity_) {
+    side_capacity_ = sides;
+    tile_sides_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, sides * kTileSideBytes, "tile side planes");
+  }
+  setArgs(sides_k_, cam, tiles_x, tiles_y, tile_sides_);
+  launch1d(q, sides_k_, sides, grid_local_, timer ? timer->next("tile-sides") : nullptr);
+}
+
+// CPU shape: each chunk counts into its own row; the rows' sums per tile feed
+// the scan in count().
+void TileLightCuller::markChunked(cl::CommandQueue& q, std::uint32_t n, const gpu::CameraParams& cam,
+                                  ClPassTimer* timer) {
+  const cl_uint tiles_x = grid_.tilesX(), n_tiles = grid_.count();
+  auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
+  writeSides(q, cam, timer);
+  ensureChunks(n, n_tiles);
+  setArgs(mark_, rects_, n, per_chunk_, n_tiles, tiles_x, tile_bounds_, tile_masks_, tile_boxes_, tile_lanes_,
+          tile_sides_, mask_offsets_, hit_masks_, chunk_counts_);
+  launch1d(q, mark_, chunks_, 1, ev("tile-cull"));
+  setArgs(totals_k_, chunk_counts_, chunks_, n_tiles, counts_);
+  launch1d(q, totals_k_, n_tiles, grid_local_, ev("tile-chunk-totals"));
 }
 
 void TileLightCuller::fill(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n,
@@ -144,11 +213,15 @@ void TileLightCuller::fill(cl::CommandQueue& q, const cl::Buffer& lights, std::u
   const cl_uint tiles_x = grid_.tilesX(), n_tiles = grid_.count();
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
   if (n > 0) {
-    q.enqueueFillBuffer(cursor_, cl_uint(0), 0, std::size_t(n_tiles) * sizeof(cl_uint));
-    if (gpu_shape_) {
+    if (chunked_) {
+      setArgs(scatter_, rects_, n, per_chunk_, n_tiles, tiles_x, mask_offsets_, hit_masks_, chunk_counts_, indices);
+      launch1d(q, scatter_, chunks_, 1, ev("tile-scatter"));
+    } else if (gpu_shape_) {
+      q.enqueueFillBuffer(cursor_, cl_uint(0), 0, std::size_t(n_tiles) * sizeof(cl_uint));
       setArgs(scatter_, rects_, n, words_, tiles_x, mask_offsets_, hit_masks_, offsets_, cursor_, indices);
       launch1d(q, scatter_, std::size_t(words_) * 32, element_local_, ev("tile-scatter"));
     } else {
+      q.enqueueFillBuffer(cursor_, cl_uint(0), 0, std::size_t(n_tiles) * sizeof(cl_uint));
       setArgs(scatter_, rects_, n, tiles_x, mask_offsets_, hit_masks_, offsets_, cursor_, indices);
       launch1d(q, scatter_, n, element_local_, ev("tile-scatter"));
     }

@@ -14,10 +14,18 @@
 // device's largest allocation cannot hold is a UserError, never a wrap. The
 // order inside a tile's list is unspecified (atomics).
 //
-// Kernel shape (KernelShape, --kernel-shape): CpuChunked walks a light's
-// rectangle (or a tile's pixels) per work-item; GpuWorkGroup gives each
-// (light, tile) pair a work-item and each tile's depth a work-group. Both give
-// the same grid and the same lists up to order; Auto picks by device type.
+// Kernel shape (KernelShape, --kernel-shape): CpuChunked gives each work-item
+// a chunk of lights whose rectangles it walks, counting into its own row of
+// per-tile counters (no atomics; lists come out in ascending light order), and
+// a tile's pixels per work-item for the depth bounds; GpuWorkGroup gives each
+// (light, tile) pair a work-item (an atomic count per list entry, order
+// unspecified) and each tile's depth a work-group. Both give the same grid and
+// the same lists up to order; Auto picks by device type. Both hoist the
+// per-tile culling math (side planes, depth box) out of the per-pair loop.
+//
+// TileCullAlgorithm::PairAtomics is the culler before that rework (per-pair
+// math, an atomic per list entry in both shapes), kept for the benchmark's
+// same-run comparison; the lists are the same.
 #include <CL/opencl.hpp>
 
 #include <cstdint>
@@ -30,9 +38,12 @@
 
 namespace ml {
 
+enum class TileCullAlgorithm { ChunkCounts, PairAtomics };
+
 class TileLightCuller {
  public:
-  TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape = KernelShape::Auto);
+  TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape = KernelShape::Auto,
+                  TileCullAlgorithm algorithm = TileCullAlgorithm::ChunkCounts);
 
   // depth: window-space floats (cam.width x cam.height, row 0 bottom); may be
   // null only when the mode is None.
@@ -50,6 +61,9 @@ class TileLightCuller {
  private:
   void ensureTiles(const gpu::CameraParams& cam);
   void ensureLights(std::uint32_t n);
+  void ensureChunks(std::uint32_t n, std::size_t n_tiles);
+  void writeSides(cl::CommandQueue& q, const gpu::CameraParams& cam, ClPassTimer* timer);
+  void markChunked(cl::CommandQueue& q, std::uint32_t n, const gpu::CameraParams& cam, ClPassTimer* timer);
   std::uint64_t exactTotal(cl::CommandQueue& q, const cl::Buffer& values, std::size_t n, std::uint32_t wrapped,
                            std::uint64_t per_item_max) const;
   ClRuntime& rt_;
@@ -57,13 +71,16 @@ class TileLightCuller {
   TileGrid grid_;
   KernelShape shape_;
   bool gpu_shape_;
+  bool chunked_;  // CPU shape of ChunkCounts: per-chunk counters instead of atomics
   std::size_t bounds_local_ = 1, element_local_ = 1, mark_local_ = 32, rects_local_ = 1, grid_local_ = 1;
   cl::Program program_;
-  cl::Kernel bounds_, rects_k_, mark_, scatter_, write_grid_;
-  cl::Buffer tile_bounds_, tile_masks_, counts_, offsets_, cursor_;
+  cl::Kernel bounds_, rects_k_, mark_, scatter_, write_grid_, sides_k_, totals_k_, bases_k_;
+  cl::Buffer tile_bounds_, tile_masks_, tile_boxes_, tile_lanes_, tile_sides_, counts_, offsets_, cursor_, chunk_counts_;
   cl::Buffer rects_, mask_words_, mask_offsets_, hit_masks_;
   std::size_t tile_capacity_ = 0, light_capacity_ = 0, mask_capacity_ = 0;
   std::uint32_t words_ = 0;  // hit-mask words of the last count()
+  std::size_t side_capacity_ = 0, chunk_capacity_ = 0;
+  std::uint32_t chunks_ = 0, per_chunk_ = 0;  // CPU shape: work-items and lights per work-item of the last count()
   compute::Scanner scan_;
 };
 
