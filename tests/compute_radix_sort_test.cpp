@@ -171,6 +171,28 @@ TEST_P(RadixShapeTest, DigitWidthsAndOddPassCounts) {
   }
 }
 
+TEST(ComputeRadixSort, CpuWideDigitsAndBalancedPasses) {
+  // CPU shape: digits wider than 8 bits run from 2^16 keys on (default 11):
+  // every key_bits splits into balanced passes (32 -> 11 + 11 + 10, 20 ->
+  // 10 + 10, 13 -> 7 + 6), each pass counting only its own digits. 2^16 + 3
+  // keys: the smallest size that takes them, odd so that chunks end mid-line.
+  const std::size_t n = (std::size_t(1) << 16) + 3;
+  for (unsigned bits : {9u, 11u, 12u}) {
+    SCOPED_TRACE("radix_bits=" + std::to_string(bits));
+    const std::uint64_t seed = test::freshSeed();
+    SCOPED_TRACE("seed=" + std::to_string(seed));
+    RadixSorter sorter(test::runtime(), Options{.shape = Shape::CpuChunked, .radix_bits = bits});
+    for (unsigned key_bits : {32u, 20u, 13u, 1u}) {
+      SCOPED_TRACE("key_bits=" + std::to_string(key_bits));
+      runCase<std::uint32_t>(sorter, n, KeyDist::Random, true, key_bits, seed + key_bits);
+      runCase<std::uint32_t>(sorter, n, KeyDist::FewDistinct, false, key_bits, seed ^ key_bits);
+      if (HasFailure()) return;
+    }
+    runCase<std::uint64_t>(sorter, n, KeyDist::Random, true, 64, seed + 64);
+    runCase<std::uint64_t>(sorter, n, KeyDist::AllBitsSet, false, 45, seed + 45);
+  }
+}
+
 TEST(ComputeRadixSort, FreeFunctionsAndReuseAcrossSizes) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
