@@ -140,12 +140,34 @@ ML_INLINE void scatter_chunk(__global const KEY_T* restrict keys_in, __global KE
 #endif
 }
 
+/* Whether every key of chunk g has digit d: its count of d (the gap to the
+ * next entry of the digit-major scan; the scan covers mask + 1 digits) is the
+ * chunk's length. */
+ML_INLINE int chunk_is_one_digit(__global const uint* restrict offsets, uint d, uint g, uint groups, uint mask,
+                                 uint n, uint len) {
+  const uint at = d * groups + g;
+  const uint next = g + 1 < groups || d < mask ? offsets[at + 1] : n;
+  return next - offsets[at] == len;
+}
+
 __kernel void radix_scatter(__global const KEY_T* restrict keys_in, __global KEY_T* restrict keys_out,
                             __global const uint* restrict vals_in, __global uint* restrict vals_out,
                             uint has_values, uint n, uint chunk, uint shift, uint mask,
                             __global const uint* restrict offsets, uint groups) {
   const uint g = get_global_id(0);
   const uint b = chunk_begin(g, chunk, n), e = chunk_begin(g + 1, chunk, n);
+  if (b >= e) return;
+  /* A chunk whose keys all share this pass's digit (equal, sorted or
+   * narrow-ranged keys, high passes of small keys) moves as one block: a
+   * copy instead of a scatter. */
+  const uint d0 = digit_of(keys_in[b], shift, mask);
+  if (chunk_is_one_digit(offsets, d0, g, groups, mask, n, e - b)) {
+    const uint dst = offsets[d0 * groups + g];
+    for (uint i = 0; i < e - b; ++i) keys_out[dst + i] = keys_in[b + i];
+    if (has_values)
+      for (uint i = 0; i < e - b; ++i) vals_out[dst + i] = vals_in[b + i];
+    return;
+  }
   if (has_values)
     scatter_chunk(keys_in, keys_out, vals_in, vals_out, 1, b, e, shift, mask, offsets, g, groups);
   else
