@@ -9,7 +9,10 @@
  * counters per group = 2^RADIX_BITS), ML_GPU, and for ML_GPU: WG, ITEMS.
  * `mask` selects the digit bits of this pass (fewer than RADIX_BITS on the last
  * pass when key_bits is not a multiple). Both shapes take the same arguments:
- * a group owns keys [g * chunk, (g + 1) * chunk). */
+ * a group owns keys [g * chunk, (g + 1) * chunk). The CPU kernels touch only
+ * the mask + 1 counters of the pass (RADIX_BITS is the widest digit; the host
+ * scans (mask + 1) * groups counters), so narrower passes do not pay for the
+ * widest one's 2^RADIX_BITS counters per chunk. */
 #include "prim_common.cl"
 
 #define RADIX (1u << RADIX_BITS)
@@ -31,7 +34,7 @@ __kernel void radix_hist(__global const KEY_T* restrict keys, uint n, uint chunk
   /* Four sub-histograms: runs of equal digits would otherwise serialise on
    * one counter's load-increment-store. */
   uint h0[RADIX], h1[RADIX], h2[RADIX], h3[RADIX];
-  for (uint r = 0; r < RADIX; ++r) h0[r] = h1[r] = h2[r] = h3[r] = 0;
+  for (uint r = 0; r <= mask; ++r) h0[r] = h1[r] = h2[r] = h3[r] = 0;
   uint i = b;
   for (; i + 4 <= e; i += 4) {
     h0[digit_of(keys[i], shift, mask)]++;
@@ -40,7 +43,7 @@ __kernel void radix_hist(__global const KEY_T* restrict keys, uint n, uint chunk
     h3[digit_of(keys[i + 3], shift, mask)]++;
   }
   for (; i < e; ++i) h0[digit_of(keys[i], shift, mask)]++;
-  for (uint r = 0; r < RADIX; ++r) counts[r * groups + g] = h0[r] + h1[r] + h2[r] + h3[r];
+  for (uint r = 0; r <= mask; ++r) counts[r * groups + g] = h0[r] + h1[r] + h2[r] + h3[r];
 }
 
 /* Scatter with software write-combining: each digit's keys are staged in a
@@ -96,7 +99,7 @@ ML_INLINE void scatter_chunk(__global const KEY_T* restrict keys_in, __global KE
   uint pos[RADIX], start[RADIX];
   KEY_T kbuf[RADIX * LINE] __attribute__((aligned(64)));
   uint vbuf[RADIX * LINE] __attribute__((aligned(64)));
-  for (uint r = 0; r < RADIX; ++r) start[r] = pos[r] = offsets[r * groups + g];
+  for (uint r = 0; r <= mask; ++r) start[r] = pos[r] = offsets[r * groups + g];
   /* Streaming vector stores need naturally aligned lines; a buffer made from
    * an unaligned host pointer gets plain (unaligned) vector stores instead. */
   const int aligned = (((size_t)keys_out | (hv ? (size_t)vals_out : 0)) & 63) == 0;
@@ -121,7 +124,7 @@ ML_INLINE void scatter_chunk(__global const KEY_T* restrict keys_in, __global KE
     }
   }
   /* The last, partial line of every digit. */
-  for (uint r = 0; r < RADIX; ++r) {
+  for (uint r = 0; r <= mask; ++r) {
     const uint end = pos[r];
     if (end & (LINE - 1)) {
       const uint line = end & ~(uint)(LINE - 1);
@@ -137,12 +140,34 @@ ML_INLINE void scatter_chunk(__global const KEY_T* restrict keys_in, __global KE
 #endif
 }
 
+/* Whether every key of chunk g has digit d: its count of d (the gap to the
+ * next entry of the digit-major scan; the scan covers mask + 1 digits) is the
+ * chunk's length. */
+ML_INLINE int chunk_is_one_digit(__global const uint* restrict offsets, uint d, uint g, uint groups, uint mask,
+                                 uint n, uint len) {
+  const uint at = d * groups + g;
+  const uint next = g + 1 < groups || d < mask ? offsets[at + 1] : n;
+  return next - offsets[at] == len;
+}
+
 __kernel void radix_scatter(__global const KEY_T* restrict keys_in, __global KEY_T* restrict keys_out,
                             __global const uint* restrict vals_in, __global uint* restrict vals_out,
                             uint has_values, uint n, uint chunk, uint shift, uint mask,
                             __global const uint* restrict offsets, uint groups) {
   const uint g = get_global_id(0);
   const uint b = chunk_begin(g, chunk, n), e = chunk_begin(g + 1, chunk, n);
+  if (b >= e) return;
+  /* A chunk whose keys all share this pass's digit (equal, sorted or
+   * narrow-ranged keys, high passes of small keys) moves as one block: a
+   * copy instead of a scatter. */
+  const uint d0 = digit_of(keys_in[b], shift, mask);
+  if (chunk_is_one_digit(offsets, d0, g, groups, mask, n, e - b)) {
+    const uint dst = offsets[d0 * groups + g];
+    for (uint i = 0; i < e - b; ++i) keys_out[dst + i] = keys_in[b + i];
+    if (has_values)
+      for (uint i = 0; i < e - b; ++i) vals_out[dst + i] = vals_in[b + i];
+    return;
+  }
   if (has_values)
     scatter_chunk(keys_in, keys_out, vals_in, vals_out, 1, b, e, shift, mask, offsets, g, groups);
   else

@@ -171,6 +171,54 @@ TEST_P(RadixShapeTest, DigitWidthsAndOddPassCounts) {
   }
 }
 
+// Pairs of random keys below `key_mask`, sorted by `key_bits`, against a
+// stable sort; the output's slack is poisoned as in runCase.
+void runCaseMasked(RadixSorter& sorter, std::size_t n, std::uint32_t key_mask, unsigned key_bits,
+                   std::uint64_t seed) {
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  const auto keys = makeKeys<std::uint32_t>(n, KeyDist::Random, seed, key_mask);
+  std::vector<std::uint32_t> values(n);
+  std::iota(values.begin(), values.end(), 0u);
+  cl::Buffer kb = upload(rt.context(), q, keys, 1), vb = upload(rt.context(), q, values, 1);
+  const std::uint32_t poison = 0xDEADBEEFu;
+  q.enqueueFillBuffer(kb, poison, n * 4, 4);
+  q.enqueueFillBuffer(vb, poison, n * 4, 4);
+  sorter.sort(q, kb, &vb, n, key_bits);
+  std::vector<std::uint32_t> order(values);
+  std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
+  auto got = download<std::uint32_t>(q, vb, n + 1);
+  EXPECT_EQ(got[n], poison) << "wrote past n";
+  got.resize(n);
+  EXPECT_TRUE(sameVectors(got, order, "payload (narrow keys)"));
+  EXPECT_EQ(download<std::uint32_t>(q, kb, n + 1)[n], poison) << "wrote past n";
+}
+
+TEST(ComputeRadixSort, CpuWideDigitsAndBalancedPasses) {
+  // CPU shape: digits wider than 8 bits run from 2^16 keys on (default 11):
+  // every key_bits splits into balanced passes (32 -> 11 + 11 + 10, 20 ->
+  // 10 + 10, 13 -> 7 + 6), each pass counting only its own digits. 2^16 + 3
+  // keys: the smallest size that takes them, odd so that chunks end mid-line.
+  const std::size_t n = (std::size_t(1) << 16) + 3;
+  for (unsigned bits : {9u, 11u, 12u}) {
+    SCOPED_TRACE("radix_bits=" + std::to_string(bits));
+    const std::uint64_t seed = test::freshSeed();
+    SCOPED_TRACE("seed=" + std::to_string(seed));
+    RadixSorter sorter(test::runtime(), Options{.shape = Shape::CpuChunked, .radix_bits = bits});
+    for (unsigned key_bits : {32u, 20u, 13u, 1u}) {
+      SCOPED_TRACE("key_bits=" + std::to_string(key_bits));
+      runCase<std::uint32_t>(sorter, n, KeyDist::Random, true, key_bits, seed + key_bits);
+      runCase<std::uint32_t>(sorter, n, KeyDist::FewDistinct, false, key_bits, seed ^ key_bits);
+      if (HasFailure()) return;
+    }
+    // Keys narrower than key_bits: the top pass finds every chunk on one
+    // digit and moves it as a block (the copy path of radix_scatter).
+    runCaseMasked(sorter, n, 0xFFFFFu, 32, seed + 99);
+    runCase<std::uint64_t>(sorter, n, KeyDist::Random, true, 64, seed + 64);
+    runCase<std::uint64_t>(sorter, n, KeyDist::AllBitsSet, false, 45, seed + 45);
+  }
+}
+
 TEST(ComputeRadixSort, FreeFunctionsAndReuseAcrossSizes) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));

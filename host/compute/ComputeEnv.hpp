@@ -29,7 +29,7 @@ const char* shapeName(Shape s);
 struct Options {
   Shape shape = Shape::Auto;
   std::size_t work_group_size = 0;  // GpuWorkGroup: power of two
-  unsigned radix_bits = 0;          // radix sort digit width, 1..8 (default CPU 8, GPU 4)
+  unsigned radix_bits = 0;          // radix sort's widest digit, 1..12 (default CPU 11, GPU 4)
   std::size_t chunks = 0;           // CpuChunked: most work-items per launch (default CUs * 8)
   std::size_t sort_chunk = 0;       // CpuChunked bitonic: power-of-two elements sorted per work-item in cache
 };
@@ -41,7 +41,7 @@ struct Tuning {
   std::size_t items = 4;         // GpuWorkGroup elements per work-item in a tile
   std::size_t chunks = 16;       // CpuChunked work-items per launch (upper bound)
   std::size_t min_chunk = 4096;  // CpuChunked: no work-item gets fewer elements than this (unless n is smaller)
-  unsigned radix_bits = 8;
+  unsigned radix_bits = 11;  // widest digit
   std::size_t cpu_sort_chunk = 1 << 13;  // CpuChunked bitonic: elements a work-item sorts in cache
   bool gpu() const { return shape == Shape::GpuWorkGroup; }
   // CpuChunked: number of work-items for n elements (>= 1) and each one's chunk.

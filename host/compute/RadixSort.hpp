@@ -9,12 +9,14 @@
 //
 // Keys are ordered by their low `key_bits` bits only; higher bits travel with
 // the key but do not take part (equal low bits keep input order). The cost is
-// ceil(key_bits / digit) passes, so pass the bits that matter. Each pass is
+// ceil(key_bits / digit) passes (digits up to 11 bits on the CPU shape, split
+// evenly: 32 bits are 11 + 11 + 10), so pass the bits that matter. Each pass is
 // reduce-then-scan (digit histogram per chunk, exclusive scan, scatter): no
 // work-group ever waits on another, so it is portable to any OpenCL device.
 // Digit width, work-group size and chunking come from device queries (see
 // ComputeEnv.hpp). Enqueued on `q`, non-blocking. Temporary buffers (n keys,
-// n values, counters) are owned and grown by the object. Not thread-safe.
+// n values, counters; on CPU devices twice n keys and n values, in host memory
+// on huge pages) are owned and grown by the object. Not thread-safe.
 #include <CL/opencl.hpp>
 
 #include <cstddef>
@@ -45,8 +47,22 @@ class RadixSorter {
     cl::Kernel hist, scatter;
   };
   Variant& variant(bool wide);
+  unsigned digitBits(std::size_t n) const;  // widest digit for n keys
   void sortImpl(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* values, std::size_t n, unsigned key_bits,
                 bool wide, ClPassTimer* timer);
+
+  // The key / value ping-pong buffers. With host_pages (CPU shape on a CPU
+  // device) they live in host memory the sorter allocates on transparent huge
+  // pages where the OS offers them (see RadixSort.cpp); else a device buffer.
+  class PassScratch {
+   public:
+    cl::Buffer& ensure(const ComputeEnv& env, std::size_t bytes, bool host_pages);
+
+   private:
+    detail::Scratch device_;
+    cl::Buffer host_;
+    std::size_t capacity_ = 0;
+  };
 
   ComputeEnv env_;
   Options options_;
@@ -54,7 +70,9 @@ class RadixSorter {
   Scanner scanner_;
   Variant v32_, v64_;
   cl::Buffer dummy_;
-  detail::Scratch tmp_keys_, tmp_values_, counts_;
+  bool host_pages_ = false;
+  PassScratch tmp_keys_, tmp_values_, tmp_keys2_, tmp_values2_;  // *2_: host pages only
+  detail::Scratch counts_;
 };
 
 void radix_sort(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* values, std::size_t n, unsigned key_bits = 32);
