@@ -63,7 +63,8 @@ std::vector<std::string> badValues(const ParamSpec& p) {
   switch (p.type) {
     case ParamType::Count: {
       std::vector<std::string> v = {std::to_string(p.max + 1), "x", "-1"};
-      if (p.min > 0) v.push_back(std::to_string(p.min - 1));
+      const std::string below = std::to_string(p.min - 1);  // unless a word (cluster_tile's "0" = auto)
+      if (p.min > 0 && std::find(p.choices.begin(), p.choices.end(), below) == p.choices.end()) v.push_back(below);
       return v;
     }
     case ParamType::Choice: return {"no-such-choice", ""};
