@@ -25,7 +25,7 @@
 #include "gl/GlContext.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/app/SceneInputs.hpp"
-#include "host/assign/Techniques.hpp"
+#include "host/techniques/Registry.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/hashed/HashedAssigner.hpp"
 #include "host/hashed/HashedStructure.hpp"
@@ -318,23 +318,22 @@ int run(int argc, char** argv) {
     json evals = json::array();
     for (const auto& [label, lights] : light_sets) {
       r.setLights(lights);
-      std::vector<std::pair<std::string, TechniqueParams>> runs;
+      using Given = std::vector<std::pair<std::string, std::string>>;  // technique parameters, by key
+      std::vector<std::pair<std::string, Given>> runs;
       for (const auto& t : splitList(compare)) {
-        TechniqueParams p;
+        Given p;
         if (const auto at = t.find('@'); at != std::string::npos) {
           const auto slash = t.find('/', at);
-          p.tile_size = unsigned(std::stoul(t.substr(at + 1, slash - at - 1)));
-          if (slash != std::string::npos) p.tile_depth = t.substr(slash + 1);
+          p.emplace_back("tile", t.substr(at + 1, slash - at - 1));
+          if (slash != std::string::npos) p.emplace_back("tile_depth", t.substr(slash + 1));
         }
         runs.emplace_back(t, p);
       }
       for (const auto& node : splitList(node_sizes))
         for (const bool mask : {false, true})
           for (const bool octants : {true, false}) {
-            TechniqueParams p;
-            p.node_size = node;
-            p.geometry_mask = mask;
-            p.octant_masks = octants;
+            const Given p = {{"node_size", node}, {"geometry_mask", mask ? "on" : "off"},
+                             {"octant_masks", octants ? "on" : "off"}};
             runs.emplace_back("hashed-deferred " + node + (mask ? "+g" : "") + (octants ? "" : "-o"), p);
           }
       double tiled_px = 0;
@@ -342,12 +341,12 @@ int run(int argc, char** argv) {
         const std::string tech = name.substr(0, std::min(name.find(' '), name.find('@')));
         std::unique_ptr<LightAssigner> a;
         try {
-          a = makeAssigner(tech, *rt, params);
+          const TechniqueInfo& info = findTechnique(tech, "--compare");
+          a = makeAssigner(info, *rt, techniqueParams(info, params, "--compare"), &base.scene);
         } catch (const UserError& e) {
           std::printf("%-8s %-24s skipped: %s\n", label.c_str(), name.c_str(), e.what());
           continue;
         }
-        attachSceneGeometry(*a, base.scene);
         std::uint64_t ev = 0, lb = 0, px = 0;
         std::size_t mem = 0;
         for (const Camera* c : cams) {

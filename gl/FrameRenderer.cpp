@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <chrono>
+#include <stdexcept>
 
 #include "gl/GlCheck.hpp"
 #include "host/cl/ClRuntime.hpp"
@@ -50,7 +51,8 @@ const ShaderProgram& FrameRenderer::program(const std::string& kind, const Light
   if (kind == "depth") files = {"geometry.vert", "depth_only.frag"};
   else if (kind == "forward") files = {"geometry.vert", "forward.frag"};
   else if (kind == "gbuffer") files = {"geometry.vert", "gbuffer.frag"};
-  else files = {"fullscreen.vert", "deferred.frag"};
+  else if (kind == "deferred") files = {"fullscreen.vert", "deferred.frag"};
+  else throw std::logic_error("FrameRenderer: unknown shader kind '" + kind + "'");
   auto [it, ok] = programs_.emplace(key, ShaderProgram(files, defines, aliases));
   (void)ok;
   return it->second;

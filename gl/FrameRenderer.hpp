@@ -24,8 +24,6 @@
 
 namespace ml {
 
-enum class Pipeline { Forward, Deferred };
-
 struct FrameOptions {
   Pipeline pipeline = Pipeline::Forward;
   // Count light evaluations per pixel, and compute the exact lower bound

@@ -9,9 +9,10 @@
 #include <utility>
 #include <vector>
 
+#include "host/assign/ShaderContract.hpp"  // ShaderDefines
+
 namespace ml {
 
-using ShaderDefines = std::vector<std::pair<std::string, std::string>>;
 // Include aliases: {"lookup.glsl", "lookup_tiled.glsl"} makes `#include "lookup.glsl"`
 // read lookup_tiled.glsl. This is how a technique plugs its light-list lookup
 // into the shared forward/deferred shaders.

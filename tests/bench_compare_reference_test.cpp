@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "host/assign/Techniques.hpp"
+#include "host/techniques/Registry.hpp"
 #include "host/suite/ThesisReference.hpp"
 #include "host/util/Error.hpp"
 #include "suite_support.hpp"

@@ -49,55 +49,64 @@ TEST(BenchTypes, SummaryMatchesNumpy) {
   EXPECT_DOUBLE_EQ(summarize({4}).p95, 4);
 }
 
+std::vector<std::string> keysOf(const std::string& technique) {
+  std::vector<std::string> keys;
+  for (const auto& p : findTechnique(technique).descriptor->params) keys.push_back(p.key);
+  return keys;
+}
+
 TEST(BenchTypes, SweepsOnlyTheKeysATechniqueReads) {
   std::vector<std::string> names;
   for (const auto& t : techniques()) names.push_back(t.name);
-  const std::vector<std::pair<std::string, std::vector<std::string>>> sweep = {
-      {"tile", {"8", "16", "32"}}, {"cluster_tile", {"16", "64"}}, {"node_size", {"0.5r", "2"}}};
-  const auto vars = expandVariants(names, sweep, TechniqueParams{}, "--param");
+  const ParamSweep sweep = {{"tile", {"8", "16", "32"}}, {"cluster_tile", {"16", "64"}}, {"node_size", {"0.5r", "2"}}};
+  const auto vars = expandVariants(names, sweep, "--param");
   for (const auto& name : names) {
     const auto n = std::count_if(vars.begin(), vars.end(), [&](const TechniqueVariant& v) { return v.technique == name; });
     std::size_t expected = 1;
-    for (const auto& key : paramKeysUsedBy(name))
+    for (const auto& key : keysOf(name))
       for (const auto& s : sweep)
         if (s.first == key) expected *= s.second.size();
     EXPECT_EQ(static_cast<std::size_t>(n), expected) << name;
   }
   // The brute-force techniques read no parameter: one variant, plain label.
-  const auto brute = expandVariants({"deferred"}, sweep, TechniqueParams{}, "--param");
+  const auto brute = expandVariants({"deferred"}, sweep, "--param");
   ASSERT_EQ(brute.size(), 1u);
   EXPECT_EQ(brute[0].label, "deferred");
-  EXPECT_EQ(paramKeysUsedBy("tiled-deferred"), (std::vector<std::string>{"tile", "tile_depth", "kernel_shape"}));
-  EXPECT_EQ(paramKeysUsedBy("clustered-forward").front(), "cluster_tile");
-  EXPECT_EQ(paramKeysUsedBy("hashed-deferred").front(), "node_size");
+  EXPECT_EQ(keysOf("tiled-deferred"), (std::vector<std::string>{"tile", "tile_depth", "kernel_shape"}));
+  EXPECT_EQ(keysOf("clustered-forward").front(), "cluster_tile");
+  EXPECT_EQ(keysOf("hashed-deferred").front(), "node_size");
 }
 
 TEST(BenchTypes, ParamValuesAreChecked) {
-  TechniqueParams p;
-  setTechniqueParam(p, "tile", "8", "--param");
-  EXPECT_EQ(p.tile_size, 8u);
-  setTechniqueParam(p, "cluster_tile", "64", "--param");
-  EXPECT_EQ(p.cluster_tile, 64u);
-  setTechniqueParam(p, "kernel_shape", "gpu", "--param");
-  EXPECT_EQ(p.kernel_shape, "gpu");
-  EXPECT_THROW(setTechniqueParam(p, "kernel_shape", "warp", "--param"), UserError);
-  setTechniqueParam(p, "tile_depth", "none", "--param");
-  EXPECT_EQ(p.tile_depth, "none");
-  setTechniqueParam(p, "node_size", "0.25r", "--param");
-  EXPECT_EQ(p.node_size, "0.25r");
-  setTechniqueParam(p, "geometry_mask", "on", "--param");
-  EXPECT_TRUE(p.geometry_mask);
+  const auto tiled = expandVariants({"tiled-deferred"}, {{"tile", {"8"}}, {"tile_depth", {"none"}},
+                                                          {"kernel_shape", {"gpu"}}}, "--param");
+  ASSERT_EQ(tiled.size(), 1u);
+  EXPECT_EQ(tiled[0].params.count("tile"), 8u);
+  EXPECT_EQ(tiled[0].params.text("tile_depth"), "none");
+  EXPECT_EQ(tiled[0].params.text("kernel_shape"), "gpu");
+  EXPECT_EQ(tiled[0].label, "tiled-deferred[tile=8,tile_depth=none,kernel_shape=gpu]");
+  const auto hashed = expandVariants({"hashed-forward"}, {{"node_size", {"0.25r"}}, {"geometry_mask", {"on"}}}, "--param");
+  ASSERT_EQ(hashed.size(), 1u);
+  EXPECT_EQ(hashed[0].params.text("node_size"), "0.25r");
+  EXPECT_TRUE(hashed[0].params.on("geometry_mask"));
+  EXPECT_TRUE(hashed[0].params.on("octant_masks"));  // the default
+  const auto clustered = expandVariants({"clustered-deferred"}, {{"cluster_tile", {"64", "auto"}}}, "--param");
+  ASSERT_EQ(clustered.size(), 2u);
+  EXPECT_EQ(clustered[0].params.count("cluster_tile"), 64u);
+  EXPECT_EQ(clustered[1].params.count("cluster_tile"), 0u);
   for (auto [k, v] : std::vector<std::pair<std::string, std::string>>{
-           {"tile", "0"}, {"tile", "x"}, {"tile_depth", "deep"}, {"node_size", "-1"}, {"node_size", "r"},
-           {"unique", "magic"}, {"nonsense", "1"}}) {
+           {"tile", "0"}, {"tile", "x"}, {"tile", "257"}, {"cluster_tile", "1025"}, {"tile_depth", "deep"},
+           {"node_size", "-1"}, {"node_size", "r"}, {"unique", "magic"}, {"kernel_shape", "warp"},
+           {"start_depth", "17"}, {"nonsense", "1"}}) {
     try {
-      setTechniqueParam(p, k, v, "--param");
+      checkParam(k, v, "--param");
       FAIL() << k << "=" << v;
     } catch (const UserError& e) {
       EXPECT_NE(std::string(e.what()).find("--param"), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find(k), std::string::npos);
     }
   }
-  EXPECT_THROW(expandVariants({"no-such-technique"}, {}, TechniqueParams{}, "--param"), UserError);
+  EXPECT_THROW(expandVariants({"no-such-technique"}, {}, "--param"), UserError);
 }
 
 FrameRecord record(const std::string& run, std::size_t frame, std::uint64_t evals, double ms) {

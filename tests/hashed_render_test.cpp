@@ -56,7 +56,7 @@ TEST(HashedRender, ForwardAndDeferredMatchBruteForce) {
   BruteForceAssigner brute;
   const Rendered bf = render(r, brute, Pipeline::Forward, cam);
   const Rendered bd = render(r, brute, Pipeline::Deferred, cam);
-  TechniqueParams params;
+  hashed::HashedConfig params;
   HashedAssigner hf("hashed-forward", params), hd("hashed-deferred", params);
   const Rendered f = render(r, hf, Pipeline::Forward, cam);
   const Rendered d = render(r, hd, Pipeline::Deferred, cam);
@@ -81,7 +81,7 @@ TEST(HashedRender, GlslCountsEqualTheCpuLookup) {
   FrameRenderer r(test::runtime(), in.scene, kW, kH);
   r.setLights(in.lights);
   const Camera& cam = in.cameras.frames.front();
-  TechniqueParams params;
+  hashed::HashedConfig params;
   params.node_size = "0.25r";
   params.start_depth = 2;
   HashedAssigner hf("hashed-forward", params);
@@ -114,12 +114,12 @@ TEST(HashedRender, GeometryMaskMatchesBruteForce) {
   BruteForceAssigner brute;
   const Rendered bf = render(r, brute, Pipeline::Forward, cam);
   const Rendered bd = render(r, brute, Pipeline::Deferred, cam);
-  TechniqueParams params;
+  hashed::HashedConfig params;
   params.geometry_mask = true;
   params.node_size = "0.25r";
   HashedAssigner hf("hashed-forward", params), hd("hashed-deferred", params);
-  attachSceneGeometry(hf, in.scene);
-  attachSceneGeometry(hd, in.scene);
+  hf.setScene(&in.scene);
+  hd.setScene(&in.scene);
   expectMatchesBrute(render(r, hf, Pipeline::Forward, cam), bf, "forward, masked");
   expectMatchesBrute(render(r, hd, Pipeline::Deferred, cam), bd, "deferred, masked");
 }
@@ -136,7 +136,7 @@ TEST(HashedRender, AnimatedLightsMatchAFreshBuild) {
   auto lights = in.lights;
   r.setLights(lights);
   const Camera& cam = in.cameras.frames.front();
-  TechniqueParams params;
+  hashed::HashedConfig params;
   HashedAssigner animated("hashed-deferred", params);
   animated.config().bounds_padding = 0.1;
   render(r, animated, Pipeline::Deferred, cam);
@@ -179,7 +179,7 @@ TEST(HashedRender, NoLightsGivesAmbientOnly) {
   const auto& in = inputs();
   FrameRenderer r(test::runtime(), in.scene, 64, 36);
   r.setLights({});
-  TechniqueParams params;
+  hashed::HashedConfig params;
   HashedAssigner h("hashed-deferred", params);
   const FrameResult res = r.render(in.cameras.frames.front(), h, {Pipeline::Deferred, true});
   EXPECT_EQ(res.light_evaluations, 0u);

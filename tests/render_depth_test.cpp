@@ -11,7 +11,7 @@
 
 #include "gl/FrameRenderer.hpp"
 #include "host/app/SceneInputs.hpp"
-#include "host/assign/Techniques.hpp"
+#include "host/techniques/Registry.hpp"
 #include "host/hashed/HashedAssigner.hpp"
 #include "host/util/Error.hpp"
 #include "support/BruteReference.hpp"
@@ -30,8 +30,7 @@ struct Frame {
 
 Frame renderWith(FrameRenderer& r, const std::string& technique, const Scene& scene, const Camera& cam, bool count) {
   const TechniqueInfo& t = findTechnique(technique);
-  auto assigner = makeAssigner(t.name, test::runtime(), TechniqueParams{});
-  attachSceneGeometry(*assigner, scene);
+  auto assigner = makeAssigner(t.name, test::runtime(), &scene);
   Frame f;
   f.result = r.render(cam, *assigner, {t.pipeline, count});
   f.image = r.targets().readColor();
@@ -154,7 +153,7 @@ TEST(CameraDepthRange, RendererRefusesCamerasMadeInCode) {
   FrameRenderer r(test::runtime(), in.scene, 64, 36);
   Camera cam = in.cameras.frames.front();
   cam.near_plane = 1e-35f;
-  auto brute = makeAssigner("forward", test::runtime(), TechniqueParams{});
+  auto brute = makeAssigner("forward", test::runtime());
   EXPECT_THROW(r.render(cam, *brute, {Pipeline::Forward, false}), UserError);
 }
 

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "gl/FrameRenderer.hpp"
-#include "host/assign/Techniques.hpp"
+#include "host/techniques/Registry.hpp"
 #include "host/scene/LightSet.hpp"
 #include "support/BruteReference.hpp"
 #include "support/ImageCompare.hpp"
@@ -38,7 +38,7 @@ struct Frame {
 };
 
 Frame renderWith(FrameRenderer& r, const Camera& cam, const std::string& technique) {
-  const auto assigner = makeAssigner(technique, test::runtime(), TechniqueParams{});
+  const auto assigner = makeAssigner(technique, test::runtime());
   Frame f;
   f.result = r.render(cam, *assigner, {findTechnique(technique).pipeline, true});
   f.image = r.targets().readColor();

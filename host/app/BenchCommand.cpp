@@ -11,7 +11,7 @@
 #include <fstream>
 #include <map>
 
-#include "gl/GlContext.hpp"
+#include "host/bench/RunLayer.hpp"
 #include "host/app/InputChecks.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/bench/OutputFiles.hpp"
@@ -47,7 +47,7 @@ std::string exeDir() {
 }
 
 // "key=v1,v2" -> (key, {v1, v2}); later mentions of a key replace earlier ones.
-void addSweep(std::vector<std::pair<std::string, std::vector<std::string>>>& sweep, const std::string& key,
+void addSweep(ParamSweep& sweep, const std::string& key,
               const std::vector<std::string>& values) {
   for (auto& s : sweep)
     if (s.first == key) {
@@ -75,9 +75,43 @@ void checkBenchOutputs(const BenchArgs& a) {
   requireOutputDir("--images", a.images);
 }
 
+// The technique variants of --techniques x the --param / --KEY sweeps, every
+// value checked against its parameter's range.
+std::vector<TechniqueVariant> benchVariants(const BenchArgs& a) {
+  std::vector<std::string> tech_names = splitList(a.techniques);
+  if (tech_names.empty())
+    for (const auto& t : techniques()) tech_names.push_back(t.name);
+  ParamSweep sweep;
+  for (const auto& p : a.params) {
+    const auto eq = p.find('=');
+    if (eq == std::string::npos || eq == 0 || splitList(p.substr(eq + 1)).empty())
+      throw UserError("--param: expected KEY=V1,V2,..., got '" + p + "'");
+    addSweep(sweep, p.substr(0, eq), splitList(p.substr(eq + 1)));
+  }
+  for (const auto& [key, list] : a.shorthands) {
+    const std::string flag = findParam(key, "--param").renderFlag();
+    if (splitList(list).empty()) throw UserError(flag + ": expected a comma list");
+    for (const auto& v : splitList(list)) checkParam(key, v, flag);
+    addSweep(sweep, key, splitList(list));
+  }
+  return expandVariants(tech_names, sweep, "--param");
+}
+
+// "Parameter keys" of the help footer, from the registry.
+std::string paramKeysHelp() {
+  std::string s = "Parameter keys (--param KEY=V1,V2,..., repeatable, or --KEY V1,V2; each technique sweeps only the keys "
+                  "it reads):\n";
+  for (const RegistryParam& p : registryParams()) {
+    std::string families;
+    for (const auto& f : p.families) families += (families.empty() ? "" : ", ") + f;
+    s += "  " + p.spec.key + " (" + p.spec.allowed() + "; default " + p.spec.default_value + "): " + families + "\n";
+  }
+  return s;
+}
+
 std::vector<const TechniqueInfo*> techniquesOf(const std::vector<TechniqueVariant>& variants) {
   std::vector<const TechniqueInfo*> techs;
-  for (const auto& v : variants) techs.push_back(&findTechnique(v.technique));
+  for (const auto& v : variants) techs.push_back(v.info);
   return techs;
 }
 
@@ -127,6 +161,53 @@ void printSummaries(const std::vector<RunSummary>& sums) {
                   s.host_ms.mean, s.memory_bytes.max);
     }
   }
+}
+
+// The JSON's "meta": the command, device, scene, camera and the plan.
+nlohmann::ordered_json benchMeta(const BenchArgs& a, const BenchScene& scene, const BenchPlan& plan,
+                                 const RunContext& ctx) {
+  const Camera& c0 = scene.cameras.frames.front();
+  nlohmann::ordered_json meta;
+  meta["command"] = a.command_line;
+  meta["date"] = utcNow();
+  meta["device"] = ctx.cl->info().name;
+  meta["gl"] = ctx.gl->describe();
+  nlohmann::ordered_json sj;
+  sj["source"] = reportPath(scene.source);
+  sj["format"] = scene.format;
+  sj["name"] = scene.name;
+  sj["triangles"] = scene.scene.triangleCount();
+  sj["missing_meshes"] = scene.missing_meshes;
+  meta["scene"] = sj;
+  nlohmann::ordered_json cj;
+  cj["fovy"] = c0.fovy_degrees;
+  cj["near"] = c0.near_plane;
+  cj["far"] = c0.far_plane;
+  cj["path_frames"] = scene.cameras.frames.size();
+  meta["camera"] = cj;
+  meta["frames"] = plan.frames;
+  nlohmann::ordered_json sz = nlohmann::ordered_json::array();
+  for (const auto& [w, h] : plan.sizes) sz.push_back(std::to_string(w) + "x" + std::to_string(h));
+  meta["sizes"] = sz;
+  nlohmann::ordered_json lj = nlohmann::ordered_json::array();
+  for (const auto& ls : plan.light_sets)
+    lj.push_back({{"label", ls.label}, {"file", ls.file}, {"count", ls.lights.size()}});
+  meta["light_sets"] = lj;
+  nlohmann::ordered_json vj = nlohmann::ordered_json::array();
+  for (const auto& v : plan.variants) {
+    nlohmann::ordered_json p = nlohmann::ordered_json::object();
+    for (const auto& [k, val] : v.labels) p[k] = val;
+    vj.push_back({{"label", v.label}, {"technique", v.technique}, {"params", p}});
+  }
+  meta["variants"] = vj;
+  meta["counts"] = plan.counts;
+  meta["timing"] = plan.timing;
+  meta["repeat"] = plan.repeat;
+  meta["warmup"] = plan.warmup;
+  meta["animate"] = plan.animate;
+  meta["animate_speed"] = plan.animate_speed;
+
+  return meta;
 }
 
 }  // namespace
@@ -180,12 +261,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       "      --lights 70 --techniques deferred,tiled-deferred --param tile=8,16,32 --param tile_depth=none \\\n"
       "      --size 320x320 --frames 3:518:8 --json out/b.json --csv out/b.csv --plot out/plots\n"
       "  manylights bench --techniques forward,deferred --lights 256,1024 --sizes 320x180,640x360 --frames ::4\n"
-      "Parameter keys (--param KEY=V1,V2,..., repeatable; each technique sweeps only the keys it reads):\n"
-      "  tile, tile_depth (none|minmax|mask)              tiled techniques\n"
-      "  cluster_tile (pixels | auto), unique (pagetable|sort|tile-sort), cluster_assign (bvh|brute),\n"
-      "  cluster_bounds (pixels|frustum)                                               clustered\n"
-      "  kernel_shape (auto|cpu|gpu): OpenCL kernel shape                    tiled and clustered\n"
-      "  node_size (2.0 | 0.5r), start_depth, geometry_mask (on|off), octant_masks (on|off)  hashed\n"
+      + paramKeysHelp() +
       "Light sets (--lights, comma list): JSON files; names under the suite's lights/; 'thesis' (the thesis's set\n"
       "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).");
   cmd->add_option("--suite,--scene", a.scene.suite,
@@ -205,12 +281,12 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   cmd->add_option("--frames", a.frames, "FIRST:LAST:STEP along the camera path, LAST inclusive (default: all)");
   cmd->add_option("--resample", a.scene.resample, "resample the camera path to N frames first (linear in eye/center/up)");
   cmd->add_option("--param,--params", a.params, "sweep KEY=V1,V2,... (repeatable; keys below)")->expected(1, -1);
-  cmd->add_option("--tile", a.tile, "shorthand for --param tile=LIST");
-  cmd->add_option("--tile-depth", a.tile_depth, "shorthand for --param tile_depth=LIST");
-  cmd->add_option("--cluster-tile", a.cluster_tile, "shorthand for --param cluster_tile=LIST");
-  cmd->add_option("--node-size", a.node_size, "shorthand for --param node_size=LIST");
-  cmd->add_option("--kernel-shape", a.kernel_shape,
-                  "shorthand for --param kernel_shape=LIST: OpenCL kernel shape auto|cpu|gpu (tiled, clustered)");
+  for (const RegistryParam& p : registryParams()) {
+    const std::string key = p.spec.key;
+    cmd->add_option_function<std::string>(
+        p.spec.renderFlag(), [&a, key](const std::string& v) { a.shorthands[key] = v; },
+        "shorthand for --param " + key + "=LIST");
+  }
   cmd->add_option("--repeat", a.repeat, "timed renders per frame (per-pass median)")->capture_default_str();
   cmd->add_option("--warmup", a.warmup, "untimed renders before each run")->capture_default_str();
   cmd->add_option("--animate", a.animate,
@@ -246,22 +322,7 @@ int runBench(const BenchArgs& a) {
     sizes.emplace_back(w, h);
   }
   if (sizes.empty()) throw UserError("--sizes: no sizes given");
-  std::vector<std::string> tech_names = splitList(a.techniques);
-  if (tech_names.empty())
-    for (const auto& t : techniques()) tech_names.push_back(t.name);
-  std::vector<std::pair<std::string, std::vector<std::string>>> sweep;
-  for (const auto& p : a.params) {
-    const auto eq = p.find('=');
-    if (eq == std::string::npos || eq == 0 || splitList(p.substr(eq + 1)).empty())
-      throw UserError("--param: expected KEY=V1,V2,..., got '" + p + "'");
-    addSweep(sweep, p.substr(0, eq), splitList(p.substr(eq + 1)));
-  }
-  if (!a.tile.empty()) addSweep(sweep, "tile", splitList(a.tile));
-  if (!a.tile_depth.empty()) addSweep(sweep, "tile_depth", splitList(a.tile_depth));
-  if (!a.cluster_tile.empty()) addSweep(sweep, "cluster_tile", splitList(a.cluster_tile));
-  if (!a.node_size.empty()) addSweep(sweep, "node_size", splitList(a.node_size));
-  if (!a.kernel_shape.empty()) addSweep(sweep, "kernel_shape", splitList(a.kernel_shape));
-  const auto variants = expandVariants(tech_names, sweep, TechniqueParams{}, "--param");
+  const auto variants = benchVariants(a);
   const FrameRange range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
   const Progress::Mode progress_mode = Progress::parseMode(a.progress, "--progress");
   (void)LightAnimator({}, a.animate, 23, a.animate_speed);  // validates --animate, --animate-speed
@@ -295,11 +356,9 @@ int runBench(const BenchArgs& a) {
   plan.animate = a.animate;
   plan.animate_speed = a.animate_speed;
 
-  auto gl = createHeadlessContext();
-  const GlShareHandles share = gl->shareHandles();
-  auto cl = ClRuntime::create(device, &share);
-  for (const auto& ls : plan.light_sets) checkDeviceLightLimits(where, ls.lights.size(), cl->info());
-  std::printf("%s\n%s\n", cl->describe().c_str(), gl->describe().c_str());
+  const RunContext ctx = RunContext::open(device);
+  for (const auto& ls : plan.light_sets) checkDeviceLightLimits(where, ls.lights.size(), ctx.cl->info());
+  ctx.printDevices();
   std::printf("scene: %s [%s] (%zu triangles, %zu camera frames; fovy %g, near %g, far %g)\n",
               reportPath(scene.source).c_str(), scene.format.c_str(), scene.scene.triangleCount(), scene.cameras.frames.size(), c0.fovy_degrees,
               c0.near_plane, c0.far_plane);
@@ -312,45 +371,7 @@ int runBench(const BenchArgs& a) {
               plan.variants.size(), plan.light_sets.size(), plan.sizes.size(), plan.frames.size(), planSteps(plan));
   std::fflush(stdout);
 
-  nlohmann::ordered_json meta;
-  meta["command"] = a.command_line;
-  meta["date"] = utcNow();
-  meta["device"] = cl->info().name;
-  meta["gl"] = gl->describe();
-  nlohmann::ordered_json sj;
-  sj["source"] = reportPath(scene.source);
-  sj["format"] = scene.format;
-  sj["name"] = scene.name;
-  sj["triangles"] = scene.scene.triangleCount();
-  sj["missing_meshes"] = scene.missing_meshes;
-  meta["scene"] = sj;
-  nlohmann::ordered_json cj;
-  cj["fovy"] = c0.fovy_degrees;
-  cj["near"] = c0.near_plane;
-  cj["far"] = c0.far_plane;
-  cj["path_frames"] = scene.cameras.frames.size();
-  meta["camera"] = cj;
-  meta["frames"] = plan.frames;
-  nlohmann::ordered_json sz = nlohmann::ordered_json::array();
-  for (const auto& [w, h] : plan.sizes) sz.push_back(std::to_string(w) + "x" + std::to_string(h));
-  meta["sizes"] = sz;
-  nlohmann::ordered_json lj = nlohmann::ordered_json::array();
-  for (const auto& ls : plan.light_sets)
-    lj.push_back({{"label", ls.label}, {"file", ls.file}, {"count", ls.lights.size()}});
-  meta["light_sets"] = lj;
-  nlohmann::ordered_json vj = nlohmann::ordered_json::array();
-  for (const auto& v : plan.variants) {
-    nlohmann::ordered_json p = nlohmann::ordered_json::object();
-    for (const auto& [k, val] : v.labels) p[k] = val;
-    vj.push_back({{"label", v.label}, {"technique", v.technique}, {"params", p}});
-  }
-  meta["variants"] = vj;
-  meta["counts"] = plan.counts;
-  meta["timing"] = plan.timing;
-  meta["repeat"] = plan.repeat;
-  meta["warmup"] = plan.warmup;
-  meta["animate"] = plan.animate;
-  meta["animate_speed"] = plan.animate_speed;
+  nlohmann::ordered_json meta = benchMeta(a, scene, plan, ctx);
 
   std::string json_path = a.json;
   if (json_path.empty() && !a.plot.empty()) json_path = (fs::path(a.plot) / "bench.json").string();
@@ -371,7 +392,7 @@ int runBench(const BenchArgs& a) {
   };
   Progress progress(planSteps(plan), progress_mode);
   const std::size_t frames_per_run = plan.frames.size();
-  const auto records = runBench(*cl, scene, plan, &progress, [&](const FrameRecord& r) {
+  const auto records = runBench(*ctx.cl, scene, plan, &progress, [&](const FrameRecord& r) {
     so_far.push_back(r);
     if (so_far.size() % frames_per_run == 0 && so_far.size() < planSteps(plan)) save(so_far, false);
   });

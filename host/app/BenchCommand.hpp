@@ -6,6 +6,7 @@
 // by scripts/plot_bench.py. See docs/testbed.md.
 #include <CLI/CLI.hpp>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,7 +23,7 @@ struct BenchArgs {
   std::string sizes;       // comma list; overrides size
   std::string frames;      // FIRST:LAST:STEP; empty: the whole path
   std::vector<std::string> params;  // "key=v1,v2"
-  std::string tile, tile_depth, cluster_tile, node_size, kernel_shape;  // shorthands for params
+  std::map<std::string, std::string> shorthands;  // --KEY LIST for every registry parameter, by key
   std::string json, csv, plot, images;
   std::string device;
   std::string progress = "auto";

@@ -13,7 +13,7 @@
 
 #include "gl/FrameRenderer.hpp"
 #include "gl/GlContext.hpp"
-#include "host/assign/Techniques.hpp"
+#include "host/techniques/Registry.hpp"
 #include "host/bench/BenchInputs.hpp"
 #include "host/bench/BenchTypes.hpp"
 #include "host/bench/Progress.hpp"
@@ -100,7 +100,6 @@ struct SeriesRun {
   const ReferenceSeries* ref = nullptr;
   std::string technique;
   std::string label;  // "tiled-deferred[tile=8,tile_depth=none]"
-  TechniqueParams params;
   std::vector<std::pair<std::string, std::string>> param_labels;
   std::string skipped;  // why it did not run
   std::uint32_t light_count = 0;
@@ -166,14 +165,10 @@ int runCompareReference(const CompareReferenceArgs& a) {
   for (const auto& t : splitList(a.techniques)) only_tech.insert(t);
   std::set<unsigned> only_tiles;
   for (const auto& t : splitList(a.tiles)) {
-    TechniqueParams scratch;
-    setTechniqueParam(scratch, "tile", t, "--tiles");
-    only_tiles.insert(scratch.tile_size);
+    checkParam("tile", t, "--tiles");
+    only_tiles.insert(static_cast<unsigned>(std::stoul(t)));
   }
-  {
-    TechniqueParams scratch;
-    setTechniqueParam(scratch, "tile_depth", a.tile_depth, "--tile-depth");
-  }
+  checkParam("tile_depth", a.tile_depth, "--tile-depth");
   if (!(a.naive_scale > 0)) throw UserError("--naive-scale: must be positive");
   if (a.fovy != 0 && !(a.fovy > 0 && a.fovy < 180)) throw UserError("--fovy: must be in (0, 180) degrees");
   const FrameRange range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
@@ -204,23 +199,10 @@ int runCompareReference(const CompareReferenceArgs& a) {
                                         [&](const TechniqueInfo& t) { return t.name == r.technique; });
     if (r.technique.empty()) r.skipped = "no technique mapped";
     else if (!registered) r.skipped = "technique '" + r.technique + "' is not registered in this build";
-    if (s.kind == "ts") {
-      r.params.tile_size = s.tile;
-      r.params.tile_depth = a.tile_depth;
-      r.param_labels = {{"tile", std::to_string(s.tile)}, {"tile_depth", a.tile_depth}};
-    } else if (s.kind == "cs") {
-      r.params.cluster_tile = s.tile;
-      r.param_labels = {{"cluster_tile", std::to_string(s.tile)}};
-    }
-    r.label = r.technique;
+    if (s.kind == "ts") r.param_labels = {{"tile", std::to_string(s.tile)}, {"tile_depth", a.tile_depth}};
+    else if (s.kind == "cs") r.param_labels = {{"cluster_tile", std::to_string(s.tile)}};
     // Labelled like bench's variants: "tiled-deferred[tile=8,tile_depth=none]".
-    for (std::size_t i = 0; i < r.param_labels.size(); ++i) {
-      r.label += i ? ',' : '[';
-      r.label += r.param_labels[i].first;
-      r.label += '=';
-      r.label += r.param_labels[i].second;
-    }
-    if (!r.param_labels.empty()) r.label += "]";
+    r.label = variantLabel(r.technique, r.param_labels);
     runs.push_back(std::move(r));
   }
   if (runs.empty()) throw UserError("--techniques/--tiles: nothing in the reference matches the selection");
@@ -283,9 +265,10 @@ int runCompareReference(const CompareReferenceArgs& a) {
     auto& renderer = renderers[{s.width, s.height}];
     if (!renderer) renderer = std::make_unique<FrameRenderer>(*cl, scene.scene, s.width, s.height);
     renderer->setLights(lights);
-    auto assigner = makeAssigner(r.technique, *cl, r.params);
+    const TechniqueInfo& tech = findTechnique(r.technique, "--technique-map");
+    auto assigner = makeAssigner(tech, *cl, techniqueParams(tech, r.param_labels, "--technique-map"), &scene.scene);
     FrameOptions opts;
-    opts.pipeline = findTechnique(r.technique).pipeline;
+    opts.pipeline = tech.pipeline;
     opts.count_lights = true;
     for (std::size_t f : r.frames) {
       progress.update(done, s.id + " " + r.label + " frame " + std::to_string(f));

@@ -31,27 +31,6 @@ CLI::Validator finitePositive() {
       "NUMBER>0");
 }
 
-void checkRenderTechniqueParams(const TechniqueParams& p) {
-  // The same checks as bench's --param (BenchTypes.cpp), under the render flag's name.
-  const std::pair<const char*, std::string> given[] = {
-      {"tile", std::to_string(p.tile_size)},
-      {"tile_depth", p.tile_depth},
-      {"cluster_tile", p.cluster_tile == 0 ? std::string("auto") : std::to_string(p.cluster_tile)},
-      {"unique", p.unique_method},
-      {"cluster_assign", p.cluster_assign},
-      {"cluster_bounds", p.cluster_bounds},
-      {"node_size", p.node_size},
-      {"start_depth", std::to_string(p.start_depth)},
-  };
-  for (const auto& [key, value] : given) {  // tile_depth -> --tile-depth
-    std::string flag = std::string("--") + key;
-    for (char& c : flag)
-      if (c == '_') c = '-';
-    TechniqueParams scratch;
-    setTechniqueParam(scratch, key, value, flag);
-  }
-}
-
 bool parseLightCount(const std::string& text, std::uint64_t& count) {
   if (text.empty()) return false;
   auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), count);

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "host/assign/Techniques.hpp"
+#include "host/techniques/Registry.hpp"
 #include "host/cl/ClRuntime.hpp"
 
 namespace ml {
@@ -18,11 +18,6 @@ namespace ml {
 // runs only when the flag is given, so an unset flag keeps its default while
 // 0, -1, nan and inf are refused naming the flag.
 CLI::Validator finitePositive();
-
-// The render command's technique flags (--tile, --tile-depth, --cluster-tile,
-// --unique, --cluster-assign, --cluster-bounds, --node-size, --start-depth),
-// each checked as bench's --param checks it, naming the render flag.
-void checkRenderTechniqueParams(const TechniqueParams& params);
 
 // "1000" -> 1000 (up to 2^64-1, so that huge counts get a limit message rather
 // than "not a file"); false when `text` is not a plain decimal count.

@@ -9,14 +9,11 @@
 #include <random>
 
 #include "gl/FrameRenderer.hpp"
-#include "gl/GlContext.hpp"
+#include "host/bench/RunLayer.hpp"
 #include "host/app/InputChecks.hpp"
 #include "host/bench/OutputFiles.hpp"
 #include "host/cl/ClRuntime.hpp"
-#include "host/cl/KernelLimits.hpp"
-#include "host/hashed/HashedAssigner.hpp"
 #include "host/scene/LightAnimator.hpp"
-#include "host/clustered/ClusteredAssigner.hpp"
 #include "host/util/Error.hpp"
 #include "host/util/Heatmap.hpp"
 #include "host/util/ImageIO.hpp"
@@ -47,18 +44,41 @@ void addSceneInputFlags(CLI::App& cmd, SceneInputArgs& a) {
 }
 
 namespace {
-// --cluster-view target; kept here rather than in RenderArgs so the clustered
-// technique touches only this file of the render command.
-std::string g_cluster_view;
+
+std::string joined(const std::vector<std::string>& list, const char* sep) {
+  std::string s;
+  for (const auto& x : list) s += (s.empty() ? "" : sep) + x;
+  return s;
+}
+
+std::string paramHelp(const RegistryParam& p) {
+  return joined(p.families, ", ") + ": " + p.spec.help + " (" + p.spec.allowed() + "; default " +
+         p.spec.default_value + ")";
+}
+
 }  // namespace
 
-namespace {
-// --animate F: before every timed frame a fraction F of the lights (distinct,
-// chosen at random, seed 23) takes a random step (LightAnimator). Kept here so
-// the option touches only this file.
-double g_animate = 0.0;
-double g_animate_speed = 0.25;
-}  // namespace
+void addTechniqueFlags(CLI::App& cmd, std::map<std::string, std::string>& params,
+                       std::map<std::string, std::string>* views) {
+  for (const RegistryParam& p : registryParams()) {
+    const std::string key = p.spec.key, flag = p.spec.renderFlag();
+    if (p.spec.type == ParamType::Switch) {
+      cmd.add_flag_callback(flag, [&params, key] { params[key] = "on"; }, paramHelp(p));
+      cmd.add_flag_callback("--no-" + flag.substr(2), [&params, key] { params[key] = "off"; },
+                            "the opposite of " + flag);
+    } else {
+      cmd.add_option_function<std::string>(flag, [&params, key](const std::string& v) { params[key] = v; },
+                                           paramHelp(p));
+    }
+  }
+  if (!views) return;
+  for (const TechniqueDescriptor* d : techniqueDescriptors())
+    for (const DebugViewSpec& v : d->debug_views) {
+      const std::string name = v.name;
+      cmd.add_option_function<std::string>(v.flag(), [views, name](const std::string& f) { (*views)[name] = f; },
+                                           d->family + ": " + v.help);
+    }
+}
 
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   auto* cmd = app.add_subcommand("render", "Render one frame with one technique; print per-pass times and counts");
@@ -74,190 +94,175 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--heatmap-max", a.heatmap_max, "count mapped to the top of the palette (default: frame max)");
   cmd->add_flag("--counts", a.counts, "count light evaluations and the exact lower bound (extra frame)");
   cmd->add_option("--stats-json", a.stats_json, "write times and counts as JSON (implies --counts)");
-  cmd->add_option("--tile", a.params.tile_size, "tile size in pixels (tiled techniques)")->capture_default_str();
-  cmd->add_option("--tile-depth", a.params.tile_depth, "tiled depth culling: none|minmax|mask")->capture_default_str();
-  cmd->add_option("--cluster-tile", a.params.cluster_tile,
-                  "cluster tile size in pixels; 0: auto (32 from 720 lines up, as in the thesis; 16 below)")
-      ->capture_default_str();
-  cmd->add_option("--unique", a.params.unique_method, "unique clusters: pagetable|sort|tile-sort")
-      ->capture_default_str();
-  cmd->add_option("--cluster-assign", a.params.cluster_assign, "cluster light assignment: bvh|brute")
-      ->capture_default_str();
-  cmd->add_option("--cluster-bounds", a.params.cluster_bounds,
-                  "clustered: cull against the AABB of each cluster's pixels or of its sub-frustum: pixels|frustum")
-      ->capture_default_str();
-  cmd->add_option("--kernel-shape", a.params.kernel_shape,
-                  "OpenCL kernel shape of tiled and clustered shading: auto (by device type)|cpu|gpu")
-      ->capture_default_str();
-  cmd->add_option("--cluster-view", g_cluster_view, "clustered: write each unique cluster as a colour to this PNG");
-  cmd->add_option("--node-size", a.params.node_size, "hashed: minimal node size, absolute or relative (0.5r)")
-      ->capture_default_str();
-  cmd->add_option("--start-depth", a.params.start_depth, "hashed: octree start depth")->capture_default_str();
-  cmd->add_flag("--geometry-mask", a.params.geometry_mask, "hashed: keep only nodes that contain geometry");
-  cmd->add_flag("--octant-masks,!--no-octant-masks", a.params.octant_masks,
-                "hashed: skip lights that miss the point's octant of its deepest cell (default on)");
-  cmd->add_option("--animate", g_animate,
+  cmd->add_option("--animate", a.animate,
                   "move this fraction of the lights (0..1) before every timed frame (hashed: incremental update)");
-  cmd->add_option("--animate-speed", g_animate_speed,
+  cmd->add_option("--animate-speed", a.animate_speed,
                   "--animate step per axis, times the light radius (lights stay within twice that of their start)")
       ->capture_default_str();
+  addTechniqueFlags(*cmd, a.params, &a.views);
   return cmd;
 }
 
 namespace {
+
 // Flags checked before any input is loaded (InputChecks.hpp): technique
-// parameters, output paths (writable, image extensions), a generated light
-// count against the technique's and the memory limits.
+// parameters and debug views against the registry, output paths (writable,
+// image extensions), a generated light count against the technique's and the
+// memory limits.
 void checkRenderFlags(const RenderArgs& a, const TechniqueInfo& tech) {
-  checkRenderTechniqueParams(a.params);
-  if (!g_cluster_view.empty() && tech.name.find("clustered") == std::string::npos)
-    throw UserError("--cluster-view: needs a clustered technique, got '" + tech.name + "'");
+  for (const auto& [key, value] : a.params) checkParam(key, value, findParam(key, "--param").renderFlag());
+  if (a.frames == 0) throw UserError("--frames: must be at least 1");
+  (void)LightAnimator({}, a.animate, 23, a.animate_speed);  // validates --animate and --animate-speed
+  for (const auto& [view, file] : a.views) {
+    const std::string flag = DebugViewSpec{view, ""}.flag();
+    bool offered = false;
+    for (const DebugViewSpec& v : tech.descriptor->debug_views) offered |= v.name == view;
+    if (!offered) throw UserError(flag + ": not a view of technique '" + tech.name + "'");
+    requireImageFile(flag, file);
+  }
   requireImageFile("--out", a.out);
   requireImageFile("--heatmap", a.heatmap);
-  requireImageFile("--cluster-view", g_cluster_view);
   requireOutputFile("--stats-json", a.stats_json);
   std::uint64_t count = 0;
   if (parseLightCount(a.inputs.lights, count)) checkLightLimits("--lights", count, {&tech}, "generated");
 }
+
+std::vector<std::pair<std::string, std::string>> givenParams(const RenderArgs& a) {
+  return {a.params.begin(), a.params.end()};
+}
+
+// What one render run measured.
+struct RenderRun {
+  TimedFrame timed;
+  FrameResult counted;
+  bool has_counts = false;
+  std::size_t animated_per_frame = 0;
+  std::vector<std::pair<std::string, double>> stats;
+};
+
+void printTimes(const TimedFrame& t) {
+  std::printf("\n%-24s %10s\n", "pass", "ms (median)");
+  for (const auto& [name, ms] : t.passes.entries()) std::printf("%-24s %10.3f\n", name.c_str(), ms);
+  std::printf("%-24s %10.3f\n", "sum of passes", t.passes_total_ms);
+  std::printf("%-24s %10.3f\n", "frame (host wall)", t.host_ms);
+}
+
+void printCounts(const FrameResult& c) {
+  const double per_px = c.covered_pixels ? double(c.light_evaluations) / c.covered_pixels : 0.0;
+  const double lb_px = c.covered_pixels ? double(c.lower_bound) / c.covered_pixels : 0.0;
+  auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+  std::printf("\nlight evaluations   %14llu  (%.2f per covered pixel)\n", u(c.light_evaluations), per_px);
+  std::printf("exact lower bound   %14llu  (%.2f per covered pixel)\n", u(c.lower_bound), lb_px);
+  std::printf("missed lights       %14llu  (bound lights not evaluated: must be 0)\n", u(c.missed_lights));
+  std::printf("ratio to bound      %14.3f\n", c.lower_bound ? double(c.light_evaluations) / c.lower_bound : 0.0);
+  std::printf("covered pixels      %14llu\n", u(c.covered_pixels));
+  std::printf("fragment evaluations%14llu  (all shaded fragments, overdraw included)\n", u(c.fragment_evaluations));
+}
+
+void writeHeatmap(const RenderArgs& a, const TechniqueInfo& tech, const FrameRenderer& r) {
+  const auto depth = r.targets().readDepth(tech.pipeline == Pipeline::Deferred);
+  std::vector<bool> covered(depth.size());
+  for (size_t i = 0; i < depth.size(); ++i) covered[i] = !gpu::is_sky_depth(depth[i]);
+  writeImageAtomically("--heatmap", a.heatmap, r.width(), r.height(), 4,
+                       heatmapRgba(r.targets().readCounts(), 2, 0, covered, a.heatmap_max));
+}
+
+// Warm-up, the timed frames (animated), then the counting frame and the
+// images that need it.
+RenderRun renderFrames(const RenderArgs& a, const TechniqueInfo& tech, const SceneInputs& inputs,
+                       FrameRenderer& renderer, LightAssigner& assigner) {
+  const Camera& camera = inputs.cameras.frames[a.frame];
+  for (unsigned i = 0; i < a.warmup; ++i) renderer.render(camera, assigner, {tech.pipeline, false});
+  LightAnimator animator(inputs.lights, a.animate, 23, a.animate_speed);
+  RenderRun run;
+  run.animated_per_frame = animator.movesPerStep();
+  if (a.animate > 0.0)
+    std::printf("animate: %zu of %zu lights move before each timed frame (step %g r)\n", animator.movesPerStep(),
+                inputs.lights.size(), a.animate_speed);
+  run.timed = timedRenders(renderer, assigner, tech.pipeline, camera, a.frames, [&] {
+    if (animator.movesPerStep() > 0) renderer.setLights(animator.step());
+  });
+  if (!a.out.empty())
+    writeImageAtomically("--out", a.out, renderer.width(), renderer.height(), 4, renderer.targets().readColor());
+  printTimes(run.timed);
+  run.has_counts = a.counts || !a.stats_json.empty() || !a.heatmap.empty();
+  if (run.has_counts) {
+    run.counted = countedRender(renderer, assigner, tech.pipeline, camera);
+    if (!a.heatmap.empty()) writeHeatmap(a, tech, renderer);
+    printCounts(run.counted);
+  }
+  for (const auto& [view, file] : a.views) {
+    const std::string flag = DebugViewSpec{view, ""}.flag();
+    writeImageAtomically(flag, file, renderer.width(), renderer.height(), 4, assigner.debugViewRgba(view));
+    std::printf("wrote %s\n", file.c_str());
+  }
+  run.stats = assigner.stats();
+  return run;
+}
+
+void writeStatsJson(const RenderArgs& a, const TechniqueInfo& tech, const SceneInputs& inputs, const RenderRun& run,
+                    const RunContext& ctx, unsigned width, unsigned height) {
+  nlohmann::ordered_json j;
+  j["technique"] = tech.name;
+  j["width"] = width;
+  j["height"] = height;
+  j["lights"] = inputs.lights.size();
+  j["frame"] = a.frame;
+  j["timed_frames"] = a.frames;
+  j["animate"] = a.animate;
+  j["animated_lights_per_frame"] = run.animated_per_frame;
+  nlohmann::ordered_json passes = nlohmann::ordered_json::object();
+  for (const auto& [name, ms] : run.timed.passes.entries()) passes[name] = ms;
+  j["passes"] = passes;
+  j["frame_host_ms"] = run.timed.host_ms;
+  j["light_evaluations"] = run.counted.light_evaluations;
+  j["lower_bound"] = run.counted.lower_bound;
+  j["missed_lights"] = run.counted.missed_lights;
+  j["covered_pixels"] = run.counted.covered_pixels;
+  j["fragment_evaluations"] = run.counted.fragment_evaluations;
+  j["memory_bytes"] = run.counted.memory_bytes;
+  nlohmann::ordered_json st = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : run.stats) st[k] = v;
+  j["technique_stats"] = st;
+  j["device"] = ctx.cl->info().name;
+  j["gl"] = ctx.gl->describe();
+  writeFileAtomically("--stats-json", a.stats_json, j.dump(2) + "\n");
+}
+
 }  // namespace
 
 int runRender(const RenderArgs& a) {
   unsigned width = 0, height = 0;
   parseSize(a.size, "--size", width, height);
   const TechniqueInfo& tech = findTechnique(a.technique);
-  (void)parseKernelShape(a.params.kernel_shape);  // a bad --kernel-shape fails before any GL/CL work
-  if (a.frames == 0) throw UserError("--frames: must be at least 1");
-  // Validates --animate and --animate-speed before any GL/CL work.
-  (void)LightAnimator({}, g_animate, 23, g_animate_speed);
   checkRenderFlags(a, tech);
+  const ParamValues params = techniqueParams(tech, givenParams(a), "--param");
   const DeviceChoice device = DeviceChoice::resolve(a.device);
 
-  SceneInputs inputs = loadSceneInputs(a.inputs);
+  const SceneInputs inputs = loadSceneInputs(a.inputs);
   if (a.frame >= inputs.cameras.frames.size())
     throw UserError("--frame: " + std::to_string(a.frame) + " is past the camera path's " +
                     std::to_string(inputs.cameras.frames.size()) + " frames");
   checkLightLimits("--lights", inputs.lights.size(), {&tech}, a.inputs.lights.empty() ? "default" : a.inputs.lights);
 
-  auto gl = createHeadlessContext();
-  const GlShareHandles share = gl->shareHandles();
-  auto cl = ClRuntime::create(device, &share);
-  checkDeviceLightLimits("--lights", inputs.lights.size(), cl->info());
-  std::printf("%s\n%s\n", cl->describe().c_str(), gl->describe().c_str());
+  const RunContext ctx = RunContext::open(device);
+  checkDeviceLightLimits("--lights", inputs.lights.size(), ctx.cl->info());
+  ctx.printDevices();
   std::printf("scene: %s (%zu triangles) | lights: %s | %ux%u | technique: %s\n", reportPath(inputs.scene.source).c_str(),
               inputs.scene.triangleCount(), inputs.lights_label.c_str(), width, height, tech.name.c_str());
 
-  FrameRenderer renderer(*cl, inputs.scene, width, height);
+  FrameRenderer renderer(*ctx.cl, inputs.scene, width, height);
   renderer.setLights(inputs.lights);
-  auto assigner = makeAssigner(tech.name, *cl, a.params);
-  attachSceneGeometry(*assigner, inputs.scene);
-  const Camera& camera = inputs.cameras.frames[a.frame];
-  FrameOptions opts;
-  opts.pipeline = tech.pipeline;
-
-  for (unsigned i = 0; i < a.warmup; ++i) renderer.render(camera, *assigner, opts);
-  std::vector<FrameResult> timed;
-  LightAnimator animator(inputs.lights, g_animate, 23, g_animate_speed);
-  if (g_animate > 0.0)
-    std::printf("animate: %zu of %zu lights move before each timed frame (step %g r)\n", animator.movesPerStep(),
-                inputs.lights.size(), g_animate_speed);
-  for (unsigned i = 0; i < a.frames; ++i) {
-    if (animator.movesPerStep() > 0) renderer.setLights(animator.step());
-    timed.push_back(renderer.render(camera, *assigner, opts));
-  }
-  if (!a.out.empty())
-    writeImageAtomically("--out", a.out, width, height, 4, renderer.targets().readColor());
-
-  // Median per pass over the timed frames.
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-  };
-  PassTimings med;
-  for (const auto& [name, ms] : timed.front().passes.entries()) {
-    (void)ms;
-    std::vector<double> v;
-    for (const auto& f : timed) v.push_back(f.passes.get(name));
-    med.add(name, median(v));
-  }
-  std::vector<double> host;
-  for (const auto& f : timed) host.push_back(f.host_ms);
-  const double host_ms = median(host);
-
-  std::printf("\n%-24s %10s\n", "pass", "ms (median)");
-  for (const auto& [name, ms] : med.entries()) std::printf("%-24s %10.3f\n", name.c_str(), ms);
-  std::printf("%-24s %10.3f\n", "sum of passes", med.total());
-  std::printf("%-24s %10.3f\n", "frame (host wall)", host_ms);
-
-  FrameResult counted;
-  const bool want_counts = a.counts || !a.stats_json.empty() || !a.heatmap.empty();
-  if (want_counts) {
-    FrameOptions copts = opts;
-    copts.count_lights = true;
-    counted = renderer.render(camera, *assigner, copts);
-    if (!a.heatmap.empty()) {
-      const auto depth = renderer.targets().readDepth(tech.pipeline == Pipeline::Deferred);
-      std::vector<bool> covered(depth.size());
-      for (size_t i = 0; i < depth.size(); ++i) covered[i] = !gpu::is_sky_depth(depth[i]);
-      writeImageAtomically("--heatmap", a.heatmap, width, height, 4,
-                           heatmapRgba(renderer.targets().readCounts(), 2, 0, covered, a.heatmap_max));
-    }
-    const double per_px = counted.covered_pixels ? double(counted.light_evaluations) / counted.covered_pixels : 0.0;
-    const double lb_px = counted.covered_pixels ? double(counted.lower_bound) / counted.covered_pixels : 0.0;
-    std::printf("\nlight evaluations   %14llu  (%.2f per covered pixel)\n",
-                static_cast<unsigned long long>(counted.light_evaluations), per_px);
-    std::printf("exact lower bound   %14llu  (%.2f per covered pixel)\n",
-                static_cast<unsigned long long>(counted.lower_bound), lb_px);
-    std::printf("missed lights       %14llu  (bound lights not evaluated: must be 0)\n",
-                static_cast<unsigned long long>(counted.missed_lights));
-    std::printf("ratio to bound      %14.3f\n",
-                counted.lower_bound ? double(counted.light_evaluations) / counted.lower_bound : 0.0);
-    std::printf("covered pixels      %14llu\n", static_cast<unsigned long long>(counted.covered_pixels));
-    std::printf("fragment evaluations%14llu  (all shaded fragments, overdraw included)\n",
-                static_cast<unsigned long long>(counted.fragment_evaluations));
-  }
-  if (!g_cluster_view.empty()) {
-    auto* clustered = dynamic_cast<ClusteredAssigner*>(assigner.get());
-    if (!clustered) throw UserError("--cluster-view needs a clustered technique");
-    writeImageAtomically("--cluster-view", g_cluster_view, width, height, 4,
-                         ClusteredAssigner::clusterViewRgba(clustered->readClusterMap()));
-    std::printf("wrote %s\n", g_cluster_view.c_str());
-  }
-  const auto extra = assigner->stats();
-  if (!extra.empty()) {
+  auto assigner = makeAssigner(tech, *ctx.cl, params, &inputs.scene);
+  const RenderRun run = renderFrames(a, tech, inputs, renderer, *assigner);
+  if (!run.stats.empty()) {
     std::printf("\n");
-    for (const auto& [k, v] : extra) std::printf("%-20s%14.6g\n", k.c_str(), v);
+    for (const auto& [k, v] : run.stats) std::printf("%-20s%14.6g\n", k.c_str(), v);
   }
-  if (want_counts) std::printf("%-20s%14zu\n", "memory bytes", counted.memory_bytes);
+  if (run.has_counts) std::printf("%-20s%14zu\n", "memory bytes", run.counted.memory_bytes);
   if (!a.out.empty()) std::printf("\nwrote %s\n", a.out.c_str());
   if (!a.heatmap.empty()) std::printf("wrote %s\n", a.heatmap.c_str());
-
-  if (!a.stats_json.empty()) {
-    nlohmann::ordered_json j;
-    j["technique"] = tech.name;
-    j["width"] = width;
-    j["height"] = height;
-    j["lights"] = inputs.lights.size();
-    j["frame"] = a.frame;
-    j["timed_frames"] = a.frames;
-    j["animate"] = g_animate;
-    j["animated_lights_per_frame"] = animator.movesPerStep();
-    nlohmann::ordered_json passes = nlohmann::ordered_json::object();
-    for (const auto& [name, ms] : med.entries()) passes[name] = ms;
-    j["passes"] = passes;
-    j["frame_host_ms"] = host_ms;
-    j["light_evaluations"] = counted.light_evaluations;
-    j["lower_bound"] = counted.lower_bound;
-    j["missed_lights"] = counted.missed_lights;
-    j["covered_pixels"] = counted.covered_pixels;
-    j["fragment_evaluations"] = counted.fragment_evaluations;
-    j["memory_bytes"] = counted.memory_bytes;
-    nlohmann::ordered_json st = nlohmann::ordered_json::object();
-    for (const auto& [k, v] : extra) st[k] = v;
-    j["technique_stats"] = st;
-    j["device"] = cl->info().name;
-    j["gl"] = gl->describe();
-    writeFileAtomically("--stats-json", a.stats_json, j.dump(2) + "\n");
-  }
+  if (!a.stats_json.empty()) writeStatsJson(a, tech, inputs, run, ctx, width, height);
   return 0;
 }
 

@@ -26,8 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "gl/GlPassTimer.hpp"
-#include "gl/ShaderProgram.hpp"
+#include "host/assign/ShaderContract.hpp"
 #include "host/cl/ClPassTimer.hpp"
 #include "host/shared/gpu_types.h"
 #include "host/util/PassTimings.hpp"
@@ -35,6 +34,8 @@
 namespace ml {
 
 class ClRuntime;
+class GlPassTimer;
+class ShaderProgram;
 class SharedBuffer;
 struct Camera;
 
@@ -61,7 +62,6 @@ struct FrameInputs {
 class LightAssigner {
  public:
   virtual ~LightAssigner() = default;
-  virtual std::string name() const = 0;
   virtual bool needsDepth() const { return false; }
   virtual void assign(const FrameInputs& in) = 0;
   virtual std::string lookupShader() const = 0;  // e.g. "lookup_tiled.glsl"
@@ -72,6 +72,14 @@ class LightAssigner {
   // Technique-specific figures for reports (e.g. octree layers, unique
   // clusters), as name -> value; printed by `render` and written to JSON.
   virtual std::vector<std::pair<std::string, double>> stats() const { return {}; }
+  // A debug view of the last frame that the technique's descriptor lists
+  // (TechniqueDescriptor::debug_views, e.g. clustered's "cluster"): RGBA
+  // floats, width*height, row 0 at the bottom, for writeImage. Only called
+  // with a view the descriptor names.
+  virtual std::vector<float> debugViewRgba(const std::string& view) {
+    (void)view;
+    return {};
+  }
 };
 
 }  // namespace ml

@@ -12,13 +12,7 @@
 namespace ml {
 namespace {
 
-bool parseSize(std::string_view s, std::size_t& out) {
-  if (s.empty()) return false;
-  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-  return ec == std::errc() && p == s.data() + s.size();
-}
-
-bool parseUnsigned(const std::string& s, unsigned& out) {
+bool parseIndex(std::string_view s, std::size_t& out) {
   if (s.empty()) return false;
   auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
   return ec == std::errc() && p == s.data() + s.size();
@@ -68,7 +62,7 @@ FrameRange parseFrameRange(const std::string& text, const std::string& flag) {
                      text + "'");
   };
   if (text.empty() || parts.size() > 3) throw bad();
-  if (!parts[0].empty() && !parseSize(parts[0], r.first)) throw bad();
+  if (!parts[0].empty() && !parseIndex(parts[0], r.first)) throw bad();
   if (parts.size() == 1) {
     if (parts[0].empty()) throw bad();
     r.last = r.first;
@@ -76,12 +70,12 @@ FrameRange parseFrameRange(const std::string& text, const std::string& flag) {
   }
   if (!parts[1].empty()) {
     std::size_t last = 0;
-    if (!parseSize(parts[1], last)) throw bad();
+    if (!parseIndex(parts[1], last)) throw bad();
     if (last < r.first) throw UserError(flag + ": LAST is before FIRST in '" + text + "'");
     r.last = last;
   }
   if (parts.size() == 3 && !parts[2].empty()) {
-    if (!parseSize(parts[2], r.step) || r.step == 0) throw bad();
+    if (!parseIndex(parts[2], r.step) || r.step == 0) throw bad();
   }
   return r;
 }
@@ -121,126 +115,54 @@ nlohmann::ordered_json toJson(const Summary& s) {
   return j;
 }
 
-const std::vector<std::string>& techniqueParamKeys() {
-  static const std::vector<std::string> keys = {"tile",           "tile_depth",  "cluster_tile", "unique",
-                                                "cluster_assign", "cluster_bounds", "node_size", "start_depth",
-                                                "geometry_mask", "octant_masks", "kernel_shape"};
-  return keys;
+std::string variantLabel(const std::string& technique, const std::vector<std::pair<std::string, std::string>>& labels) {
+  std::string label = technique;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    label += i ? ',' : '[';
+    label += labels[i].first;
+    label += '=';
+    label += labels[i].second;
+  }
+  return labels.empty() ? label : label + "]";
 }
 
-std::vector<std::string> paramKeysUsedBy(const std::string& technique) {
-  std::vector<std::string> keys;
-  auto has = [&](const char* s) { return technique.find(s) != std::string::npos; };
-  if (has("tiled")) keys.insert(keys.end(), {"tile", "tile_depth", "kernel_shape"});
-  if (has("clustered"))
-    keys.insert(keys.end(), {"cluster_tile", "unique", "cluster_assign", "cluster_bounds", "kernel_shape"});
-  if (has("hashed")) keys.insert(keys.end(), {"node_size", "start_depth", "geometry_mask", "octant_masks"});
-  return keys;
-}
+namespace {
 
-void setTechniqueParam(TechniqueParams& p, const std::string& key, const std::string& value, const std::string& flag) {
-  auto bad = [&](const std::string& want) {
-    return UserError(flag + ": " + key + "=" + value + " is not valid (" + want + ")");
-  };
-  auto oneOf = [&](std::initializer_list<const char*> allowed, std::string& dst) {
-    std::string list;
-    for (const char* a : allowed) {
-      if (value == a) {
-        dst = value;
-        return;
-      }
-      if (!list.empty()) list += '|';
-      list += a;
+// Every sweep point of one technique: the product over the sweep's keys it reads.
+void expandTechnique(const TechniqueInfo& info, const ParamSweep& sweep, const std::string& flag,
+                     std::vector<TechniqueVariant>& out) {
+  std::vector<const ParamSweep::value_type*> axes;
+  for (const auto& s : sweep)
+    if (info.descriptor->param(s.first) && !s.second.empty()) axes.push_back(&s);
+  std::vector<std::size_t> idx(axes.size(), 0);
+  for (;;) {
+    TechniqueVariant v;
+    v.info = &info;
+    v.technique = info.name;
+    v.pipeline = info.pipeline;
+    for (std::size_t a = 0; a < axes.size(); ++a) v.labels.emplace_back(axes[a]->first, axes[a]->second[idx[a]]);
+    v.params = techniqueParams(info, v.labels, flag);
+    v.label = variantLabel(info.name, v.labels);
+    out.push_back(std::move(v));
+    std::size_t a = 0;
+    for (; a < axes.size(); ++a) {
+      if (++idx[a] < axes[a]->second.size()) break;
+      idx[a] = 0;
     }
-    throw bad("expected " + list);
-  };
-  unsigned u = 0;
-  if (key == "tile") {
-    if (!parseUnsigned(value, u) || u == 0 || u > 4096) throw bad("expected a tile size in pixels, 1..4096");
-    p.tile_size = u;
-  } else if (key == "cluster_tile") {
-    if (value == "auto") u = 0;
-    else if (!parseUnsigned(value, u) || u == 0 || u > 4096)
-      throw bad("expected a tile size in pixels, 1..4096, or auto");
-    p.cluster_tile = u;
-  } else if (key == "tile_depth") {
-    oneOf({"none", "minmax", "mask"}, p.tile_depth);
-  } else if (key == "unique") {
-    oneOf({"pagetable", "sort", "tile-sort"}, p.unique_method);
-  } else if (key == "cluster_assign") {
-    oneOf({"bvh", "brute"}, p.cluster_assign);
-  } else if (key == "cluster_bounds") {
-    oneOf({"pixels", "frustum"}, p.cluster_bounds);
-  } else if (key == "kernel_shape") {
-    oneOf({"auto", "cpu", "gpu"}, p.kernel_shape);
-  } else if (key == "node_size") {
-    const std::string number = !value.empty() && value.back() == 'r' ? value.substr(0, value.size() - 1) : value;
-    double d = 0;
-    auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), d);
-    if (number.empty() || ec != std::errc() || ptr != number.data() + number.size() || !(d > 0) || !std::isfinite(d))
-      throw bad("expected a positive size, absolute (2.0) or relative to the light radius (0.5r)");
-    p.node_size = value;
-  } else if (key == "start_depth") {
-    if (!parseUnsigned(value, u) || u > 16) throw bad("expected an octree depth 0..16");
-    p.start_depth = u;
-  } else if (key == "geometry_mask" || key == "octant_masks") {
-    bool& dst = key == "geometry_mask" ? p.geometry_mask : p.octant_masks;
-    if (value == "1" || value == "true" || value == "on") dst = true;
-    else if (value == "0" || value == "false" || value == "off") dst = false;
-    else throw bad("expected on|off");
-  } else {
-    std::string list;
-    for (const auto& k : techniqueParamKeys()) list += (list.empty() ? "" : "|") + k;
-    throw UserError(flag + ": unknown parameter '" + key + "' (choose " + list + ")");
+    if (a == axes.size()) break;
   }
 }
 
-std::vector<TechniqueVariant> expandVariants(const std::vector<std::string>& names,
-                                             const std::vector<std::pair<std::string, std::vector<std::string>>>& sweep,
-                                             const TechniqueParams& base, const std::string& flag) {
-  // Validate every value once up front, so a typo fails before any rendering.
+}  // namespace
+
+std::vector<TechniqueVariant> expandVariants(const std::vector<std::string>& names, const ParamSweep& sweep,
+                                             const std::string& flag) {
+  // Validate every value once up front, so a typo or an out-of-range value
+  // fails before any rendering (even for keys no chosen technique reads).
   for (const auto& [key, values] : sweep)
-    for (const auto& v : values) {
-      TechniqueParams scratch = base;
-      setTechniqueParam(scratch, key, v, flag);
-    }
+    for (const auto& v : values) checkParam(key, v, flag);
   std::vector<TechniqueVariant> out;
-  for (const auto& name : names) {
-    const TechniqueInfo* info = nullptr;
-    for (const auto& t : techniques())
-      if (t.name == name) info = &t;
-    if (!info) throw UserError("--techniques: unknown technique '" + name + "' (choose " + techniqueNames() + ")");
-    const auto used = paramKeysUsedBy(name);
-    std::vector<const std::pair<std::string, std::vector<std::string>>*> axes;
-    for (const auto& s : sweep)
-      if (std::find(used.begin(), used.end(), s.first) != used.end() && !s.second.empty()) axes.push_back(&s);
-    std::vector<std::size_t> idx(axes.size(), 0);
-    for (;;) {
-      TechniqueVariant v;
-      v.technique = name;
-      v.pipeline = info->pipeline;
-      v.params = base;
-      for (std::size_t a = 0; a < axes.size(); ++a) {
-        const std::string& value = axes[a]->second[idx[a]];
-        setTechniqueParam(v.params, axes[a]->first, value, flag);
-        v.labels.emplace_back(axes[a]->first, value);
-      }
-      v.label = name;
-      if (!v.labels.empty()) {
-        v.label += "[";
-        for (std::size_t i = 0; i < v.labels.size(); ++i)
-          v.label += (i ? "," : "") + v.labels[i].first + "=" + v.labels[i].second;
-        v.label += "]";
-      }
-      out.push_back(std::move(v));
-      std::size_t a = 0;
-      for (; a < axes.size(); ++a) {
-        if (++idx[a] < axes[a]->second.size()) break;
-        idx[a] = 0;
-      }
-      if (a == axes.size()) break;
-    }
-  }
+  for (const auto& name : names) expandTechnique(findTechnique(name, "--techniques"), sweep, flag, out);
   return out;
 }
 

@@ -23,8 +23,7 @@
 #include <utility>
 #include <vector>
 
-#include "gl/FrameRenderer.hpp"
-#include "host/assign/Techniques.hpp"
+#include "host/techniques/Registry.hpp"
 #include "host/util/PassTimings.hpp"
 
 namespace ml {
@@ -51,31 +50,25 @@ Summary summarize(std::vector<double> values);
 double percentile(const std::vector<double>& sorted, double q);
 nlohmann::ordered_json toJson(const Summary& s);
 
-// Technique parameters a sweep may vary, by key. Keys: tile, tile_depth,
-// cluster_tile, unique, cluster_assign, node_size, start_depth, geometry_mask, octant_masks.
-const std::vector<std::string>& techniqueParamKeys();
-// The keys a technique reads, judged by its registered name ("tiled" ->
-// tile, tile_depth; "clustered" -> cluster_tile, unique, cluster_assign;
-// "hashed" -> node_size, start_depth, geometry_mask, octant_masks). Sweeping a key a
-// technique does not read would only repeat identical runs, so it is not swept
-// for that technique.
-std::vector<std::string> paramKeysUsedBy(const std::string& technique);
-// Sets `key` in `params` from text; UserError naming `flag` on bad key/value.
-void setTechniqueParam(TechniqueParams& params, const std::string& key, const std::string& value,
-                       const std::string& flag);
-
+// A technique with the parameter values of one sweep point.
 struct TechniqueVariant {
+  const TechniqueInfo* info = nullptr;
   std::string technique;
   Pipeline pipeline = Pipeline::Deferred;
-  TechniqueParams params;
+  ParamValues params;  // every parameter of the technique (defaults, then the sweep's)
   std::vector<std::pair<std::string, std::string>> labels;  // the given keys this technique reads
   std::string label;  // "tiled-deferred[tile=16,tile_depth=none]"
 };
-// Cartesian product of `sweep` (key -> values) over the keys each technique
-// reads. Unknown technique names throw UserError naming `flag`.
-std::vector<TechniqueVariant> expandVariants(const std::vector<std::string>& techniques,
-                                             const std::vector<std::pair<std::string, std::vector<std::string>>>& sweep,
-                                             const TechniqueParams& base, const std::string& flag);
+using ParamSweep = std::vector<std::pair<std::string, std::vector<std::string>>>;  // key -> values
+// Cartesian product of `sweep` over the keys each technique reads (its
+// descriptor's parameters: sweeping a key a technique does not read would
+// only repeat identical runs). Every value is checked against its
+// parameter's spec first, so a bad value fails before anything renders;
+// unknown keys and values name `flag`, unknown techniques --techniques.
+std::vector<TechniqueVariant> expandVariants(const std::vector<std::string>& techniques, const ParamSweep& sweep,
+                                             const std::string& flag);
+// "tiled-deferred[tile=16,tile_depth=none]" (the name alone without labels).
+std::string variantLabel(const std::string& technique, const std::vector<std::pair<std::string, std::string>>& labels);
 
 struct FrameRecord {
   std::string run;  // variant label + " " + lights + " " + WxH

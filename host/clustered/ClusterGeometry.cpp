@@ -25,8 +25,9 @@ unsigned autoClusterTile(unsigned width, unsigned height) {
 }
 
 ClusterGrid ClusterGrid::make(const gpu::CameraParams& cam, unsigned tile_size) {
-  if (tile_size < 1 || tile_size > 1024)
-    throw UserError("--cluster-tile: tile size must be 1..1024, got " + std::to_string(tile_size));
+  if (tile_size < 1 || tile_size > kMaxClusterTile)
+    throw UserError("--cluster-tile: tile size must be 1.." + std::to_string(kMaxClusterTile) + ", got " +
+                    std::to_string(tile_size));
   if (cam.width == 0 || cam.height == 0) throw UserError("clustered: empty viewport");
   if (!(cam.near_plane > 0.0f) || !(cam.far_plane > cam.near_plane))
     throw UserError("clustered: needs 0 < near < far");

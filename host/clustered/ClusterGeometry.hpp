@@ -23,6 +23,9 @@ constexpr std::uint32_t kClusterInvalid = 0xffffffffu;
 // float path than the kernels, or interpolates its position (reversed-Z float
 // depth fixes the distance to ~1e-7 relative at any near plane).
 constexpr float kClusterDepthEps = 1e-4f;
+// Largest cluster tile edge ClusterGrid::make takes; the clustered
+// descriptor's `cluster_tile` range reads it.
+constexpr unsigned kMaxClusterTile = 1024;
 
 struct ClusterGrid {
   unsigned tile_size = 32;

@@ -1,6 +1,7 @@
 #include "host/clustered/ClusteredAssigner.hpp"
 
 #include "gl/GlCheck.hpp"
+#include "gl/ShaderProgram.hpp"
 #include "host/cl/ClRuntime.hpp"
 
 namespace ml {

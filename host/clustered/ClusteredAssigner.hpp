@@ -11,10 +11,13 @@
 // SSBOs: 1 hit records (uvec2: leaf slot, mask), 2 cluster ranges (LightRange
 // per unique cluster, in records), 3 pixel -> cluster map (uint per pixel,
 // 0xffffffff = sky), 4 light index per leaf slot.
+// clusteredTechnique(): the descriptor the registry lists, with the "cluster"
+// debug view (ClusteredTechnique.cpp).
 #include <memory>
 
 #include "gl/SharedBuffer.hpp"
 #include "host/assign/LightAssigner.hpp"
+#include "host/assign/TechniqueDescriptor.hpp"
 #include "host/clustered/ClusterLightAssigner.hpp"
 #include "host/clustered/ClusterUniquer.hpp"
 
@@ -25,13 +28,13 @@ class ClusteredAssigner final : public LightAssigner {
   // tile_size 0: autoClusterTile() of each frame's viewport.
   ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMethod unique, ClusterAssignMethod assign,
                     ClusterBounds bounds = ClusterBounds::Pixels, KernelShape shape = KernelShape::Auto);
-  std::string name() const override { return "clustered"; }
   bool needsDepth() const override { return true; }
   void assign(const FrameInputs& in) override;
   std::string lookupShader() const override { return "lookup_clustered.glsl"; }
   void bindForShading(const ShaderProgram& program) const override;
   std::size_t memoryBytes() const override;
   std::vector<std::pair<std::string, double>> stats() const override;
+  std::vector<float> debugViewRgba(const std::string& view) override;  // "cluster": clusterViewRgba
 
   // Last frame's outputs, for views and tests (host copies, blocking).
   std::vector<std::uint32_t> readClusterMap();
@@ -52,5 +55,7 @@ class ClusteredAssigner final : public LightAssigner {
   std::unique_ptr<SharedBuffer> ranges_, records_, leaf_lights_, map_;
   std::uint32_t clusters_ = 0, last_records_ = 0;
 };
+
+const TechniqueDescriptor& clusteredTechnique();
 
 }  // namespace ml

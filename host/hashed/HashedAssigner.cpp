@@ -4,21 +4,14 @@
 #include <chrono>
 
 #include "gl/GlCheck.hpp"
+#include "gl/GlPassTimer.hpp"
+#include "gl/ShaderProgram.hpp"
 
 namespace ml {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-hashed::HashedConfig configFrom(const TechniqueParams& p) {
-  hashed::HashedConfig c;
-  c.node_size = p.node_size;
-  c.start_depth = p.start_depth;
-  c.geometry_mask = p.geometry_mask;
-  c.octant_masks = p.octant_masks;
-  return c;
-}
 
 using Span = hashed::LightSetPool::Span;
 
@@ -56,9 +49,6 @@ std::size_t uploadRuns(GLuint buffer, std::size_t base, unsigned elem_words, con
 }
 
 }  // namespace
-
-HashedAssigner::HashedAssigner(std::string name, const TechniqueParams& params)
-    : HashedAssigner(std::move(name), configFrom(params)) {}
 
 HashedAssigner::HashedAssigner(std::string name, const hashed::HashedConfig& config)
     : name_(std::move(name)), config_(config) {
@@ -261,10 +251,6 @@ std::vector<std::pair<std::string, double>> HashedAssigner::stats() const {
   s.emplace_back("upload ms", upload_ms_);
   s.emplace_back("upload bytes", double(upload_bytes_));
   return s;
-}
-
-void attachSceneGeometry(LightAssigner& assigner, const Scene& scene) {
-  if (auto* h = dynamic_cast<HashedAssigner*>(&assigner)) h->setScene(&scene);
 }
 
 }  // namespace ml

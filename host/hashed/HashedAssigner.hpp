@@ -10,28 +10,29 @@
 //    (layout: LinklessOctree.hpp, lookup_hashed.glsl). After an update only
 //    the edited slots, offsets, list entries and the list's new tail are uploaded, unless a
 //    table was rehashed to a new size (then everything is).
-//  - The geometry mask needs the scene's triangles: call
-//    attachSceneGeometry() before the first frame (the render command does).
+//  - The geometry mask needs the scene's triangles: setScene() before the
+//    first frame (the descriptor's factory passes the run's scene).
+//  - hashedTechnique(): the descriptor (names, parameters, factory) that the
+//    registry lists (HashedTechnique.cpp).
 #include <epoxy/gl.h>
 
 #include <memory>
 #include <string>
 
 #include "host/assign/LightAssigner.hpp"
-#include "host/assign/Techniques.hpp"
+#include "host/assign/TechniqueDescriptor.hpp"
 #include "host/hashed/HashedStructure.hpp"
 
 namespace ml {
 
 class HashedAssigner final : public LightAssigner {
  public:
-  HashedAssigner(std::string name, const TechniqueParams& params);
   explicit HashedAssigner(std::string name, const hashed::HashedConfig& config);
   ~HashedAssigner() override;
   HashedAssigner(const HashedAssigner&) = delete;
   HashedAssigner& operator=(const HashedAssigner&) = delete;
 
-  std::string name() const override { return name_; }
+  const std::string& techniqueName() const { return name_; }
   void assign(const FrameInputs& in) override;
   std::string lookupShader() const override { return "lookup_hashed.glsl"; }
   void bindForShading(const ShaderProgram& program) const override;
@@ -71,8 +72,6 @@ class HashedAssigner final : public LightAssigner {
   std::size_t full_rebuilds_ = 0, incremental_updates_ = 0;
 };
 
-// Gives hashed assigners the scene geometry for --geometry-mask; other
-// techniques ignore it.
-void attachSceneGeometry(LightAssigner& assigner, const Scene& scene);
+const TechniqueDescriptor& hashedTechnique();
 
 }  // namespace ml

@@ -10,6 +10,10 @@
 
 namespace ml {
 
+// Largest tile edge the culler takes (its per-tile work-group and local
+// arrays); the tiled descriptor's `tile` range reads it.
+constexpr unsigned kMaxTileSize = 256;
+
 enum class TileDepthMode : int { None = 0, MinMax = 1, Mask = 2 };
 TileDepthMode parseTileDepthMode(const std::string& s);  // UserError naming --tile-depth
 const char* tileDepthModeName(TileDepthMode m);

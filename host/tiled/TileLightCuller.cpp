@@ -25,7 +25,8 @@ constexpr std::size_t kMaxChunkCounters = std::size_t(1) << 24;  // chunks x til
 TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape,
                                  TileCullAlgorithm algorithm)
     : rt_(rt), mode_(mode), shape_(resolveKernelShape(rt.info(), shape)), scan_(rt, compute::Options{shape_}) {
-  if (tile_size < 1 || tile_size > 256) throw UserError("--tile: tile size must be 1..256, got " + std::to_string(tile_size));
+  if (tile_size < 1 || tile_size > kMaxTileSize)
+    throw UserError("--tile: tile size must be 1.." + std::to_string(kMaxTileSize) + ", got " + std::to_string(tile_size));
   grid_.tile_size = tile_size;
   // GPU shape: a work-group per tile (local atomics), a work-item per (light,
   // tile) pair; on CPU devices a work-item walking its tile or its light's

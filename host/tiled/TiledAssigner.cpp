@@ -1,6 +1,7 @@
 #include "host/tiled/TiledAssigner.hpp"
 
 #include "gl/GlCheck.hpp"
+#include "gl/ShaderProgram.hpp"
 #include "host/cl/ClRuntime.hpp"
 
 namespace ml {

@@ -1,0 +1,68 @@
+#include "host/bench/RunLayer.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace ml {
+
+RunContext RunContext::open(const DeviceChoice& device) {
+  RunContext ctx;
+  ctx.gl = createHeadlessContext();
+  const GlShareHandles share = ctx.gl->shareHandles();
+  ctx.cl = ClRuntime::create(device, &share);
+  return ctx;
+}
+
+void RunContext::printDevices() const {
+  std::printf("%s\n%s\n", cl->describe().c_str(), gl->describe().c_str());
+}
+
+TimedFrame medianOf(const std::vector<FrameResult>& frames) {
+  TimedFrame t;
+  if (frames.empty()) return t;
+  for (const auto& [name, ms] : frames.front().passes.entries()) {
+    (void)ms;
+    std::vector<double> v;
+    for (const auto& f : frames) v.push_back(f.passes.get(name));
+    t.passes.add(name, summarize(v).median);
+  }
+  std::vector<double> host;
+  for (const auto& f : frames) host.push_back(f.host_ms);
+  t.host_ms = summarize(host).median;
+  t.passes_total_ms = t.passes.total();
+  t.memory_bytes = frames.back().memory_bytes;
+  return t;
+}
+
+TimedFrame timedRenders(FrameRenderer& renderer, LightAssigner& assigner, Pipeline pipeline, const Camera& camera,
+                        unsigned repeat, const std::function<void()>& before) {
+  std::vector<FrameResult> frames;
+  for (unsigned i = 0; i < std::max(repeat, 1u); ++i) {
+    if (before) before();
+    frames.push_back(renderer.render(camera, assigner, {pipeline, false}));
+  }
+  return medianOf(frames);
+}
+
+FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, Pipeline pipeline, const Camera& camera) {
+  return renderer.render(camera, assigner, {pipeline, true});
+}
+
+void setCounts(FrameRecord& r, const FrameResult& c) {
+  r.counted = true;
+  r.light_evaluations = c.light_evaluations;
+  r.lower_bound = c.lower_bound;
+  r.covered_pixels = c.covered_pixels;
+  r.fragment_evaluations = c.fragment_evaluations;
+  r.memory_bytes = c.memory_bytes;
+}
+
+void setTimes(FrameRecord& r, const TimedFrame& t) {
+  r.timed = true;
+  r.passes = t.passes;
+  r.passes_total_ms = t.passes_total_ms;
+  r.host_ms = t.host_ms;
+  r.memory_bytes = std::max(r.memory_bytes, t.memory_bytes);
+}
+
+}  // namespace ml

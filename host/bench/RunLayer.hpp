@@ -1,0 +1,50 @@
+#pragma once
+// The run layer that `render`, `bench`, `compare-reference` and the bench
+// mains share, so that each is a front end over the same steps:
+//   RunContext ctx = RunContext::open(device);   // headless GL + a CL runtime sharing with it
+//   ctx.printDevices();                          // the two start-up lines
+//   auto a = makeAssigner(info, *ctx.cl, params, &scene);
+//   FrameResult c = countedRender(renderer, *a, pipeline, camera);        // counts + lower bound
+//   TimedFrame t = timedRenders(renderer, *a, pipeline, camera, repeat);  // per-pass medians
+// Statistics have one definition: the median (and every quantile) of
+// summarize() in BenchTypes.hpp, interpolated between order statistics, so
+// `render` and `bench` report the same median for the same frames.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "gl/FrameRenderer.hpp"
+#include "gl/GlContext.hpp"
+#include "host/bench/BenchTypes.hpp"
+#include "host/cl/ClRuntime.hpp"
+
+namespace ml {
+
+struct RunContext {
+  std::unique_ptr<GlContext> gl;
+  std::unique_ptr<ClRuntime> cl;
+  static RunContext open(const DeviceChoice& device);
+  void printDevices() const;  // CL device and GL renderer, one line each, on stdout
+};
+
+// Median over `frames` per pass, of the pass sum and of the host wall time.
+struct TimedFrame {
+  PassTimings passes;
+  double passes_total_ms = 0;
+  double host_ms = 0;
+  std::size_t memory_bytes = 0;  // of the last render
+};
+TimedFrame medianOf(const std::vector<FrameResult>& frames);
+
+// `repeat` (at least 1) uncounted renders of `camera`; `before` runs before
+// each (e.g. a light animation step).
+TimedFrame timedRenders(FrameRenderer& renderer, LightAssigner& assigner, Pipeline pipeline, const Camera& camera,
+                        unsigned repeat, const std::function<void()>& before = {});
+// One render that counts light evaluations and the exact lower bound (untimed).
+FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, Pipeline pipeline, const Camera& camera);
+
+// A record's counted and timed fields from those renders.
+void setCounts(FrameRecord& record, const FrameResult& counted);
+void setTimes(FrameRecord& record, const TimedFrame& timed);
+
+}  // namespace ml

@@ -1,0 +1,93 @@
+// The folders of host/ and gl/ include each other without a cycle (so a
+// technique folder can depend on the interface in host/assign and on gl/
+// while the renderer knows only the interface), and host/assign includes
+// nothing from gl/. Reads the sources' `#include "folder/..."` lines.
+#include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR (the source tree's data/)
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+
+namespace ml {
+namespace {
+
+namespace fs = std::filesystem;
+using Graph = std::map<std::string, std::set<std::string>>;  // folder -> folders it includes from
+
+// "host/tiled/X.hpp" -> "host/tiled"; "gl/shaders/x" -> "gl"; "" for other headers.
+std::string folderOf(const std::string& path) {
+  if (path.rfind("gl/", 0) == 0) return "gl";
+  if (path.rfind("host/", 0) == 0) {
+    const auto slash = path.find('/', 5);
+    return slash == std::string::npos ? "" : path.substr(0, slash);
+  }
+  return "";
+}
+
+Graph includeGraph(const fs::path& root) {
+  Graph g;
+  const std::regex include_line(R"re(^\s*#\s*include\s*"([^"]+)")re");
+  for (const char* top : {"host", "gl"})
+    for (const auto& e : fs::recursive_directory_iterator(root / top)) {
+      const std::string ext = e.path().extension().string();
+      if (!e.is_regular_file() || (ext != ".cpp" && ext != ".hpp")) continue;
+      const std::string from = folderOf(fs::relative(e.path(), root).generic_string());
+      std::ifstream in(e.path());
+      std::smatch m;
+      for (std::string line; std::getline(in, line);)
+        if (std::regex_search(line, m, include_line))
+          if (const std::string to = folderOf(m[1]); !to.empty() && to != from) g[from].insert(to);
+    }
+  return g;
+}
+
+// A cycle as "a -> b -> a", or "" when there is none.
+std::string findCycle(const Graph& g) {
+  std::map<std::string, int> state;  // 1 on the stack, 2 done
+  std::vector<std::string> stack;
+  std::string cycle;
+  std::function<bool(const std::string&)> visit = [&](const std::string& n) {
+    state[n] = 1;
+    stack.push_back(n);
+    if (auto it = g.find(n); it != g.end())
+      for (const auto& m : it->second) {
+        if (state[m] == 1) {
+          for (auto s = std::find(stack.begin(), stack.end(), m); s != stack.end(); ++s) cycle += *s + " -> ";
+          cycle += m;
+          return true;
+        }
+        if (state[m] == 0 && visit(m)) return true;
+      }
+    stack.pop_back();
+    state[n] = 2;
+    return false;
+  };
+  for (const auto& [n, edges] : g)
+    if (state[n] == 0 && visit(n)) return cycle;
+  return "";
+}
+
+TEST(IncludeGraph, FoldersHaveNoCycleAndAssignIncludesNoGl) {
+  const Graph g = includeGraph(fs::path(MANYLIGHTS_TEST_DATA_DIR).parent_path());
+  ASSERT_TRUE(g.count("host/app")) << "no includes found: wrong source tree?";
+  // Known, outside the technique seams: host/cl/KernelLimits.hpp takes its
+  // shape enum from host/compute/ComputeEnv.hpp while compute builds on the
+  // CL runtime. Left out here until the enum moves to host/cl; any other
+  // cycle fails.
+  Graph checked = g;
+  checked["host/cl"].erase("host/compute");
+  EXPECT_EQ(findCycle(checked), "");
+  EXPECT_FALSE(g.at("host/assign").count("gl"));
+  // The check can fail: a cycle planted in a copy of the graph is found.
+  Graph planted = checked;
+  planted["host/assign"].insert("host/tiled");
+  EXPECT_NE(findCycle(planted), "");
+}
+
+}  // namespace
+}  // namespace ml
