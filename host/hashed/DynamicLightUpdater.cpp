@@ -131,7 +131,6 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   const std::size_t edits = st.moved + st.added + st.removed;
   if (edits == 0) {
     s.lights_ = lights;  // colours only
-    st.stale_lights = s.stale_.size();
     st.total_ms = msSince(t0);
     return;
   }
@@ -150,17 +149,17 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
     if (s.linkless_->pool().wantsCompaction()) compacted = s.linkless_->compactIfWanted();
     if (!s.linkless_->octantMasks()) return;
     std::vector<OctantChange> changes;
-    // Where the cell test says the light is listed (Lazy removal may list
-    // an older version; geometry-tight sets list fewer cells): see there.
-    const bool both = !s.cfg_.lazy_removal && !s.lightGeometry();
+    // Where the cell test says the light is listed (geometry-tight sets
+    // list fewer cells): see there.
+    const bool both = !s.lightGeometry();
     for (const auto i : moved) appendOctantChanges(&old[i], &lights[i], i, s.bounds_, both, changes);
     rewrites = s.linkless_->findOctantRewrites(changes);
   });
   SceneOctree& tree = *s.tree_;
   tree.setRecording(true);
-  // Lazy versions left from earlier updates are octrees: their clean-up needs them.
-  const bool by_cells = !s.lightGeometry() && !s.cfg_.lazy_removal && !s.cfg_.parallel_tree_edits && s.stale_.empty();
-  const double waited_ms = by_cells ? (editByCells(s, lights, moved), 0.0) : editByOctrees(s, lights, moved, st);
+  // Geometry-tight sets need the light octrees (their cells test the geometry).
+  const bool by_cells = !s.lightGeometry();
+  const double waited_ms = by_cells ? (editByCells(s, lights, moved), 0.0) : editByOctrees(s, lights, moved);
   tree.normalize();
   const std::vector<std::uint64_t> touched = tree.takeTouched();
   tree.setRecording(false);
@@ -177,7 +176,6 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   st.sync_ms = msSince(t);
 
   s.lights_ = lights;
-  st.stale_lights = s.stale_.size();
   st.total_ms = msSince(t0);
 }
 
@@ -223,61 +221,30 @@ void DynamicLightUpdater::refreshOctrees(HashedStructure& s) {
 }
 
 double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
-                                          const std::vector<std::uint32_t>& moved, UpdateStats& st) {
+                                          const std::vector<std::uint32_t>& moved) {
   refreshOctrees(s);
   const std::size_t n_old = s.lights_.size(), n_new = lights.size();
   // Old versions come from the octree cache; only new versions are built.
-  std::vector<LightOctree> to_remove;
-  std::vector<LightOctree> replaced;  // old versions of moved lights (exact mode)
+  std::vector<LightOctree> replaced, removed;  // old versions of moved and of removed lights
   Indexed to_insert;
-  std::vector<std::uint32_t> reinsert;  // current versions re-added after a lazy flush
   auto& cache = s.octrees_;
   for (const auto i : moved) {
-    if (s.cfg_.lazy_removal) s.stale_[i].push_back(std::move(cache[i]));
-    else replaced.push_back(std::move(cache[i]));
+    replaced.push_back(std::move(cache[i]));
     to_insert.emplace_back(i, lights[i]);
   }
-  for (std::size_t i = n_new; i < n_old; ++i) {
-    // A removed index must vanish exactly: the shader would read past the lights.
-    to_remove.push_back(std::move(cache[i]));
-    if (auto it = s.stale_.find(std::uint32_t(i)); it != s.stale_.end()) {
-      for (auto& o : it->second) to_remove.push_back(std::move(o));
-      s.stale_.erase(it);
-    }
-  }
+  for (std::size_t i = n_new; i < n_old; ++i) removed.push_back(std::move(cache[i]));
   cache.resize(n_new);
   for (std::size_t i = n_old; i < n_new; ++i) to_insert.emplace_back(std::uint32_t(i), lights[i]);
-  if (s.cfg_.lazy_removal && double(s.stale_.size()) > s.cfg_.lazy_flush_fraction * double(n_new)) {
-    // Exact clean-up: drop every stale version, then re-add the current one
-    // (a stale version may share cells with it).
-    for (auto& [i, versions] : s.stale_) {
-      for (auto& o : versions) to_remove.push_back(std::move(o));
-      if (!std::binary_search(moved.begin(), moved.end(), i)) reinsert.push_back(i);
-    }
-    s.stale_.clear();
-    st.flushed = true;
-  }
 
   Batch batch(to_insert, replaced, s.bounds_, s.lightGeometry());
   auto& new_octrees = batch.octrees;
   SceneOctree& tree = *s.tree_;
-  for (const auto& o : to_remove) tree.remove(o);
-  for (const auto i : reinsert) tree.remove(cache[i]);
+  // A removed index must vanish exactly: the shader would read past the lights.
+  for (const auto& o : removed) tree.remove(o);
   // Moved lights come first in to_insert: their old versions are replaced
-  // (one joint walk each); the rest (added lights, lazy mode) are inserts.
+  // (one joint walk each); the rest (added lights) are inserts.
   double waited_ms = 0.0;
-  std::size_t e = 0;  // next octree to edit in
-  if (s.cfg_.parallel_tree_edits && !replaced.empty()) {
-    // Per subtree in parallel, once every octree is built.
-    const auto w = Clock::now();
-    batch.finish();
-    waited_ms += msSince(w);
-    std::vector<SceneOctree::Replacement> replacements(replaced.size());
-    for (; e < replaced.size(); ++e)
-      replacements[e] = {&replaced[e], &new_octrees[e], &batch.old_ends[e], &batch.new_ends[e]};
-    tree.replaceAll(replacements);
-  }
-  for (; e < new_octrees.size(); ++e) {
+  for (std::size_t e = 0; e < new_octrees.size(); ++e) {
     const auto w = Clock::now();
     batch.waitFor(e);
     waited_ms += msSince(w);
@@ -285,7 +252,6 @@ double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<
     else tree.insert(new_octrees[e]);
   }
   batch.finish();
-  for (const auto i : reinsert) tree.insert(cache[i]);
   for (std::size_t k = 0; k < to_insert.size(); ++k) cache[to_insert[k].first] = std::move(new_octrees[k]);
   return waited_ms;
 }

@@ -242,21 +242,21 @@ std::vector<std::pair<std::string, double>> HashedAssigner::stats() const {
   s.emplace_back("scene octree nodes", double(bs.scene_nodes));
   if (structure_->mask()) s.emplace_back("geometry cells", double(bs.mask_cells));
   s.emplace_back("build ms", bs.total_ms);
-  s.emplace_back("  bounds ms", bs.bounds_ms);
-  if (structure_->mask()) s.emplace_back("  geometry mask ms", bs.mask_ms);
-  s.emplace_back("  light octrees ms", bs.light_octrees_ms);
-  s.emplace_back("  merge ms", bs.merge_ms);
-  s.emplace_back("  normalize ms", bs.normalize_ms);
-  s.emplace_back("  hashes ms", bs.hash_ms);
+  s.emplace_back("build bounds ms", bs.bounds_ms);
+  if (structure_->mask()) s.emplace_back("build geometry mask ms", bs.mask_ms);
+  s.emplace_back("build light octrees ms", bs.light_octrees_ms);
+  s.emplace_back("build merge ms", bs.merge_ms);
+  s.emplace_back("build normalize ms", bs.normalize_ms);
+  s.emplace_back("build hashes ms", bs.hash_ms);
   s.emplace_back("full builds", double(full_rebuilds_));
   if (incremental_updates_) {
     const auto& u = structure_->lastUpdate();
     s.emplace_back("updates", double(incremental_updates_));
     s.emplace_back("last update ms", u.total_ms);
-    s.emplace_back("  lights moved", double(u.moved + u.added + u.removed));
-    s.emplace_back("  slots in place", double(u.sync.in_place + u.sync.updates + u.sync.erases));
-    s.emplace_back("  groups re-offset", double(u.sync.reoffsets));
-    s.emplace_back("  tables rehashed", double(u.sync.rehashed_tables));
+    s.emplace_back("update lights moved", double(u.moved + u.added + u.removed));
+    s.emplace_back("update slots in place", double(u.sync.in_place + u.sync.updates + u.sync.erases));
+    s.emplace_back("update groups re-offset", double(u.sync.reoffsets));
+    s.emplace_back("update tables rehashed", double(u.sync.rehashed_tables));
   }
   s.emplace_back("upload ms", upload_ms_);
   s.emplace_back("upload bytes", double(upload_bytes_));

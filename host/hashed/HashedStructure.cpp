@@ -94,7 +94,6 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   st.total_ms = msSince(t0);
   build_stats_ = st;
   lights_ = lights;
-  stale_.clear();
   ++builds_;
 }
 

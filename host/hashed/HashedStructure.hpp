@@ -15,7 +15,6 @@
 //    light into slot i and shrink the array (two edits instead of n - i).
 #include <memory>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "host/hashed/GeometryMask.hpp"
@@ -43,8 +42,6 @@ struct UpdateStats {
   bool full_rebuild = false;
   std::string reason;  // why a full rebuild happened
   std::size_t moved = 0, added = 0, removed = 0;
-  std::size_t stale_lights = 0;  // lazy removal: lights with indices left behind
-  bool flushed = false;          // lazy removal caught up exactly
   double light_octrees_ms = 0, tree_ms = 0, sync_ms = 0, total_ms = 0;
   SyncStats sync;
 };
@@ -93,9 +90,6 @@ class HashedStructure {
   // Per light, 1 where octrees_ predates the light's current version (an
   // update that needed no octrees); empty when none does.
   std::vector<std::uint8_t> octree_outdated_;
-  // Lazy removal: octrees of earlier versions of a light whose cells may
-  // still list it.
-  std::unordered_map<std::uint32_t, std::vector<LightOctree>> stale_;
   BuildStats build_stats_;
   UpdateStats update_stats_;
   std::size_t builds_ = 0, updates_ = 0;

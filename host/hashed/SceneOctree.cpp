@@ -410,75 +410,6 @@ void SceneOctree::replaceCellsRec(Lane& ln, std::int32_t n, unsigned t, const gl
   }
 }
 
-SceneOctree::Cover SceneOctree::coverAt(Stream& s, unsigned t, const glm::uvec3& c) {
-  const LightOctree& o = s.o;
-  if (o.empty()) return Cover::Empty;
-  if (t < o.root_depth) {
-    for (unsigned r = 0; r < o.root_count; ++r)
-      if ((o.roots[r] >> (o.root_depth - t)) == c) return Cover::Above;
-    return Cover::Empty;
-  }
-  for (unsigned r = 0; r < o.root_count; ++r) {
-    if ((c >> (t - o.root_depth)) != o.roots[r]) continue;
-    // Down from the root along c's path, skipping earlier siblings' subtrees.
-    s.cur = o.nodes.data() + o.root_start[r];
-    for (unsigned d = o.root_depth; d < t; ++d) {
-      const LightNode type = *s.cur++;
-      if (type != LightNode::Branch) return Cover(type);  // the same for every node below
-      const unsigned k = childBit(c >> (t - d - 1));
-      for (unsigned i = 0; i < k; ++i) s.cur = o.nodes.data() + s.end[s.cur - o.nodes.data()];
-    }
-    return Cover(*s.cur++);
-  }
-  return Cover::Empty;
-}
-
-// At most one split per branch of the new version and per node above its
-// roots; a full node at or above the start depth may split down to it.
-std::size_t SceneOctree::splitBound(const LightOctree& o, unsigned start_depth) {
-  if (o.empty()) return 0;
-  std::size_t bound = 0;
-  for (unsigned t = 0; t < o.root_depth; ++t) {  // distinct ancestors of the roots
-    glm::uvec3 seen[8];
-    unsigned n = 0;
-    for (unsigned r = 0; r < o.root_count; ++r) {
-      const glm::uvec3 a = o.roots[r] >> (o.root_depth - t);
-      if (std::find(seen, seen + n, a) == seen + n) seen[n++] = a;
-    }
-    bound += n;
-  }
-  // Preorder with 8 children per branch: the branch count follows from the size.
-  bound += (o.nodes.size() - o.root_count) / 8;
-  if (o.root_depth > start_depth) return bound;  // no full node at or above the start depth
-  if (o.root_depth == start_depth) {  // only the roots themselves are that high
-    for (unsigned r = 0; r < o.root_count; ++r) bound += o.nodes[o.root_start[r]] == LightNode::Full ? 1 : 0;
-    return bound;
-  }
-  for (unsigned r = 0; r < o.root_count; ++r) {
-    const LightNode* cur = o.nodes.data() + o.root_start[r];
-    unsigned pending[kMaxDepth + 2], top = 0;  // children left per open branch
-    unsigned t = o.root_depth;
-    for (;;) {
-      const LightNode type = *cur++;
-      if (type == LightNode::Branch) {
-        pending[top++] = 8;
-        ++t;
-        continue;
-      }
-      if (type == LightNode::Full && t <= start_depth) {
-        std::size_t level = 1;
-        for (unsigned d = t; d <= start_depth; ++d, level *= 8) bound += level;
-      }
-      while (top > 0 && --pending[top - 1] == 0) {
-        --top;
-        --t;
-      }
-      if (top == 0) break;
-    }
-  }
-  return bound;
-}
-
 std::vector<std::int32_t> SceneOctree::openTop(unsigned P) {
   // Every node above depth P becomes a branch (the tasks must not split
   // shared nodes); normalize() merges back the ones that stay empty.
@@ -569,48 +500,6 @@ bool SceneOctree::claimBlocks(std::size_t n) {
   return false;
 }
 
-void SceneOctree::replaceAll(const std::vector<Replacement>& batch) {
-  const unsigned P = std::min(2u, b_.start_depth);
-  // Few lights or no room to partition: not worth the tasks.
-  if (P == 0 || batch.size() < 32) {
-    for (const auto& r : batch) replace(*r.old_version, *r.new_version, r.old_ends, r.new_ends);
-    return;
-  }
-  const std::vector<std::int32_t> part = openTop(P);
-  // Route each light to the subtrees its versions reach, in batch order.
-  std::vector<std::vector<std::uint32_t>> work(part.size());
-  std::size_t bound = 0;
-  std::vector<std::uint8_t> seen(part.size(), 0);
-  std::vector<std::size_t> ids;
-  for (std::uint32_t j = 0; j < batch.size(); ++j) {
-    bound += splitBound(*batch[j].new_version, b_.start_depth);
-    ids.clear();
-    for (const LightOctree* o : {batch[j].old_version, batch[j].new_version})
-      for (unsigned r = 0; r < o->root_count; ++r) {
-        if (o->root_depth >= P) {
-          ids.push_back(partId(o->roots[r] >> (o->root_depth - P), P));
-          continue;
-        }
-        const unsigned shift = P - o->root_depth;  // the root spans 8^shift subtrees
-        const glm::uvec3 base = o->roots[r] << shift;
-        for (unsigned x = 0; x < (1u << shift); ++x)
-          for (unsigned y = 0; y < (1u << shift); ++y)
-            for (unsigned z = 0; z < (1u << shift); ++z) ids.push_back(partId(base + glm::uvec3(x, y, z), P));
-      }
-    route(part, ids, j, seen, work);
-  }
-  reserveBlocks(bound);
-  runLanes(P, part, work, [&](Lane& ln, std::int32_t n, const glm::uvec3& c, std::uint32_t j) {
-    const Replacement& r = batch[j];
-    Stream sa{*r.old_version, r.old_version->nodes.data(), r.old_ends->data()};
-    Stream sb{*r.new_version, r.new_version->nodes.data(), r.new_ends->data()};
-    const Cover ka = coverAt(sa, P, c), kb = coverAt(sb, P, c);
-    if (ka == kb && (ka == Cover::Empty || ka == Cover::Full)) return true;  // unchanged here
-    replaceRec(ln, n, P, c, ka, sa, kb, sb, r.new_version->light);
-    return true;  // the reservation covers every split
-  });
-}
-
 void SceneOctree::replaceAll(const std::vector<CellsReplacement>& batch) {
   static const LightCells kNone;
   const unsigned P = std::min(2u, b_.start_depth);
@@ -676,8 +565,6 @@ void SceneOctree::replaceAll(const std::vector<CellsReplacement>& batch) {
     return true;
   });
 }
-
-void SceneOctree::removeEverywhere(std::uint32_t l) { removeAll(main_, 0, 0, glm::uvec3(0), l); }
 
 void SceneOctree::normalize() {
   normalizeRec(main_, 0, 0, glm::uvec3(0));
