@@ -35,6 +35,7 @@ using Indexed = std::vector<std::pair<std::uint32_t, gpu::PointLight>>;
 class Batch {
  public:
   static constexpr std::size_t kChunk = 16;
+  static constexpr std::size_t kHelpersMinLights = 64;
   Batch(const Indexed& lights, const std::vector<LightOctree>& replaced, const OctreeBounds& b,
         const GeometryMask* geometry)
       : lights_(lights), replaced_(replaced), b_(b), geometry_(geometry), octrees(lights.size()),
@@ -43,7 +44,7 @@ class Batch {
     for (auto& r : ready_) r.store(0, std::memory_order_relaxed);
     // A few lights: waking the worker threads costs more than it saves
     // (and on a busy machine a late worker stalls the whole frame).
-    if (lights.size() >= 64) {
+    if (lights.size() >= kHelpersMinLights) {
       helpers_ = true;
       group_.run([this] {
         tbb::parallel_for(0, int(tbb::this_task_arena::max_concurrency()) - 1, [this](int) { work(); });

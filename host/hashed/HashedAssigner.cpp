@@ -131,8 +131,8 @@ void HashedAssigner::uploadAll() {
   ensure(header_, header.size() * 4, false);
   glNamedBufferSubData(header_.id, 0, GLsizeiptr(header.size() * 4), header.data());
   for (unsigned i = 0; i < lo.layerCount(); ++i) {
-    lo.desc(i).takeDirty();
-    lo.data(i).takeDirty();
+    lo.takeEdits(i, false);
+    lo.takeEdits(i, true);
   }
   auto& offsets = im.offsets;
   auto& desc = im.desc;
@@ -158,9 +158,9 @@ void HashedAssigner::upload() {
   } else {
     upload_bytes_ = 0;
     for (unsigned i = 0; i < lo.layerCount(); ++i) {
-      auto table = [&](auto& h, GLuint slots_buf, std::size_t slot_base, std::size_t offset_base) {
+      auto table = [&](const auto& h, bool data, GLuint slots_buf, std::size_t slot_base, std::size_t offset_base) {
         constexpr unsigned kw = std::decay_t<decltype(h)>::kWords;
-        auto d = h.takeDirty();
+        const hashed::TableEdits d = lo.takeEdits(i, data);
         if (d.all) {
           glNamedBufferSubData(slots_buf, GLintptr(slot_base * kw * 4), GLsizeiptr(h.tableWords().size() * 4),
                                h.tableWords().data());
@@ -172,8 +172,8 @@ void HashedAssigner::upload() {
         upload_bytes_ += uploadRuns(slots_buf, slot_base, kw, h.tableWords(), d.slots);
         upload_bytes_ += uploadRuns(offsets_.id, offset_base, 1, h.offsetWords(), d.offsets);
       };
-      table(lo.desc(i), desc_.id, lo.descSlotBase(i), lo.offsetBase(i, false));
-      table(lo.data(i), data_.id, lo.dataSlotBase(i), lo.offsetBase(i, true));
+      table(lo.desc(i), false, desc_.id, lo.descSlotBase(i), lo.offsetBase(i, false));
+      table(lo.data(i), true, data_.id, lo.dataSlotBase(i), lo.offsetBase(i, true));
     }
     const auto& list = lo.pool().list();
     auto d = lo.pool().takeDirty();

@@ -29,7 +29,8 @@
 //    slot is empty, else re-offsets the key's whole offset group (one Phi
 //    entry) into free slots, else reports Failed and the caller rebuilds the
 //    table; erase() marks the slot empty (its Phi entry stays). Edited slots
-//    and offsets are recorded for partial uploads.
+//    and offsets are noted into the caller's TableEdits, when given (for
+//    partial uploads).
 //  - Keys are < 2^15 per axis.
 #include <glm/glm.hpp>
 
@@ -41,6 +42,8 @@
 #include <optional>
 #include <stdexcept>
 #include <vector>
+
+#include "host/hashed/TableEdits.hpp"
 
 namespace ml::hashed {
 
@@ -115,10 +118,10 @@ class PerfectSpatialHash {
   void prefetchSlot(std::uint32_t s) const { __builtin_prefetch(&table_[std::size_t(s) * kWords]); }
 
   // --- dynamic edits ---
-  InsertResult insert(const glm::uvec3& key, const Payload& payload, SplitMix64& rng,
+  InsertResult insert(const glm::uvec3& key, const Payload& payload, SplitMix64& rng, TableEdits* edits = nullptr,
                       unsigned random_tries = 64);
-  bool update(const glm::uvec3& key, const Payload& payload);
-  bool erase(const glm::uvec3& key);
+  bool update(const glm::uvec3& key, const Payload& payload, TableEdits* edits = nullptr);
+  bool erase(const glm::uvec3& key, TableEdits* edits = nullptr);
 
   // --- contents and GPU images ---
   glm::uvec3 m() const { return m_; }  // hash table dimensions
@@ -154,25 +157,6 @@ class PerfectSpatialHash {
         std::uint32_t* w = &table_[std::size_t(s) * kWords];
         writeSlot(s, slotKey(s), f(Traits::unpack(w)));
       }
-    all_dirty_ = true;
-  }
-
-  // Edited slots/offsets since the last take; `all` when the whole table changed.
-  struct Dirty {
-    bool all = false;
-    std::vector<std::uint32_t> slots, offsets;
-  };
-  Dirty takeDirty() {
-    Dirty d;
-    d.all = all_dirty_;
-    all_dirty_ = false;
-    if (!d.all) {
-      d.slots.swap(dirty_slots_);
-      d.offsets.swap(dirty_offsets_);
-    }
-    dirty_slots_.clear();
-    dirty_offsets_.clear();
-    return d;
   }
 
  private:
@@ -201,7 +185,6 @@ class PerfectSpatialHash {
     for (std::uint32_t i = 0; i < free_.size(); ++i) free_[i] = free_pos_[i] = i;
     size_ = 0;
     members_.clear();
-    all_dirty_ = true;
   }
   void writeSlot(std::uint32_t s, const glm::uvec3& key, const Payload& payload) {
     if (slotEmpty(s)) {  // take s off the free list (swap with its last entry)
@@ -253,8 +236,6 @@ class PerfectSpatialHash {
   std::vector<std::vector<std::uint32_t>> members_;
   // The empty slots, and each slot's position in that list (~0u: occupied).
   std::vector<std::uint32_t> free_, free_pos_;
-  bool all_dirty_ = true;
-  std::vector<std::uint32_t> dirty_slots_, dirty_offsets_;
 };
 
 // ---------------------------------------------------------------------------
@@ -445,7 +426,6 @@ PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<E
     if (rep.offset_growths > 200) throw std::logic_error("perfect spatial hash: construction does not converge");
   }
   rep.attempts = failures + 1;
-  h.all_dirty_ = true;
   rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (report) *report = rep;
   return h;
@@ -463,18 +443,21 @@ template <class Traits>
 typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::insert(const glm::uvec3& key,
                                                                                     const Payload& payload,
                                                                                     SplitMix64& rng,
+                                                                                    TableEdits* edits,
                                                                                     unsigned random_tries) {
+  TableEdits none{true, {}, {}};  // notes nothing
+  TableEdits& log = edits ? *edits : none;
   ensureMembers();
   const std::uint32_t s = slot(key);
   if (keyMatches(&table_[std::size_t(s) * kWords], key)) {
-    update(key, payload);
+    update(key, payload, edits);
     return InsertResult::InPlace;
   }
   const std::uint32_t o = offsetIndex(key);
   if (slotEmpty(s)) {
     writeSlot(s, key, payload);
     members_[o].push_back(s);
-    dirty_slots_.push_back(s);
+    log.slot(s);
     ++size_;
     return InsertResult::InPlace;
   }
@@ -518,31 +501,31 @@ typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::in
     return InsertResult::Failed;
   }
   for (const auto& g : group)
-    if (g.slot != ~0u) dirty_slots_.push_back(g.slot);
+    if (g.slot != ~0u) log.slot(g.slot);
   offsets_[o] = packOffset(off);
-  dirty_offsets_.push_back(o);
+  log.offset(o);
   members_[o].clear();
   for (std::size_t i = 0; i < group.size(); ++i) {
     const std::uint32_t ns = slotWith(h0[i], off);
     writeSlot(ns, group[i].key, group[i].payload);
     members_[o].push_back(ns);
-    dirty_slots_.push_back(ns);
+    log.slot(ns);
   }
   ++size_;
   return InsertResult::Reoffset;
 }
 
 template <class Traits>
-bool PerfectSpatialHash<Traits>::update(const glm::uvec3& key, const Payload& payload) {
+bool PerfectSpatialHash<Traits>::update(const glm::uvec3& key, const Payload& payload, TableEdits* edits) {
   const std::uint32_t s = slot(key);
   if (!keyMatches(&table_[std::size_t(s) * kWords], key)) return false;
   writeSlot(s, key, payload);
-  dirty_slots_.push_back(s);
+  if (edits) edits->slot(s);
   return true;
 }
 
 template <class Traits>
-bool PerfectSpatialHash<Traits>::erase(const glm::uvec3& key) {
+bool PerfectSpatialHash<Traits>::erase(const glm::uvec3& key, TableEdits* edits) {
   const std::uint32_t s = slot(key);
   if (!keyMatches(&table_[std::size_t(s) * kWords], key)) return false;
   clearSlot(s);
@@ -550,7 +533,7 @@ bool PerfectSpatialHash<Traits>::erase(const glm::uvec3& key) {
     auto& mem = members_[offsetIndex(key)];
     mem.erase(std::find(mem.begin(), mem.end(), s));
   }
-  dirty_slots_.push_back(s);
+  if (edits) edits->slot(s);
   --size_;
   return true;
 }

@@ -41,6 +41,10 @@ inline glm::uvec3 keyCoord(std::uint64_t k) { return unpackCoord(k & 0xFFFFFFFFF
 inline glm::uvec3 childCoord(const glm::uvec3& c, unsigned k) {
   return c * 2u + glm::uvec3(k & 1u, (k >> 1) & 1u, (k >> 2) & 1u);
 }
+// The inverse: which child of its parent node `child` is.
+inline unsigned childBit(const glm::uvec3& child) {
+  return (child.x & 1u) | ((child.y & 1u) << 1) | ((child.z & 1u) << 2);
+}
 
 class SceneOctree {
  public:
@@ -185,7 +189,14 @@ class SceneOctree {
   template <class Edit>
   void runLanes(unsigned P, const std::vector<std::int32_t>& part,
                 const std::vector<std::vector<std::uint32_t>>& work, Edit&& edit);
-  // Reserved blocks not yet promised to a lane's edit (replaceAll(cells)).
+  std::size_t worstSplits(const LightCells* v, unsigned P, const glm::uvec3& sub) const;
+  std::vector<std::vector<std::uint32_t>> routeCells(const std::vector<CellsReplacement>& batch,
+                                                     const std::vector<std::int32_t>& part, unsigned P) const;
+  // Fewer lights than this are edited one at a time: not worth the tasks.
+  static constexpr std::size_t kParallelEditMinLights = 32;
+  // Free node blocks kept for parallel edits: room for a few thousand splits at a time.
+  static constexpr std::size_t kReservedBlocks = 2048;
+  // Reserved blocks not yet promised to a lane's edit (replaceAll()).
   bool claimBlocks(std::size_t n);
   void returnBlocks(std::size_t n) { budget_.fetch_add(std::ptrdiff_t(n), std::memory_order_relaxed); }
   std::atomic<std::ptrdiff_t> budget_{0};
