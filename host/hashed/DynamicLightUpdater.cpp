@@ -120,8 +120,41 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   };
   if (!s.built()) return rebuild("first build");
   if (!lightsInside(lights, s.bounds_)) return rebuild("a light left the octree bounds");
+  const std::vector<std::uint32_t> moved = diff(s.lights_, lights, st);
+  const std::size_t edits = st.moved + st.added + st.removed;
+  if (edits == 0) {
+    s.lights_ = lights;  // colours only
+    st.total_ms = msSince(t0);
+    return;
+  }
+  if (double(edits) > s.cfg_.max_incremental_fraction * double(std::max(s.lights_.size(), lights.size())))
+    return rebuild("most lights changed");
 
-  const auto& old = s.lights_;
+  // While this thread edits the tree, another one repacks the previous
+  // update's garbage in the light index list, then finds the moved lights'
+  // octant masks that change in place: their whole surface, not only where
+  // their sets change. Neither reads the tree.
+  tbb::task_group background;
+  bool compacted = false;
+  std::vector<OctantRewrite> rewrites;
+  background.run([&] {
+    compacted = s.linkless_->compactIfWanted();
+    rewrites = findRewrites(s, lights, moved);
+  });
+  const std::vector<std::uint64_t> touched = editTree(s, lights, moved, st);
+
+  const auto t = Clock::now();
+  background.wait();
+  st.sync.compacted = compacted;
+  s.linkless_->applyOctantRewrites(rewrites, st.sync);
+  s.linkless_->applyTouched(*s.tree_, lights, touched, st.sync);
+  st.sync_ms = msSince(t);
+  s.lights_ = lights;
+  st.total_ms = msSince(t0);
+}
+
+std::vector<std::uint32_t> DynamicLightUpdater::diff(const std::vector<gpu::PointLight>& old,
+                                                     const std::vector<gpu::PointLight>& lights, UpdateStats& st) {
   const std::size_t n_old = old.size(), n_new = lights.size(), common = std::min(n_old, n_new);
   std::vector<std::uint32_t> moved;
   for (std::size_t i = 0; i < common; ++i)
@@ -129,55 +162,36 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   st.moved = moved.size();
   st.added = n_new > n_old ? n_new - n_old : 0;
   st.removed = n_old > n_new ? n_old - n_new : 0;
-  const std::size_t edits = st.moved + st.added + st.removed;
-  if (edits == 0) {
-    s.lights_ = lights;  // colours only
-    st.total_ms = msSince(t0);
-    return;
-  }
-  if (double(edits) > s.cfg_.max_incremental_fraction * double(std::max(n_old, n_new)))
-    return rebuild("most lights changed");
+  return moved;
+}
 
-  auto t = Clock::now();
-  // While this thread edits the tree (sequential), another one repacks the
-  // previous update's garbage in the light index list, then finds the moved
-  // lights' octant masks that change in place: their whole surface, not
-  // only where their sets change. Neither reads the tree.
-  tbb::task_group background;
-  bool compacted = false;
-  std::vector<OctantRewrite> rewrites;
-  background.run([&] {
-    if (s.linkless_->pool().wantsCompaction()) compacted = s.linkless_->compactIfWanted();
-    if (!s.linkless_->octantMasks()) return;
-    std::vector<OctantChange> changes;
-    // Where the cell test says the light is listed (geometry-tight sets
-    // list fewer cells): see there.
-    const bool both = !s.lightGeometry();
-    for (const auto i : moved) appendOctantChanges(&old[i], &lights[i], i, s.bounds_, both, changes);
-    rewrites = s.linkless_->findOctantRewrites(changes);
-  });
+std::vector<OctantRewrite> DynamicLightUpdater::findRewrites(const HashedStructure& s,
+                                                             const std::vector<gpu::PointLight>& lights,
+                                                             const std::vector<std::uint32_t>& moved) {
+  if (!s.linkless_->octantMasks()) return {};
+  std::vector<OctantChange> changes;
+  // Where the cell test says the light is listed (geometry-tight sets list
+  // fewer cells): see there.
+  const bool both = !s.lightGeometry();
+  for (const auto i : moved) appendOctantChanges(&s.lights_[i], &lights[i], i, s.bounds_, both, changes);
+  return s.linkless_->findOctantRewrites(changes);
+}
+
+std::vector<std::uint64_t> DynamicLightUpdater::editTree(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                                                         const std::vector<std::uint32_t>& moved, UpdateStats& st) {
+  const auto t = Clock::now();
   SceneOctree& tree = *s.tree_;
   tree.setRecording(true);
   // Geometry-tight sets need the light octrees (their cells test the geometry).
-  const bool by_cells = !s.lightGeometry();
-  const double waited_ms = by_cells ? (editByCells(s, lights, moved), 0.0) : editByOctrees(s, lights, moved);
+  const double waited_ms = s.lightGeometry() ? editByOctrees(s, lights, moved) : (editByCells(s, lights, moved), 0.0);
   tree.normalize();
-  const std::vector<std::uint64_t> touched = tree.takeTouched();
+  std::vector<std::uint64_t> touched = tree.takeTouched();
   tree.setRecording(false);
   // Building the octrees overlaps the edits: what the edits waited for it
   // (or built it themselves) counts as octree time, the rest as tree time.
   st.light_octrees_ms = waited_ms;
   st.tree_ms = msSince(t) - waited_ms;
-
-  t = Clock::now();
-  background.wait();
-  st.sync.compacted = compacted;
-  s.linkless_->applyOctantRewrites(rewrites, st.sync);
-  s.linkless_->applyTouched(tree, lights, touched, st.sync);
-  st.sync_ms = msSince(t);
-
-  s.lights_ = lights;
-  st.total_ms = msSince(t0);
+  return touched;
 }
 
 void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
@@ -186,8 +200,6 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
   const std::size_t n_old = old.size(), n_new = lights.size();
   const OctreeBounds& b = s.bounds_;
   SceneOctree& tree = *s.tree_;
-  auto& outdated = s.octree_outdated_;
-  outdated.resize(n_old, 0);
   // Both versions of every changed light (no version: added or removed),
   // then the edits per depth-2 subtree in parallel (SceneOctree::replaceAll).
   std::vector<std::uint32_t> changed(moved);
@@ -207,23 +219,10 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
     batch[k] = {i < n_old ? &versions[2 * k] : nullptr, i < n_new ? &versions[2 * k + 1] : nullptr, i};
   }
   tree.replaceAll(batch);
-  for (const auto i : moved) outdated[i] = 1;
-  s.octrees_.resize(n_new);
-  outdated.resize(n_new, 1);
-}
-
-void DynamicLightUpdater::refreshOctrees(HashedStructure& s) {
-  auto& outdated = s.octree_outdated_;
-  LightGridScratch scratch;
-  for (std::size_t i = 0; i < outdated.size(); ++i)
-    if (outdated[i])
-      s.octrees_[i] = buildLightOctree(s.lights_[i], std::uint32_t(i), s.bounds_, scratch, s.lightGeometry());
-  outdated.clear();
 }
 
 double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                                           const std::vector<std::uint32_t>& moved) {
-  refreshOctrees(s);
   const std::size_t n_old = s.lights_.size(), n_new = lights.size();
   // Old versions come from the octree cache; only new versions are built.
   std::vector<LightOctree> replaced, removed;  // old versions of moved and of removed lights

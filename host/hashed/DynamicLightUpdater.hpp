@@ -12,8 +12,7 @@
 //     Then what became mergeable is merged: the tree is again canonical,
 //     i.e. exactly what a fresh build would produce. Without
 //     geometry-tight sets the walk computes each version's coverage per
-//     node instead (LightCells), and no octree is built; the octree cache
-//     is brought up to date only when a later update needs it.
+//     node instead (LightCells), and no octree is built or cached.
 //  3. Re-derive the hash entries of the touched nodes and edit the tables in
 //     place; a table is rehashed only when an insert cannot be placed even by
 //     re-offsetting its group (see PerfectSpatialHash). Then rewrite in place
@@ -31,6 +30,7 @@
 #include <vector>
 
 #include "host/hashed/HashedStructure.hpp"
+#include "host/hashed/OctantMask.hpp"
 
 namespace ml::hashed {
 
@@ -39,19 +39,26 @@ class DynamicLightUpdater {
   static void apply(HashedStructure& s, const std::vector<gpu::PointLight>& lights, UpdateStats& stats);
 
  private:
-  // Step 2 without geometry-tight sets: each changed light's old and new cells are compared per node as
-  // LightCells, so no octree is built (building the new octrees and their
-  // subtree ends was ~35% of an update); the cached octrees of the changed
-  // lights are marked outdated instead. The edits run per depth-2 subtree
-  // in parallel (SceneOctree::replaceAll) when the batch is large enough.
+  // Step 1: the moved lights (ascending); counts into `stats`.
+  static std::vector<std::uint32_t> diff(const std::vector<gpu::PointLight>& old,
+                                         const std::vector<gpu::PointLight>& lights, UpdateStats& stats);
+  // Step 3's octant mask rewrites of the moved lights (reads no tree).
+  static std::vector<OctantRewrite> findRewrites(const HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                                                 const std::vector<std::uint32_t>& moved);
+  // Step 2, recording the touched keys (returned sorted); timed into `stats`.
+  static std::vector<std::uint64_t> editTree(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                                             const std::vector<std::uint32_t>& moved, UpdateStats& stats);
+  // Step 2 without geometry-tight sets: each changed light's old and new
+  // cells are compared per node as LightCells, so no octree is built
+  // (building the new octrees and their subtree ends was ~35% of an
+  // update). The edits run per depth-2 subtree in parallel
+  // (SceneOctree::replaceAll) when the batch is large enough.
   static void editByCells(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                           const std::vector<std::uint32_t>& moved);
-  // Step 2 with geometry-tight sets, by light octrees; the outdated cached
-  // octrees are rebuilt first. Returns the ms spent waiting for new octrees.
+  // Step 2 with geometry-tight sets, by light octrees (the old versions'
+  // from the cache). Returns the ms spent waiting for new octrees.
   static double editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                               const std::vector<std::uint32_t>& moved);
-  // Rebuilds the cached octrees marked outdated, from the current lights.
-  static void refreshOctrees(HashedStructure& s);
 };
 
 }  // namespace ml::hashed

@@ -69,11 +69,9 @@ class HashedStructure {
   // The mask the light octrees test against (tight light sets), or null.
   const GeometryMask* lightGeometry() const { return cfg_.geometry_tight_sets ? mask_.get() : nullptr; }
   const std::vector<gpu::PointLight>& lights() const { return lights_; }
-  std::size_t lightOctreeBytes() const;
   const BuildStats& lastBuild() const { return build_stats_; }
   const UpdateStats& lastUpdate() const { return update_stats_; }
   std::size_t buildCount() const { return builds_; }
-  std::size_t updateCount() const { return updates_; }
 
  private:
   friend class DynamicLightUpdater;
@@ -84,15 +82,13 @@ class HashedStructure {
   std::unique_ptr<SceneOctree> tree_;
   std::unique_ptr<LinklessOctree> linkless_;
   std::vector<gpu::PointLight> lights_;
-  // Each light's octree, kept (the thesis's option 3) so that an update only
-  // builds the octrees of the lights' new versions.
+  // With geometry-tight sets, each light's octree, kept (the thesis's option
+  // 3) so that an update only builds the octrees of the lights' new
+  // versions; empty otherwise (updates compare LightCells instead).
   std::vector<LightOctree> octrees_;
-  // Per light, 1 where octrees_ predates the light's current version (an
-  // update that needed no octrees); empty when none does.
-  std::vector<std::uint8_t> octree_outdated_;
   BuildStats build_stats_;
   UpdateStats update_stats_;
-  std::size_t builds_ = 0, updates_ = 0;
+  std::size_t builds_ = 0;
 };
 
 }  // namespace ml::hashed

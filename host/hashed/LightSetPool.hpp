@@ -82,7 +82,6 @@ class LightSetPool {
   void clear();
 
   const std::vector<std::uint32_t>& list() const { return list_; }
-  std::size_t liveEntries() const { return list_.size() - garbage_; }
   std::size_t garbageEntries() const { return garbage_; }
   std::size_t rangeCount() const { return recs_.size() - free_recs_.size(); }
   // Compaction pays when garbage outweighs the live ranges (the list may

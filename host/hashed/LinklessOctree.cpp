@@ -101,6 +101,16 @@ void LinklessOctree::buildFrom(const SceneOctree& tree, const std::vector<gpu::P
         ownsRange(leaves[j].t) ? pool_.acquireOwn(entries[j]) : pool_.acquire(entries[j], hashes[j]);
     data_entries[leaves[j].t - ds - 1].push_back({leaves[j].c, {offset, std::uint32_t(entries[j].size())}});
   }
+  hashTables(desc_entries, data_entries);
+  edits_.assign(2 * layers, TableEdits{});  // everything, after a build
+  computeBases();
+  ++layout_version_;
+}
+
+// buildFrom()'s last step: every layer's two tables, and their build stats.
+void LinklessOctree::hashTables(const std::vector<std::vector<DescHash::Entry>>& desc_entries,
+                                const std::vector<std::vector<DataHash::Entry>>& data_entries) {
+  const unsigned ds = b_.start_depth, layers = layerCount();
   std::vector<PshBuildReport> reports(2 * layers);
   std::size_t keys = 0;
   for (unsigned i = 0; i < layers; ++i) keys += desc_entries[i].size() + data_entries[i].size();
@@ -128,9 +138,6 @@ void LinklessOctree::buildFrom(const SceneOctree& tree, const std::vector<gpu::P
     s.rejected_candidates = reports[2 * i].rejected + reports[2 * i + 1].rejected;
     s.hash_ms = reports[2 * i].ms + reports[2 * i + 1].ms;
   }
-  edits_.assign(2 * layers, TableEdits{});  // everything, after a build
-  computeBases();
-  ++layout_version_;
 }
 
 TableEdits LinklessOctree::takeEdits(unsigned layer, bool data) {

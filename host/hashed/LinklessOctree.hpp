@@ -100,7 +100,6 @@ class LinklessOctree {
   LightSetPool& pool() { return pool_; }
   const LightSetPool& pool() const { return pool_; }
   std::vector<LayerStats> layerStats() const;
-  const std::vector<LayerStats>& buildStats() const { return build_stats_; }
   std::size_t tableBytes() const;
   std::size_t gpuBytes() const;  // tables + header + light index list
 
@@ -119,6 +118,8 @@ class LinklessOctree {
 
  private:
   void computeBases();
+  void hashTables(const std::vector<std::vector<DescHash::Entry>>& desc_entries,
+                  const std::vector<std::vector<DataHash::Entry>>& data_entries);
   bool ownsRange(unsigned t) const { return cfg_.octant_masks && t == b_.depth; }
   // A leaf's index list entries: its lights with their octant masks, from
   // `tables` when given, else from `lights`; with `reuse`, the

@@ -222,6 +222,14 @@ class PerfectSpatialHash {
   // free slot (scanned from a random start), checked for the other keys.
   template <class F>
   bool searchFree(const glm::uvec3& h0_first, SplitMix64& rng, F&& fits, glm::uvec3& found) const;
+  // True when two of a group's keys share h0: they collide under any offset.
+  bool sharesH0(const std::vector<glm::uvec3>& h0) const;
+  // An offset that puts every h0 of the group at Phi entry `o` on a free
+  // slot (`fits`): its assigned neighbours' offsets, then `random_tries`
+  // random ones, then searchFree().
+  template <class F>
+  bool findOffset(std::uint32_t o, const std::vector<std::uint8_t>* assigned, const std::vector<glm::uvec3>& h0,
+                  SplitMix64& rng, unsigned random_tries, F&& fits, glm::uvec3& found) const;
   enum class Assign { Ok, SharedH0, Failed };
   Assign assignAll(const std::vector<Entry>& entries, SplitMix64& rng, unsigned random_tries,
                    std::uint64_t& rejected);
@@ -315,6 +323,28 @@ bool PerfectSpatialHash<Traits>::searchFree(const glm::uvec3& h0, SplitMix64& rn
 }
 
 template <class Traits>
+bool PerfectSpatialHash<Traits>::sharesH0(const std::vector<glm::uvec3>& h0) const {
+  std::vector<std::uint32_t> index(h0.size());
+  for (std::size_t i = 0; i < h0.size(); ++i) index[i] = h0[i].x + m_.x * (h0[i].y + m_.y * h0[i].z);
+  std::sort(index.begin(), index.end());
+  return std::adjacent_find(index.begin(), index.end()) != index.end();
+}
+
+template <class Traits>
+template <class F>
+bool PerfectSpatialHash<Traits>::findOffset(std::uint32_t o, const std::vector<std::uint8_t>* assigned,
+                                            const std::vector<glm::uvec3>& h0, SplitMix64& rng,
+                                            unsigned random_tries, F&& fits, glm::uvec3& off) const {
+  if (tryNeighbours(o, assigned, fits, off)) return true;
+  const glm::uvec3 range = glm::min(m_, glm::uvec3(256));
+  for (unsigned t = 0; t < random_tries; ++t) {
+    off = glm::uvec3(rng.below(range.x), rng.below(range.y), rng.below(range.z));
+    if (fits(off)) return true;
+  }
+  return searchFree(h0[0], rng, fits, off);
+}
+
+template <class Traits>
 typename PerfectSpatialHash<Traits>::Assign PerfectSpatialHash<Traits>::assignAll(const std::vector<Entry>& entries,
                                                                                   SplitMix64& rng,
                                                                                   unsigned random_tries,
@@ -339,20 +369,14 @@ typename PerfectSpatialHash<Traits>::Assign PerfectSpatialHash<Traits>::assignAl
 
   std::vector<std::uint8_t> assigned(r, 0);
   std::vector<glm::uvec3> h0;
-  std::vector<std::uint32_t> h0_index;
   // Keys of one group sharing h0 collide under any offset: only a larger
   // offset table separates them. Cheap to see before placing anything.
   for (std::uint32_t o = 0; o < r; ++o) {
     if (start[o + 1] - start[o] < 2) continue;
-    h0_index.clear();
-    for (std::uint32_t i = start[o]; i < start[o + 1]; ++i) {
-      const glm::uvec3 h = entries[order[i]].key % m_;
-      h0_index.push_back(h.x + m_.x * (h.y + m_.y * h.z));
-    }
-    std::sort(h0_index.begin(), h0_index.end());
-    if (std::adjacent_find(h0_index.begin(), h0_index.end()) != h0_index.end()) return Assign::SharedH0;
+    h0.clear();
+    for (std::uint32_t i = start[o]; i < start[o + 1]; ++i) h0.push_back(entries[order[i]].key % m_);
+    if (sharesH0(h0)) return Assign::SharedH0;
   }
-  const glm::uvec3 range = glm::min(m_, glm::uvec3(256));
   for (const std::uint32_t o : groups) {
     const std::uint32_t b = start[o], e = start[o + 1];
     if (b == e) break;  // the rest are empty groups
@@ -367,13 +391,7 @@ typename PerfectSpatialHash<Traits>::Assign PerfectSpatialHash<Traits>::assignAl
       return true;
     };
     glm::uvec3 off;
-    bool ok = tryNeighbours(o, &assigned, fits, off);
-    for (unsigned t = 0; !ok && t < random_tries; ++t) {
-      off = glm::uvec3(rng.below(range.x), rng.below(range.y), rng.below(range.z));
-      ok = fits(off);
-    }
-    if (!ok) ok = searchFree(h0[0], rng, fits, off);
-    if (!ok) return Assign::Failed;
+    if (!findOffset(o, &assigned, h0, rng, random_tries, fits, off)) return Assign::Failed;
     offsets_[o] = packOffset(off);
     assigned[o] = 1;
     for (std::uint32_t i = b; i < e; ++i) {
@@ -472,13 +490,8 @@ typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::in
   for (const std::uint32_t gs : members_[o]) group.push_back({gs, slotKey(gs), slotPayload(gs)});
   group.push_back({~0u, key, payload});
   std::vector<glm::uvec3> h0;
-  std::vector<std::uint32_t> h0_index;
-  for (const auto& g : group) {
-    h0.push_back(g.key % m_);
-    h0_index.push_back(h0.back().x + m_.x * (h0.back().y + m_.y * h0.back().z));
-  }
-  std::sort(h0_index.begin(), h0_index.end());
-  if (std::adjacent_find(h0_index.begin(), h0_index.end()) != h0_index.end()) return InsertResult::Failed;
+  for (const auto& g : group) h0.push_back(g.key % m_);
+  if (sharesH0(h0)) return InsertResult::Failed;
   for (const auto& g : group)
     if (g.slot != ~0u) clearSlot(g.slot);
   auto fits = [&](const glm::uvec3& off) {
@@ -486,16 +499,9 @@ typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::in
       if (!slotEmpty(slotWith(h, off))) return false;
     return true;
   };
-  const glm::uvec3 range = glm::min(m_, glm::uvec3(256));
   glm::uvec3 off;
   // members_[o] is still listed, so tryNeighbours skips o itself by index.
-  bool ok = tryNeighbours(o, nullptr, fits, off);
-  for (unsigned t = 0; !ok && t < random_tries; ++t) {
-    off = glm::uvec3(rng.below(range.x), rng.below(range.y), rng.below(range.z));
-    ok = fits(off);
-  }
-  if (!ok) ok = searchFree(h0[0], rng, fits, off);
-  if (!ok) {
+  if (!findOffset(o, nullptr, h0, rng, random_tries, fits, off)) {
     for (const auto& g : group)
       if (g.slot != ~0u) writeSlot(g.slot, g.key, g.payload);
     return InsertResult::Failed;
