@@ -245,6 +245,7 @@ struct LinklessOctree::DeriveScratch {
   std::vector<std::uint32_t> entries;
   std::vector<LightSetPool::Span> rewritten;
 };
+struct LinklessOctree::ScratchPerThread : tbb::enumerable_thread_specific<DeriveScratch> {};
 
 // Step 2's result: per table, its edits in key order.
 struct LinklessOctree::Plan {
@@ -275,7 +276,7 @@ std::vector<LinklessOctree::Derived> LinklessOctree::deriveTouched(const SceneOc
                                                                   const std::vector<std::uint64_t>& touched) {
   const unsigned ds = b_.start_depth;
   std::vector<Derived> derived(touched.size());
-  tbb::enumerable_thread_specific<DeriveScratch> scratch;
+  ScratchPerThread scratch;
   auto derive = [&](std::size_t j) {
     const unsigned t = keyDepth(touched[j]);
     const bool has_desc = t >= ds && t < b_.depth, has_data = t > ds && t <= b_.depth;
@@ -293,7 +294,7 @@ std::vector<LinklessOctree::Derived> LinklessOctree::deriveTouched(const SceneOc
         d.dp = p;
       }
     }
-    if (has_data) deriveData(t, c, v, lights, d, scratch.local());
+    if (has_data) deriveData(t, c, v, lights, d, scratch);
   };
   if (touched.size() < kParallelDeriveMinKeys) {
     for (std::size_t j = 0; j < touched.size(); ++j) derive(j);
@@ -308,7 +309,7 @@ std::vector<LinklessOctree::Derived> LinklessOctree::deriveTouched(const SceneOc
 }
 
 void LinklessOctree::deriveData(unsigned t, const glm::uvec3& c, const SceneOctree::NodeView& v,
-                                const std::vector<gpu::PointLight>& lights, Derived& d, DeriveScratch& sc) {
+                                const std::vector<gpu::PointLight>& lights, Derived& d, ScratchPerThread& sc) {
   d.has_data = true;
   d.data_have = data_[t - b_.start_depth - 1].lookup(c);
   d.data_want = v.exists && v.leaf && !v.lights->empty();
@@ -322,7 +323,7 @@ void LinklessOctree::deriveData(unsigned t, const glm::uvec3& c, const SceneOctr
     reuse = Reuse{pool_.list().data() + d.data_have->offset,
                   pool_.list().data() + d.data_have->offset + d.data_have->count};
   if (reuse && set.size() <= pool_.capacityOf(d.data_have->offset)) {
-    rewriteInPlace(t, c, set, *d.data_have, lights, sc);
+    rewriteInPlace(t, c, set, *d.data_have, lights, sc.local());
     d.in_place = true;
     d.count = std::uint32_t(set.size());
     return;

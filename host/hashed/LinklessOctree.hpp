@@ -135,11 +135,12 @@ class LinklessOctree {
   // sets in key order), write the tables (one task each).
   struct Derived;
   struct DeriveScratch;
+  struct ScratchPerThread;  // a DeriveScratch per thread, taken only when needed
   struct Plan;
   std::vector<Derived> deriveTouched(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights,
                                      const std::vector<std::uint64_t>& touched);
   void deriveData(unsigned t, const glm::uvec3& c, const SceneOctree::NodeView& v,
-                  const std::vector<gpu::PointLight>& lights, Derived& d, DeriveScratch& sc);
+                  const std::vector<gpu::PointLight>& lights, Derived& d, ScratchPerThread& sc);
   void rewriteInPlace(unsigned t, const glm::uvec3& c, const std::vector<std::uint32_t>& set,
                       const DataTraits::Payload& have, const std::vector<gpu::PointLight>& lights,
                       DeriveScratch& sc);
