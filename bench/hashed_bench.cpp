@@ -147,7 +147,7 @@ int run(int argc, char** argv) {
   std::string update_fractions = "0.01,0.1,1";
   int reps = 3, update_reps = 5;
   unsigned camera_frames = 4;
-  bool no_render = false, lazy_removal = false, parallel_tree_edits = false, no_octant_masks = false;
+  bool no_render = false, no_octant_masks = false;
   app.add_option("--json", json_path, "write records as JSON");
   app.add_option("--lights", light_counts, "generated light counts in the default scene")->capture_default_str();
   app.add_option("--node-sizes", node_sizes, "node sizes to sweep")->capture_default_str();
@@ -162,11 +162,7 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--device", device, "OpenCL device");
   app.add_flag("--no-render", no_render, "host-side sections only");
-  app.add_flag("--parallel-tree-edits", parallel_tree_edits,
-               "updates: edit the tree per depth-2 subtree in parallel (HashedConfig::parallel_tree_edits)");
   app.add_flag("--no-octant-masks", no_octant_masks, "updates: the thesis's plain light lists (HashedConfig::octant_masks off)");
-  app.add_flag("--lazy-removal", lazy_removal,
-               "updates: leave moved lights' old indices until a flush (conservative superset lookups)");
   CLI11_PARSE(app, argc, argv);
   benchutil::requireWritable("--json", json_path);
   unsigned width = 0, height = 0;
@@ -226,8 +222,6 @@ int run(int argc, char** argv) {
     hashed::HashedConfig cfg;
     cfg.node_size = "0.5r";
     cfg.max_incremental_fraction = 1.0;  // measure the incremental path itself
-    cfg.lazy_removal = lazy_removal;
-    cfg.parallel_tree_edits = parallel_tree_edits;
     cfg.octant_masks = !no_octant_masks;
     for (const auto& fraction_text : splitList(update_fractions)) {
       const double fraction = std::stod(fraction_text);
@@ -278,8 +272,6 @@ int run(int argc, char** argv) {
     }
   }
   out["updates"] = updates;
-  out["updates_lazy_removal"] = lazy_removal;
-  out["updates_parallel_tree_edits"] = parallel_tree_edits;
   out["updates_octant_masks"] = !no_octant_masks;
 
   // --- 3. Thesis suite: the 1890-light Spaceship Indoor set ---

@@ -1,7 +1,6 @@
 // Dynamic lights: after random sequences of moves, resizes, additions and
 // removals, incremental updates look up exactly what a fresh build of the
-// same lights (same bounds) looks up, with the same octree; lazy removal is
-// a conservative superset until its flush, then exact again.
+// same lights (same bounds) looks up, with the same octree.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,32 +114,6 @@ TEST(HashedDynamic, RandomEditsEqualAFreshBuild) {
   }
 }
 
-// Updates that edit by computed coverage (no octrees) leave the cached
-// octrees of the changed lights outdated; an update that needs them (here
-// the parallel edit, which walks the old versions' octrees) rebuilds them
-// first. Alternating the two stays equal to a fresh build.
-TEST(HashedDynamic, AlternatingCellAndOctreeEditsEqualAFreshBuild) {
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed " + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  auto lights = randomLights(rng, 300, kBox, 1.0, 3.0, false);
-  HashedConfig cfg;
-  cfg.node_size = "0.5";
-  cfg.start_depth = 3;
-  cfg.max_incremental_fraction = 1.0;
-  HashedStructure hs(cfg);
-  hs.build(lights, boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, cfg.start_depth));
-  for (int round = 0; round < 8; ++round) {
-    SCOPED_TRACE("round " + std::to_string(round));
-    hs.config().parallel_tree_edits = round % 2 == 1;
-    randomEdits(rng, lights, 0.2, 3.0);
-    const UpdateStats& st = hs.update(lights);
-    EXPECT_FALSE(st.full_rebuild) << st.reason;
-    expectSameAsFreshBuild(hs, nullptr, rng, {});
-    if (HasFailure()) return;
-  }
-}
-
 // Batches large enough for the parallel paths: octrees built while the
 // edits consume them, the per-key derivation and the per-table writes in
 // parallel, and compactions of a light index list past 16K entries.
@@ -223,95 +196,6 @@ TEST(HashedDynamic, RandomEditsWithGeometryMaskEqualAFreshBuild) {
     }
     EXPECT_GE(incremental, 3);
   }
-}
-
-// Before a lazy flush: the lookup at p lists every light that reaches p's
-// octant of its cell, and no removed light. A point whose float cell
-// coordinate is past the octree's upper faces looks up nothing, and rightly
-// so: the cube is half-open, [0, 2^depth) in cells, and the bounds keep every
-// sphere off its faces. randomPointIn draws in double, and rounding to float
-// can land exactly on a face (issue 18, item 8: seed 4810653734510557000), so
-// such points are checked for "nothing listed, nothing reaches", not assumed
-// inside.
-void expectLazySuperset(const HashedStructure& hs, const std::vector<gpu::PointLight>& lights, const glm::vec3& p) {
-  const auto lazy = hs.linkless().lightsAt(p);
-  glm::uvec3 cell;
-  if (!cellOf(hs.bounds(), p, cell)) {
-    ASSERT_TRUE(lazy.empty()) << "outside the octree, yet lights are listed";
-    for (const auto& l : lights) {
-      const glm::vec3 d = p - glm::vec3(l.position_radius.x, l.position_radius.y, l.position_radius.z);
-      ASSERT_GT(glm::dot(d, d), l.position_radius.w * l.position_radius.w) << "a light reaches past the octree";
-    }
-    return;
-  }
-  const auto reaching = lightsReachingOctant(lights, hs.bounds(), cell, octantOf(hs.bounds().cellCoordF(p)));
-  ASSERT_TRUE(std::includes(lazy.begin(), lazy.end(), reaching.begin(), reaching.end()));
-  for (const auto l : lazy) ASSERT_LT(l, lights.size()) << "a removed light is still listed";
-}
-
-// The boundary case of item 8, deterministic: points on the octree's upper
-// faces and corner (and the last float below them) in the bounds of
-// LazyRemovalIsASupersetUntilItsFlush, with a light touching the top of the box.
-TEST(HashedDynamic, LazyLookupOnTheUpperFacesListsNothing) {
-  std::mt19937_64 rng(7);
-  auto lights = randomLights(rng, 50, kBox, 1.0, 3.0, false);
-  lights.push_back(makeLight(glm::vec3(float(kBox) - 2.0f), 2.0f, glm::vec3(1.0f)));
-  HashedConfig cfg;
-  cfg.node_size = "0.75";
-  cfg.lazy_removal = true;
-  HashedStructure hs(cfg);
-  hs.build(lights, boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.75, 3));
-  randomEdits(rng, lights, 0.1, 3.0);
-  ASSERT_FALSE(hs.update(lights).flushed);
-  const OctreeBounds& b = hs.bounds();
-  const glm::vec3 lo(b.origin), top(b.origin + glm::dvec3(b.side()));
-  ASSERT_EQ(glm::dvec3(top), b.origin + glm::dvec3(b.side())) << "the face must be a float";
-  const glm::vec3 below(std::nextafter(top.x, lo.x), std::nextafter(top.y, lo.y), std::nextafter(top.z, lo.z));
-  const glm::vec3 mid = 0.5f * (lo + top);
-  glm::uvec3 cell;
-  EXPECT_FALSE(cellOf(b, top, cell));
-  for (const glm::vec3& p : {top, below, glm::vec3(top.x, mid.y, mid.z), glm::vec3(mid.x, top.y, mid.z),
-                             glm::vec3(mid.x, mid.y, top.z), glm::vec3(below.x, mid.y, mid.z)}) {
-    SCOPED_TRACE(std::to_string(p.x) + "," + std::to_string(p.y) + "," + std::to_string(p.z));
-    expectLazySuperset(hs, lights, p);
-  }
-}
-
-TEST(HashedDynamic, LazyRemovalIsASupersetUntilItsFlush) {
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed " + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  auto lights = randomLights(rng, 200, kBox, 1.0, 3.0, false);
-  HashedConfig cfg;
-  cfg.node_size = "0.75";
-  cfg.lazy_removal = true;
-  cfg.lazy_flush_fraction = 0.2;
-  cfg.max_incremental_fraction = 1.0;
-  HashedStructure hs(cfg);
-  hs.build(lights, boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.75, 3));
-  // Until the flush the tree is not canonical (stale versions keep leaves
-  // split), so lookups are compared with the lights that truly reach the
-  // point's octant, not with a fresh build's (whose merged leaves list more).
-  // Rounds run until the stale fraction calls for a flush: 3% edits per
-  // round reach 20% stale lights in about ten rounds, moving some twice.
-  bool flushed = false;
-  for (int round = 0; round < 60 && !flushed; ++round) {
-    randomEdits(rng, lights, 0.03, 3.0);
-    const UpdateStats& st = hs.update(lights);
-    flushed = st.flushed;
-    HashedStructure fresh(cfg);
-    fresh.build(lights, hs.bounds());
-    for (int i = 0; i < 1500; ++i) {
-      const glm::vec3 p = randomPointIn(rng, hs.bounds());
-      if (flushed) {
-        ASSERT_EQ(hs.linkless().lightsAt(p), fresh.linkless().lightsAt(p));
-      } else {
-        expectLazySuperset(hs, lights, p);
-        if (HasFatalFailure()) return;
-      }
-    }
-  }
-  EXPECT_TRUE(flushed) << "the stale fraction never called for a flush";
 }
 
 TEST(HashedDynamic, LeavingTheBoundsOrMovingMostLightsRebuilds) {

@@ -1,9 +1,8 @@
 // The parallel tree edit (SceneOctree::replaceAll: one task per subtree at
 // depth 2) against one replace() at a time, with lights that span several
 // subtrees, sit on the subtrees' shared faces or touch the bounds; and whole
-// updates by computed coverage (LightCells, the default) on 1 and 4 threads
-// and by light octrees (HashedConfig::parallel_tree_edits) on 1 and on 4
-// threads: identical light index lists and hash tables, word for word.
+// updates on 1 and 4 threads: identical light index lists and hash tables,
+// word for word.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
@@ -38,9 +37,8 @@ NodeDump dump(const SceneOctree& tree) {
 // `one` has had the batch replaced one light at a time; par1 and parN get it
 // by replaceAll() on 1 and 4 threads. All three normalized must agree; the
 // sequential result is returned.
-template <class Batch>
-NodeDump expectReplaceAllAgrees(SceneOctree& one, SceneOctree& par1, SceneOctree& parN, const Batch& batch,
-                                int round) {
+NodeDump expectReplaceAllAgrees(SceneOctree& one, SceneOctree& par1, SceneOctree& parN,
+                                const std::vector<SceneOctree::CellsReplacement>& batch, int round) {
   tbb::task_arena(1).execute([&] { par1.replaceAll(batch); });
   tbb::task_arena(4).execute([&] { parN.replaceAll(batch); });
   for (auto* t : {&one, &par1, &parN}) t->normalize();
@@ -84,56 +82,8 @@ struct StressCase {
         lights(partitionStressLights(rng, b, inside)) {}
 };
 
-TEST(HashedParallelEdit, ReplaceAllEqualsOneReplaceAtATime) {
-  StressCase sc(false);
-  SCOPED_TRACE("seed " + std::to_string(sc.seed));
-  ASSERT_GE(sc.b.start_depth, 2u);
-  auto& [seed, rng, b, lights] = sc;
-  LightGridScratch scratch;
-  std::vector<LightOctree> old_versions;
-  for (std::uint32_t i = 0; i < lights.size(); ++i)
-    old_versions.push_back(buildLightOctree(lights[i], i, b, scratch));
-  for (int round = 0; round < 3; ++round) {
-    SceneOctree one(b, nullptr), par1(b, nullptr), parN(b, nullptr);
-    for (auto* t : {&one, &par1, &parN}) {
-      for (const auto& o : old_versions) t->insert(o);
-      t->normalize();
-    }
-    // Move a third of the lights: small steps, jumps across subtrees, growth.
-    std::vector<LightOctree> moved_old, moved_new;
-    for (std::uint32_t i = 0; i < lights.size(); ++i) {
-      if (rng() % 3) continue;
-      auto l = lights[i];
-      const double step = rng() % 4 == 0 ? kBox * 0.5 : l.position_radius.w * 0.5;
-      for (int a = 0; a < 3; ++a)
-        axis(l, a) = std::clamp(axis(l, a) + float(uni(rng, -step, step)), 0.0f, float(kBox));
-      if (rng() % 5 == 0) l.position_radius.w *= float(uni(rng, 0.5, 2.0));
-      moved_old.push_back(old_versions[i]);
-      moved_new.push_back(buildLightOctree(l, i, b, scratch));
-      lights[i] = l;
-      old_versions[i] = moved_new.back();
-    }
-    ASSERT_GE(moved_new.size(), 32u);  // replaceAll's parallel path
-    std::vector<std::vector<std::uint32_t>> ends_old(moved_old.size()), ends_new(moved_new.size());
-    std::vector<SceneOctree::Replacement> batch;
-    for (std::size_t k = 0; k < moved_old.size(); ++k) {
-      SceneOctree::subtreeEnds(moved_old[k], ends_old[k]);
-      SceneOctree::subtreeEnds(moved_new[k], ends_new[k]);
-      batch.push_back({&moved_old[k], &moved_new[k], &ends_old[k], &ends_new[k]});
-    }
-    for (const auto& r : batch) one.replace(*r.old_version, *r.new_version);
-    const NodeDump want = expectReplaceAllAgrees(one, par1, parN, batch, round);
-    // And both equal the tree built from scratch.
-    SceneOctree fresh(b, nullptr);
-    for (const auto& o : old_versions) fresh.insert(o);
-    fresh.normalize();
-    EXPECT_TRUE(dump(fresh) == want) << "round " << round;
-    if (HasFailure()) return;
-  }
-}
-
-// The same for versions given as LightCells (the default update path), with
-// added and removed lights (no version); partitionStressLights()' large
+// Versions given as LightCells (the update path without geometry-tight
+// sets), with moved, added and removed lights (no version); partitionStressLights()' large
 // lights have worst-case splits above the free blocks, so they wait for the
 // sequential pass after the parallel one.
 TEST(HashedParallelEdit, CellsReplaceAllEqualsOneReplaceAtATime) {
@@ -199,15 +149,10 @@ TEST(HashedParallelEdit, UpdatesDoNotDependOnTheThreadCount) {
   cfg.max_incremental_fraction = 1.0;
   const OctreeBounds b = boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.5, cfg.start_depth);
   auto lights = partitionStressLights(rng, b, true);
-  // Cell edits (the default path) on 1 and 4 threads against octree ones on 1 and 4.
-  HashedConfig par_cfg = cfg;
-  par_cfg.parallel_tree_edits = true;
-  HashedStructure one(cfg), par1(par_cfg), many(par_cfg), cells4(cfg);
+  HashedStructure one(cfg), many(cfg);
   tbb::task_arena a1(1), a4(4);
   a1.execute([&] { one.build(lights, b); });
-  a1.execute([&] { par1.build(lights, b); });
   a4.execute([&] { many.build(lights, b); });
-  a4.execute([&] { cells4.build(lights, b); });
   for (int round = 0; round < 6; ++round) {
     for (auto& l : lights) {
       if (rng() % 4) continue;
@@ -216,16 +161,12 @@ TEST(HashedParallelEdit, UpdatesDoNotDependOnTheThreadCount) {
         axis(l, a) = std::clamp(axis(l, a) + float(uni(rng, -step, step)), r, float(kBox) - r);
     }
     const UpdateStats s1 = a1.execute([&] { return one.update(lights); });
-    const UpdateStats p1 = a1.execute([&] { return par1.update(lights); });
     const UpdateStats s4 = a4.execute([&] { return many.update(lights); });
-    const UpdateStats c4 = a4.execute([&] { return cells4.update(lights); });
-    ASSERT_FALSE(c4.full_rebuild) << c4.reason;
     ASSERT_FALSE(s1.full_rebuild) << s1.reason;
-    ASSERT_FALSE(p1.full_rebuild) << p1.reason;
     ASSERT_FALSE(s4.full_rebuild) << s4.reason;
     EXPECT_GE(s1.moved, 32u);
     const LinklessOctree& x = one.linkless();
-    for (const LinklessOctree* y : {&par1.linkless(), &many.linkless(), &cells4.linkless()}) {
+    for (const LinklessOctree* y : {&many.linkless()}) {
       EXPECT_EQ(x.pool().list(), y->pool().list()) << "round " << round;
       ASSERT_EQ(x.layerCount(), y->layerCount());
       for (unsigned i = 0; i < x.layerCount(); ++i) {

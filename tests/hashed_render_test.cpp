@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <set>
 
 #include "gl/FrameRenderer.hpp"
 #include "host/app/SceneInputs.hpp"
@@ -163,6 +164,14 @@ TEST(HashedRender, AnimatedLightsMatchAFreshBuild) {
   // just the edited words.
   EXPECT_GT(partial_uploads, 0);
   EXPECT_EQ(animated.structure()->buildCount(), 1u) << animated.structure()->lastUpdate().reason;
+  // Stats keys go into JSON as they are: no indentation (that is the table
+  // printer's), build and update keys both present after updates.
+  std::set<std::string> keys;
+  for (const auto& [k, v] : animated.stats()) {
+    EXPECT_FALSE(k.empty() || k.front() == ' ' || k.back() == ' ') << "'" << k << "'";
+    EXPECT_TRUE(keys.insert(k).second) << "duplicate stats key '" << k << "'";
+  }
+  EXPECT_TRUE(keys.count("build bounds ms") && keys.count("update lights moved"));
   const Rendered a = render(r, animated, Pipeline::Deferred, cam);
   HashedAssigner fresh("hashed-deferred", params);
   const Rendered f = render(r, fresh, Pipeline::Deferred, cam);

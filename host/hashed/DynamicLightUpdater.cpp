@@ -35,6 +35,7 @@ using Indexed = std::vector<std::pair<std::uint32_t, gpu::PointLight>>;
 class Batch {
  public:
   static constexpr std::size_t kChunk = 16;
+  static constexpr std::size_t kHelpersMinLights = 64;
   Batch(const Indexed& lights, const std::vector<LightOctree>& replaced, const OctreeBounds& b,
         const GeometryMask* geometry)
       : lights_(lights), replaced_(replaced), b_(b), geometry_(geometry), octrees(lights.size()),
@@ -43,7 +44,7 @@ class Batch {
     for (auto& r : ready_) r.store(0, std::memory_order_relaxed);
     // A few lights: waking the worker threads costs more than it saves
     // (and on a busy machine a late worker stalls the whole frame).
-    if (lights.size() >= 64) {
+    if (lights.size() >= kHelpersMinLights) {
       helpers_ = true;
       group_.run([this] {
         tbb::parallel_for(0, int(tbb::this_task_arena::max_concurrency()) - 1, [this](int) { work(); });
@@ -119,8 +120,41 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   };
   if (!s.built()) return rebuild("first build");
   if (!lightsInside(lights, s.bounds_)) return rebuild("a light left the octree bounds");
+  const std::vector<std::uint32_t> moved = diff(s.lights_, lights, st);
+  const std::size_t edits = st.moved + st.added + st.removed;
+  if (edits == 0) {
+    s.lights_ = lights;  // colours only
+    st.total_ms = msSince(t0);
+    return;
+  }
+  if (double(edits) > s.cfg_.max_incremental_fraction * double(std::max(s.lights_.size(), lights.size())))
+    return rebuild("most lights changed");
 
-  const auto& old = s.lights_;
+  // While this thread edits the tree, another one repacks the previous
+  // update's garbage in the light index list, then finds the moved lights'
+  // octant masks that change in place: their whole surface, not only where
+  // their sets change. Neither reads the tree.
+  tbb::task_group background;
+  bool compacted = false;
+  std::vector<OctantRewrite> rewrites;
+  background.run([&] {
+    compacted = s.linkless_->compactIfWanted();
+    rewrites = findRewrites(s, lights, moved);
+  });
+  const std::vector<std::uint64_t> touched = editTree(s, lights, moved, st);
+
+  const auto t = Clock::now();
+  background.wait();
+  st.sync.compacted = compacted;
+  s.linkless_->applyOctantRewrites(rewrites, st.sync);
+  s.linkless_->applyTouched(*s.tree_, lights, touched, st.sync);
+  st.sync_ms = msSince(t);
+  s.lights_ = lights;
+  st.total_ms = msSince(t0);
+}
+
+std::vector<std::uint32_t> DynamicLightUpdater::diff(const std::vector<gpu::PointLight>& old,
+                                                     const std::vector<gpu::PointLight>& lights, UpdateStats& st) {
   const std::size_t n_old = old.size(), n_new = lights.size(), common = std::min(n_old, n_new);
   std::vector<std::uint32_t> moved;
   for (std::size_t i = 0; i < common; ++i)
@@ -128,57 +162,36 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   st.moved = moved.size();
   st.added = n_new > n_old ? n_new - n_old : 0;
   st.removed = n_old > n_new ? n_old - n_new : 0;
-  const std::size_t edits = st.moved + st.added + st.removed;
-  if (edits == 0) {
-    s.lights_ = lights;  // colours only
-    st.stale_lights = s.stale_.size();
-    st.total_ms = msSince(t0);
-    return;
-  }
-  if (double(edits) > s.cfg_.max_incremental_fraction * double(std::max(n_old, n_new)))
-    return rebuild("most lights changed");
+  return moved;
+}
 
-  auto t = Clock::now();
-  // While this thread edits the tree (sequential), another one repacks the
-  // previous update's garbage in the light index list, then finds the moved
-  // lights' octant masks that change in place: their whole surface, not
-  // only where their sets change. Neither reads the tree.
-  tbb::task_group background;
-  bool compacted = false;
-  std::vector<OctantRewrite> rewrites;
-  background.run([&] {
-    if (s.linkless_->pool().wantsCompaction()) compacted = s.linkless_->compactIfWanted();
-    if (!s.linkless_->octantMasks()) return;
-    std::vector<OctantChange> changes;
-    // Where the cell test says the light is listed (Lazy removal may list
-    // an older version; geometry-tight sets list fewer cells): see there.
-    const bool both = !s.cfg_.lazy_removal && !s.lightGeometry();
-    for (const auto i : moved) appendOctantChanges(&old[i], &lights[i], i, s.bounds_, both, changes);
-    rewrites = s.linkless_->findOctantRewrites(changes);
-  });
+std::vector<OctantRewrite> DynamicLightUpdater::findRewrites(const HashedStructure& s,
+                                                             const std::vector<gpu::PointLight>& lights,
+                                                             const std::vector<std::uint32_t>& moved) {
+  if (!s.linkless_->octantMasks()) return {};
+  std::vector<OctantChange> changes;
+  // Where the cell test says the light is listed (geometry-tight sets list
+  // fewer cells): see there.
+  const bool both = !s.lightGeometry();
+  for (const auto i : moved) appendOctantChanges(&s.lights_[i], &lights[i], i, s.bounds_, both, changes);
+  return s.linkless_->findOctantRewrites(changes);
+}
+
+std::vector<std::uint64_t> DynamicLightUpdater::editTree(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                                                         const std::vector<std::uint32_t>& moved, UpdateStats& st) {
+  const auto t = Clock::now();
   SceneOctree& tree = *s.tree_;
   tree.setRecording(true);
-  // Lazy versions left from earlier updates are octrees: their clean-up needs them.
-  const bool by_cells = !s.lightGeometry() && !s.cfg_.lazy_removal && !s.cfg_.parallel_tree_edits && s.stale_.empty();
-  const double waited_ms = by_cells ? (editByCells(s, lights, moved), 0.0) : editByOctrees(s, lights, moved, st);
+  // Geometry-tight sets need the light octrees (their cells test the geometry).
+  const double waited_ms = s.lightGeometry() ? editByOctrees(s, lights, moved) : (editByCells(s, lights, moved), 0.0);
   tree.normalize();
-  const std::vector<std::uint64_t> touched = tree.takeTouched();
+  std::vector<std::uint64_t> touched = tree.takeTouched();
   tree.setRecording(false);
   // Building the octrees overlaps the edits: what the edits waited for it
   // (or built it themselves) counts as octree time, the rest as tree time.
   st.light_octrees_ms = waited_ms;
   st.tree_ms = msSince(t) - waited_ms;
-
-  t = Clock::now();
-  background.wait();
-  st.sync.compacted = compacted;
-  s.linkless_->applyOctantRewrites(rewrites, st.sync);
-  s.linkless_->applyTouched(tree, lights, touched, st.sync);
-  st.sync_ms = msSince(t);
-
-  s.lights_ = lights;
-  st.stale_lights = s.stale_.size();
-  st.total_ms = msSince(t0);
+  return touched;
 }
 
 void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
@@ -187,8 +200,6 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
   const std::size_t n_old = old.size(), n_new = lights.size();
   const OctreeBounds& b = s.bounds_;
   SceneOctree& tree = *s.tree_;
-  auto& outdated = s.octree_outdated_;
-  outdated.resize(n_old, 0);
   // Both versions of every changed light (no version: added or removed),
   // then the edits per depth-2 subtree in parallel (SceneOctree::replaceAll).
   std::vector<std::uint32_t> changed(moved);
@@ -208,76 +219,32 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
     batch[k] = {i < n_old ? &versions[2 * k] : nullptr, i < n_new ? &versions[2 * k + 1] : nullptr, i};
   }
   tree.replaceAll(batch);
-  for (const auto i : moved) outdated[i] = 1;
-  s.octrees_.resize(n_new);
-  outdated.resize(n_new, 1);
-}
-
-void DynamicLightUpdater::refreshOctrees(HashedStructure& s) {
-  auto& outdated = s.octree_outdated_;
-  LightGridScratch scratch;
-  for (std::size_t i = 0; i < outdated.size(); ++i)
-    if (outdated[i])
-      s.octrees_[i] = buildLightOctree(s.lights_[i], std::uint32_t(i), s.bounds_, scratch, s.lightGeometry());
-  outdated.clear();
 }
 
 double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
-                                          const std::vector<std::uint32_t>& moved, UpdateStats& st) {
-  refreshOctrees(s);
+                                          const std::vector<std::uint32_t>& moved) {
   const std::size_t n_old = s.lights_.size(), n_new = lights.size();
   // Old versions come from the octree cache; only new versions are built.
-  std::vector<LightOctree> to_remove;
-  std::vector<LightOctree> replaced;  // old versions of moved lights (exact mode)
+  std::vector<LightOctree> replaced, removed;  // old versions of moved and of removed lights
   Indexed to_insert;
-  std::vector<std::uint32_t> reinsert;  // current versions re-added after a lazy flush
   auto& cache = s.octrees_;
   for (const auto i : moved) {
-    if (s.cfg_.lazy_removal) s.stale_[i].push_back(std::move(cache[i]));
-    else replaced.push_back(std::move(cache[i]));
+    replaced.push_back(std::move(cache[i]));
     to_insert.emplace_back(i, lights[i]);
   }
-  for (std::size_t i = n_new; i < n_old; ++i) {
-    // A removed index must vanish exactly: the shader would read past the lights.
-    to_remove.push_back(std::move(cache[i]));
-    if (auto it = s.stale_.find(std::uint32_t(i)); it != s.stale_.end()) {
-      for (auto& o : it->second) to_remove.push_back(std::move(o));
-      s.stale_.erase(it);
-    }
-  }
+  for (std::size_t i = n_new; i < n_old; ++i) removed.push_back(std::move(cache[i]));
   cache.resize(n_new);
   for (std::size_t i = n_old; i < n_new; ++i) to_insert.emplace_back(std::uint32_t(i), lights[i]);
-  if (s.cfg_.lazy_removal && double(s.stale_.size()) > s.cfg_.lazy_flush_fraction * double(n_new)) {
-    // Exact clean-up: drop every stale version, then re-add the current one
-    // (a stale version may share cells with it).
-    for (auto& [i, versions] : s.stale_) {
-      for (auto& o : versions) to_remove.push_back(std::move(o));
-      if (!std::binary_search(moved.begin(), moved.end(), i)) reinsert.push_back(i);
-    }
-    s.stale_.clear();
-    st.flushed = true;
-  }
 
   Batch batch(to_insert, replaced, s.bounds_, s.lightGeometry());
   auto& new_octrees = batch.octrees;
   SceneOctree& tree = *s.tree_;
-  for (const auto& o : to_remove) tree.remove(o);
-  for (const auto i : reinsert) tree.remove(cache[i]);
+  // A removed index must vanish exactly: the shader would read past the lights.
+  for (const auto& o : removed) tree.remove(o);
   // Moved lights come first in to_insert: their old versions are replaced
-  // (one joint walk each); the rest (added lights, lazy mode) are inserts.
+  // (one joint walk each); the rest (added lights) are inserts.
   double waited_ms = 0.0;
-  std::size_t e = 0;  // next octree to edit in
-  if (s.cfg_.parallel_tree_edits && !replaced.empty()) {
-    // Per subtree in parallel, once every octree is built.
-    const auto w = Clock::now();
-    batch.finish();
-    waited_ms += msSince(w);
-    std::vector<SceneOctree::Replacement> replacements(replaced.size());
-    for (; e < replaced.size(); ++e)
-      replacements[e] = {&replaced[e], &new_octrees[e], &batch.old_ends[e], &batch.new_ends[e]};
-    tree.replaceAll(replacements);
-  }
-  for (; e < new_octrees.size(); ++e) {
+  for (std::size_t e = 0; e < new_octrees.size(); ++e) {
     const auto w = Clock::now();
     batch.waitFor(e);
     waited_ms += msSince(w);
@@ -285,7 +252,6 @@ double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<
     else tree.insert(new_octrees[e]);
   }
   batch.finish();
-  for (const auto i : reinsert) tree.insert(cache[i]);
   for (std::size_t k = 0; k < to_insert.size(); ++k) cache[to_insert[k].first] = std::move(new_octrees[k]);
   return waited_ms;
 }

@@ -10,33 +10,27 @@
 //     octree, adding and removing its index only where they differ (Tables
 //     8.1/8.2); removed lights are removed, added ones inserted (Table 7.1).
 //     Then what became mergeable is merged: the tree is again canonical,
-//     i.e. exactly what a fresh build would produce. In exact mode without
+//     i.e. exactly what a fresh build would produce. Without
 //     geometry-tight sets the walk computes each version's coverage per
-//     node instead (LightCells), and no octree is built; the octree cache
-//     is brought up to date only when a later update needs it.
+//     node instead (LightCells), and no octree is built or cached.
 //  3. Re-derive the hash entries of the touched nodes and edit the tables in
 //     place; a table is rehashed only when an insert cannot be placed even by
 //     re-offsetting its group (see PerfectSpatialHash). Then rewrite in place
 //     the octant masks of moved lights in the untouched deepest leaves
 //     (OctantMask.hpp): a moved light's masks change over its whole
 //     surface, not only where its sets did. They are found meanwhile step 2.
-//  Threads: the tree edits (step 2) are sequential; where octrees are needed
-//  the new ones are built on the other threads while the edits consume them
-//  in order, and the previous update's light index list garbage is
-//  compacted and the octant rewrites are found meanwhile. With HashedConfig::parallel_tree_edits the moved
-//  lights' edits instead run per depth-2 subtree in parallel once their
-//  octrees are built (same result). Step 3
-//  derives the touched keys in parallel, interns the light sets in key order,
-//  then edits each table in its own task. The result does not depend on the
-//  thread count.
-//  Lazy removal (HashedConfig::lazy_removal) skips step 2's removals for moved
-//  lights, leaving harmless extra indices, until the stale fraction calls for
-//  an exact clean-up; lookups are then a superset of a fresh build's until
-//  that flush.
+//  Threads: by cells, the edits run per depth-2 subtree in parallel (large
+//  batches); by octrees they are sequential while the new octrees are built
+//  on the other threads, consumed in order. Meanwhile the previous update's
+//  light index list garbage is compacted and the octant rewrites are found.
+//  Step 3 derives the touched keys in parallel, interns the light sets in
+//  key order, then edits each table in its own task. The result does not
+//  depend on the thread count.
 #include <cstdint>
 #include <vector>
 
 #include "host/hashed/HashedStructure.hpp"
+#include "host/hashed/OctantMask.hpp"
 
 namespace ml::hashed {
 
@@ -45,20 +39,26 @@ class DynamicLightUpdater {
   static void apply(HashedStructure& s, const std::vector<gpu::PointLight>& lights, UpdateStats& stats);
 
  private:
-  // Step 2 in exact mode without geometry-tight sets (and without parallel
-  // edits): each changed light's old and new cells are compared per node as
-  // LightCells, so no octree is built (building the new octrees and their
-  // subtree ends was ~35% of an update); the cached octrees of the changed
-  // lights are marked outdated instead. The edits run per depth-2 subtree
-  // in parallel (SceneOctree::replaceAll) when the batch is large enough.
+  // Step 1: the moved lights (ascending); counts into `stats`.
+  static std::vector<std::uint32_t> diff(const std::vector<gpu::PointLight>& old,
+                                         const std::vector<gpu::PointLight>& lights, UpdateStats& stats);
+  // Step 3's octant mask rewrites of the moved lights (reads no tree).
+  static std::vector<OctantRewrite> findRewrites(const HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                                                 const std::vector<std::uint32_t>& moved);
+  // Step 2, recording the touched keys (returned sorted); timed into `stats`.
+  static std::vector<std::uint64_t> editTree(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
+                                             const std::vector<std::uint32_t>& moved, UpdateStats& stats);
+  // Step 2 without geometry-tight sets: each changed light's old and new
+  // cells are compared per node as LightCells, so no octree is built
+  // (building the new octrees and their subtree ends was ~35% of an
+  // update). The edits run per depth-2 subtree in parallel
+  // (SceneOctree::replaceAll) when the batch is large enough.
   static void editByCells(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                           const std::vector<std::uint32_t>& moved);
-  // Step 2 with light octrees, every other mode; the outdated cached octrees
-  // are rebuilt first. Returns the ms spent waiting for new octrees.
+  // Step 2 with geometry-tight sets, by light octrees (the old versions'
+  // from the cache). Returns the ms spent waiting for new octrees.
   static double editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
-                              const std::vector<std::uint32_t>& moved, UpdateStats& stats);
-  // Rebuilds the cached octrees marked outdated, from the current lights.
-  static void refreshOctrees(HashedStructure& s);
+                              const std::vector<std::uint32_t>& moved);
 };
 
 }  // namespace ml::hashed

@@ -116,28 +116,44 @@ bool HashedAssigner::gpuMatchesHost(std::string* why) const {
 void HashedAssigner::uploadAll() {
   hashed::LinklessOctree& lo = structure_->linkless();
   upload_bytes_ = 0;
-  Image im = packHost();
-  const std::vector<std::uint32_t>& header = im.header;
-  ensure(header_, header.size() * 4, false);
-  glNamedBufferSubData(header_.id, 0, GLsizeiptr(header.size() * 4), header.data());
+  const Image im = packHost();
   for (unsigned i = 0; i < lo.layerCount(); ++i) {
-    lo.desc(i).takeDirty();
-    lo.data(i).takeDirty();
+    lo.takeEdits(i, false);
+    lo.takeEdits(i, true);
   }
-  auto& offsets = im.offsets;
-  auto& desc = im.desc;
-  auto& data = im.data;
-  for (auto [buf, v] : {std::pair{&offsets_, &offsets}, {&desc_, &desc}, {&data_, &data}}) {
+  for (auto [buf, v] : {std::pair{&header_, &im.header}, {&offsets_, &im.offsets}, {&desc_, &im.desc}, {&data_, &im.data}}) {
     ensure(*buf, v->size() * 4, false);
     if (!v->empty()) glNamedBufferSubData(buf->id, 0, GLsizeiptr(v->size() * 4), v->data());
     upload_bytes_ += v->size() * 4;
   }
-  const auto& list = lo.pool().list();
   lo.pool().takeDirty();
+  uploadWholeList();
+  uploaded_layout_ = lo.layoutVersion();
+}
+
+void HashedAssigner::uploadWholeList() {
+  const auto& list = structure_->linkless().pool().list();
   ensure(list_, list.size() * 4, true);
   if (!list.empty()) glNamedBufferSubData(list_.id, 0, GLsizeiptr(list.size() * 4), list.data());
-  upload_bytes_ += list.size() * 4 + header.size() * 4;
-  uploaded_layout_ = lo.layoutVersion();
+  upload_bytes_ += list.size() * 4;
+}
+
+// One table's edits since the last upload: the whole table after a rebuild
+// or remap, else its edited slots and offsets.
+template <class Hash>
+void HashedAssigner::uploadTable(const Hash& h, const hashed::TableEdits& d, GLuint slots_buf, std::size_t slot_base,
+                                 std::size_t offset_base) {
+  constexpr unsigned kw = Hash::kWords;
+  if (d.all) {
+    glNamedBufferSubData(slots_buf, GLintptr(slot_base * kw * 4), GLsizeiptr(h.tableWords().size() * 4),
+                         h.tableWords().data());
+    glNamedBufferSubData(offsets_.id, GLintptr(offset_base * 4), GLsizeiptr(h.offsetWords().size() * 4),
+                         h.offsetWords().data());
+    upload_bytes_ += h.bytes();
+    return;
+  }
+  upload_bytes_ += uploadRuns(slots_buf, slot_base, kw, h.tableWords(), d.slots);
+  upload_bytes_ += uploadRuns(offsets_.id, offset_base, 1, h.offsetWords(), d.offsets);
 }
 
 void HashedAssigner::upload() {
@@ -148,30 +164,14 @@ void HashedAssigner::upload() {
   } else {
     upload_bytes_ = 0;
     for (unsigned i = 0; i < lo.layerCount(); ++i) {
-      auto table = [&](auto& h, GLuint slots_buf, std::size_t slot_base, std::size_t offset_base) {
-        constexpr unsigned kw = std::decay_t<decltype(h)>::kWords;
-        auto d = h.takeDirty();
-        if (d.all) {
-          glNamedBufferSubData(slots_buf, GLintptr(slot_base * kw * 4), GLsizeiptr(h.tableWords().size() * 4),
-                               h.tableWords().data());
-          glNamedBufferSubData(offsets_.id, GLintptr(offset_base * 4), GLsizeiptr(h.offsetWords().size() * 4),
-                               h.offsetWords().data());
-          upload_bytes_ += h.bytes();
-          return;
-        }
-        upload_bytes_ += uploadRuns(slots_buf, slot_base, kw, h.tableWords(), d.slots);
-        upload_bytes_ += uploadRuns(offsets_.id, offset_base, 1, h.offsetWords(), d.offsets);
-      };
-      table(lo.desc(i), desc_.id, lo.descSlotBase(i), lo.offsetBase(i, false));
-      table(lo.data(i), data_.id, lo.dataSlotBase(i), lo.offsetBase(i, true));
+      uploadTable(lo.desc(i), lo.takeEdits(i, false), desc_.id, lo.descSlotBase(i), lo.offsetBase(i, false));
+      uploadTable(lo.data(i), lo.takeEdits(i, true), data_.id, lo.dataSlotBase(i), lo.offsetBase(i, true));
     }
     const auto& list = lo.pool().list();
     auto d = lo.pool().takeDirty();
     const std::size_t from = d.all ? 0 : std::min(d.from, list.size());
     if (list.size() * 4 > list_.capacity) {
-      ensure(list_, list.size() * 4, true);
-      if (!list.empty()) glNamedBufferSubData(list_.id, 0, GLsizeiptr(list.size() * 4), list.data());
-      upload_bytes_ += list.size() * 4;
+      uploadWholeList();
     } else {
       if (from < list.size()) {
         glNamedBufferSubData(list_.id, GLintptr(from * 4), GLsizeiptr((list.size() - from) * 4), list.data() + from);
@@ -232,21 +232,21 @@ std::vector<std::pair<std::string, double>> HashedAssigner::stats() const {
   s.emplace_back("scene octree nodes", double(bs.scene_nodes));
   if (structure_->mask()) s.emplace_back("geometry cells", double(bs.mask_cells));
   s.emplace_back("build ms", bs.total_ms);
-  s.emplace_back("  bounds ms", bs.bounds_ms);
-  if (structure_->mask()) s.emplace_back("  geometry mask ms", bs.mask_ms);
-  s.emplace_back("  light octrees ms", bs.light_octrees_ms);
-  s.emplace_back("  merge ms", bs.merge_ms);
-  s.emplace_back("  normalize ms", bs.normalize_ms);
-  s.emplace_back("  hashes ms", bs.hash_ms);
+  s.emplace_back("build bounds ms", bs.bounds_ms);
+  if (structure_->mask()) s.emplace_back("build geometry mask ms", bs.mask_ms);
+  s.emplace_back("build light octrees ms", bs.light_octrees_ms);
+  s.emplace_back("build merge ms", bs.merge_ms);
+  s.emplace_back("build normalize ms", bs.normalize_ms);
+  s.emplace_back("build hashes ms", bs.hash_ms);
   s.emplace_back("full builds", double(full_rebuilds_));
   if (incremental_updates_) {
     const auto& u = structure_->lastUpdate();
     s.emplace_back("updates", double(incremental_updates_));
     s.emplace_back("last update ms", u.total_ms);
-    s.emplace_back("  lights moved", double(u.moved + u.added + u.removed));
-    s.emplace_back("  slots in place", double(u.sync.in_place + u.sync.updates + u.sync.erases));
-    s.emplace_back("  groups re-offset", double(u.sync.reoffsets));
-    s.emplace_back("  tables rehashed", double(u.sync.rehashed_tables));
+    s.emplace_back("update lights moved", double(u.moved + u.added + u.removed));
+    s.emplace_back("update slots in place", double(u.sync.in_place + u.sync.updates + u.sync.erases));
+    s.emplace_back("update groups re-offset", double(u.sync.reoffsets));
+    s.emplace_back("update tables rehashed", double(u.sync.rehashed_tables));
   }
   s.emplace_back("upload ms", upload_ms_);
   s.emplace_back("upload bytes", double(upload_bytes_));

@@ -42,7 +42,6 @@ class HashedAssigner final : public LightAssigner {
   void setScene(const Scene* scene) { scene_ = scene; }
   const hashed::HashedStructure* structure() const { return structure_.get(); }
   hashed::HashedConfig& config() { return config_; }
-  double lastUploadMs() const { return upload_ms_; }
   // Reads the GL buffers back and compares them word for word with the host
   // tables (tests: partial uploads after updates leave no stale word).
   bool gpuMatchesHost(std::string* why = nullptr) const;
@@ -55,6 +54,10 @@ class HashedAssigner final : public LightAssigner {
   };
   void upload();
   void uploadAll();
+  void uploadWholeList();
+  template <class Hash>
+  void uploadTable(const Hash& h, const hashed::TableEdits& edits, GLuint slots_buf, std::size_t slot_base,
+                   std::size_t offset_base);
   struct Image {
     std::vector<std::uint32_t> header, offsets, desc, data;
   };

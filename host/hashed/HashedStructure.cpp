@@ -63,8 +63,6 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   }
 
   auto t = Clock::now();
-  octrees_.clear();
-  octree_outdated_.clear();
   octrees_ = buildLightOctrees(lights, bounds_, lightGeometry());
   const auto& octrees = octrees_;
   st.light_octrees_ms = msSince(t);
@@ -94,14 +92,8 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   st.total_ms = msSince(t0);
   build_stats_ = st;
   lights_ = lights;
-  stale_.clear();
+  if (!lightGeometry()) std::vector<LightOctree>().swap(octrees_);  // updates need none
   ++builds_;
-}
-
-std::size_t HashedStructure::lightOctreeBytes() const {
-  std::size_t s = octrees_.size() * sizeof(LightOctree);
-  for (const auto& o : octrees_) s += o.nodes.capacity();
-  return s;
 }
 
 const UpdateStats& HashedStructure::update(const std::vector<gpu::PointLight>& lights) {
@@ -109,7 +101,6 @@ const UpdateStats& HashedStructure::update(const std::vector<gpu::PointLight>& l
   UpdateStats st;
   DynamicLightUpdater::apply(*this, lights, st);
   update_stats_ = st;
-  ++updates_;
   return update_stats_;
 }
 

@@ -15,7 +15,6 @@
 //    light into slot i and shrink the array (two edits instead of n - i).
 #include <memory>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "host/hashed/GeometryMask.hpp"
@@ -43,8 +42,6 @@ struct UpdateStats {
   bool full_rebuild = false;
   std::string reason;  // why a full rebuild happened
   std::size_t moved = 0, added = 0, removed = 0;
-  std::size_t stale_lights = 0;  // lazy removal: lights with indices left behind
-  bool flushed = false;          // lazy removal caught up exactly
   double light_octrees_ms = 0, tree_ms = 0, sync_ms = 0, total_ms = 0;
   SyncStats sync;
 };
@@ -72,11 +69,9 @@ class HashedStructure {
   // The mask the light octrees test against (tight light sets), or null.
   const GeometryMask* lightGeometry() const { return cfg_.geometry_tight_sets ? mask_.get() : nullptr; }
   const std::vector<gpu::PointLight>& lights() const { return lights_; }
-  std::size_t lightOctreeBytes() const;
   const BuildStats& lastBuild() const { return build_stats_; }
   const UpdateStats& lastUpdate() const { return update_stats_; }
   std::size_t buildCount() const { return builds_; }
-  std::size_t updateCount() const { return updates_; }
 
  private:
   friend class DynamicLightUpdater;
@@ -87,18 +82,13 @@ class HashedStructure {
   std::unique_ptr<SceneOctree> tree_;
   std::unique_ptr<LinklessOctree> linkless_;
   std::vector<gpu::PointLight> lights_;
-  // Each light's octree, kept (the thesis's option 3) so that an update only
-  // builds the octrees of the lights' new versions.
+  // With geometry-tight sets, each light's octree, kept (the thesis's option
+  // 3) so that an update only builds the octrees of the lights' new
+  // versions; empty otherwise (updates compare LightCells instead).
   std::vector<LightOctree> octrees_;
-  // Per light, 1 where octrees_ predates the light's current version (an
-  // update that needed no octrees); empty when none does.
-  std::vector<std::uint8_t> octree_outdated_;
-  // Lazy removal: octrees of earlier versions of a light whose cells may
-  // still list it.
-  std::unordered_map<std::uint32_t, std::vector<LightOctree>> stale_;
   BuildStats build_stats_;
   UpdateStats update_stats_;
-  std::size_t builds_ = 0, updates_ = 0;
+  std::size_t builds_ = 0;
 };
 
 }  // namespace ml::hashed

@@ -82,13 +82,14 @@ class LightSetPool {
   void clear();
 
   const std::vector<std::uint32_t>& list() const { return list_; }
-  std::size_t liveEntries() const { return list_.size() - garbage_; }
   std::size_t garbageEntries() const { return garbage_; }
   std::size_t rangeCount() const { return recs_.size() - free_recs_.size(); }
   // Compaction pays when garbage outweighs the live ranges (the list may
   // reach twice its live size between compactions, plus one update's
   // appends: DynamicLightUpdater compacts at the start of the next update).
-  bool wantsCompaction() const { return garbage_ > 4096 && garbage_ > list_.size() / 2; }
+  // Small lists are not worth a pass over the data tables.
+  static constexpr std::size_t kCompactMinGarbage = 4096;
+  bool wantsCompaction() const { return garbage_ > kCompactMinGarbage && garbage_ > list_.size() / 2; }
   // new_offset[old_offset] for every live range start (other entries
   // unspecified); valid until the next compact(). The buffers are kept
   // between compactions (no fresh pages to fault in on every call).

@@ -17,6 +17,14 @@
 namespace ml::hashed {
 namespace {
 
+// Below these sizes a thread hand-off costs more than the work it spreads:
+// touched keys derived (applyTouched() step 1), table edits written (step
+// 3), keys hashed in a build, index list entries remapped by a compaction.
+constexpr std::size_t kParallelDeriveMinKeys = 512;
+constexpr std::size_t kParallelTableEditsMinOps = 4096;
+constexpr std::size_t kParallelHashMinKeys = 20000;
+constexpr std::size_t kParallelRemapMinEntries = 16384;
+
 std::uint64_t tableSeed(std::uint64_t seed, unsigned layer, bool data) {
   SplitMix64 s{seed ^ (0x51ED270B27A1ull * (2 * layer + (data ? 1 : 0) + 1))};
   return s.next();
@@ -29,6 +37,7 @@ LinklessOctree::LinklessOctree(const OctreeBounds& bounds, const HashedConfig& c
   const unsigned layers = b_.depth - b_.start_depth;
   desc_.resize(layers);
   data_.resize(layers);
+  edits_.resize(2 * layers);
   build_stats_.resize(layers);
   computeBases();
 }
@@ -92,6 +101,16 @@ void LinklessOctree::buildFrom(const SceneOctree& tree, const std::vector<gpu::P
         ownsRange(leaves[j].t) ? pool_.acquireOwn(entries[j]) : pool_.acquire(entries[j], hashes[j]);
     data_entries[leaves[j].t - ds - 1].push_back({leaves[j].c, {offset, std::uint32_t(entries[j].size())}});
   }
+  hashTables(desc_entries, data_entries);
+  edits_.assign(2 * layers, TableEdits{});  // everything, after a build
+  computeBases();
+  ++layout_version_;
+}
+
+// buildFrom()'s last step: every layer's two tables, and their build stats.
+void LinklessOctree::hashTables(const std::vector<std::vector<DescHash::Entry>>& desc_entries,
+                                const std::vector<std::vector<DataHash::Entry>>& data_entries) {
+  const unsigned ds = b_.start_depth, layers = layerCount();
   std::vector<PshBuildReport> reports(2 * layers);
   std::size_t keys = 0;
   for (unsigned i = 0; i < layers; ++i) keys += desc_entries[i].size() + data_entries[i].size();
@@ -105,7 +124,7 @@ void LinklessOctree::buildFrom(const SceneOctree& tree, const std::vector<gpu::P
     else desc_[i] = DescHash::build(desc_entries[i], p, &reports[task]);
   };
   // Tables are independent; small layers are not worth a thread hand-off.
-  if (keys < 20000) {
+  if (keys < kParallelHashMinKeys) {
     for (unsigned task = 0; task < 2 * layers; ++task) hashTable(task);
   } else {
     tbb::parallel_for(0u, 2 * layers, hashTable);
@@ -119,8 +138,13 @@ void LinklessOctree::buildFrom(const SceneOctree& tree, const std::vector<gpu::P
     s.rejected_candidates = reports[2 * i].rejected + reports[2 * i + 1].rejected;
     s.hash_ms = reports[2 * i].ms + reports[2 * i + 1].ms;
   }
-  computeBases();
-  ++layout_version_;
+}
+
+TableEdits LinklessOctree::takeEdits(unsigned layer, bool data) {
+  TableEdits& e = edits_[2 * layer + (data ? 1 : 0)];
+  TableEdits out = std::move(e);
+  e = TableEdits{false, {}, {}};
+  return out;
 }
 
 void LinklessOctree::computeBases() {
@@ -203,38 +227,61 @@ std::vector<std::uint32_t> LinklessOctree::lightsAt(const glm::vec3& world) cons
   return out;
 }
 
+// applyTouched() step 1's result for one touched key: what the tables hold
+// against what the tree wants, and the entries of a wanted set.
+struct LinklessOctree::Derived {
+  bool desc_op = false, desc_present = false;
+  DescTraits::Payload dp{};
+  bool has_data = false, data_want = false;
+  std::optional<DataTraits::Payload> data_have;
+  std::vector<std::uint32_t> entries;  // wanted, unless in place
+  std::uint64_t set_hash = 0;
+  bool in_place = false;    // an own range with room for the entries: its words rewritten in step 1
+  std::uint32_t count = 0;  // entries, when in place
+};
+
+// Per thread of step 1: scratch entries and the list words rewritten in place.
+struct LinklessOctree::DeriveScratch {
+  std::vector<std::uint32_t> entries;
+  std::vector<LightSetPool::Span> rewritten;
+};
+struct LinklessOctree::ScratchPerThread : tbb::enumerable_thread_specific<DeriveScratch> {};
+
+// Step 2's result: per table, its edits in key order.
+struct LinklessOctree::Plan {
+  template <class Payload>
+  struct Op {
+    glm::uvec3 key;
+    bool present;
+    Payload p;
+  };
+  std::vector<std::vector<Op<DescTraits::Payload>>> desc_ops;
+  std::vector<std::vector<Op<DataTraits::Payload>>> data_ops;
+};
+
 void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights,
                                   const std::vector<std::uint64_t>& touched, SyncStats& st) {
-  const unsigned ds = b_.start_depth, layers = layerCount();
-  // 1. Per touched key (in parallel for many keys): what the tables hold
-  //    against what the tree wants, and the hash of a wanted set. Reads
-  //    only, except the in-place rewrites of own ranges (below).
-  struct Derived {
-    bool desc_op = false, desc_present = false;
-    DescTraits::Payload dp{};
-    bool has_data = false, data_want = false;
-    std::optional<DataTraits::Payload> data_have;
-    std::vector<std::uint32_t> entries;  // wanted, unless in place
-    std::uint64_t set_hash = 0;
-    bool in_place = false;  // an own range with room for the entries: its words rewritten here
-    std::uint32_t count = 0;  // entries, when in place
-  };
+  const std::vector<Derived> derived = deriveTouched(tree, lights, touched);
+  Plan plan = planEdits(touched, derived);
+  st.keys += touched.size();
+  writeTables(plan, st);
+}
+
+// Step 1, per touched key (in parallel for many keys). Reads only, except
+// the in-place rewrites of own ranges: they touch only their own range's
+// words, so the derive tasks do them (noting the words per thread) instead
+// of the sequential step: most deepest leaves end there.
+std::vector<LinklessOctree::Derived> LinklessOctree::deriveTouched(const SceneOctree& tree,
+                                                                  const std::vector<gpu::PointLight>& lights,
+                                                                  const std::vector<std::uint64_t>& touched) {
+  const unsigned ds = b_.start_depth;
   std::vector<Derived> derived(touched.size());
-  // In-place rewrites touch only their own range's words, so the derive
-  // tasks do them (noting the words per thread) instead of the sequential
-  // step: most deepest leaves end there.
-  struct Scratch {
-    std::vector<std::uint32_t> entries;
-    std::vector<LightSetPool::Span> rewritten;
-  };
-  tbb::enumerable_thread_specific<Scratch> scratch;
+  ScratchPerThread scratch;
   auto derive = [&](std::size_t j) {
-    const std::uint64_t key = touched[j];
-    const unsigned t = keyDepth(key);
-    const glm::uvec3 c = keyCoord(key);
-    const bool has_desc = t >= ds && t < b_.depth;
-    const bool has_data = t > ds && t <= b_.depth;
+    const unsigned t = keyDepth(touched[j]);
+    const bool has_desc = t >= ds && t < b_.depth, has_data = t > ds && t <= b_.depth;
     if (!has_desc && !has_data) return;
+    const glm::uvec3 c = keyCoord(touched[j]);
     Derived& d = derived[j];
     const SceneOctree::NodeView v = tree.find(t, c);
     if (has_desc) {
@@ -247,161 +294,170 @@ void LinklessOctree::applyTouched(const SceneOctree& tree, const std::vector<gpu
         d.dp = p;
       }
     }
-    if (has_data) {
-      d.has_data = true;
-      d.data_have = data_[t - ds - 1].lookup(c);
-      d.data_want = v.exists && v.leaf && !v.lights->empty();
-      if (d.data_want) {
-        // An own range that exists already lends its words and, with room
-        // for the set, takes the new ones in place.
-        const bool own = ownsRange(t);
-        std::optional<Reuse> reuse;
-        if (own && d.data_have)
-          reuse = Reuse{pool_.list().data() + d.data_have->offset,
-                        pool_.list().data() + d.data_have->offset + d.data_have->count};
-        const std::vector<std::uint32_t>& set = *v.lights;
-        if (reuse && set.size() <= pool_.capacityOf(d.data_have->offset)) {
-          Scratch& sc = scratch.local();
-          const std::uint32_t offset = d.data_have->offset;
-          std::uint32_t* words = pool_.ownWords(offset);
-          // The lights before the first change keep their words (their masks
-          // are current: applyOctantRewrites()); the rest are merged.
-          std::uint32_t p = 0;
-          const std::uint32_t common = std::min(std::uint32_t(set.size()), d.data_have->count);
-          while (p < common && entryLight(words[p]) == set[p]) ++p;
-          const Reuse rest{words + p, reuse->last};
-          entriesOf(t, c, set.data() + p, set.size() - p, lights, nullptr, &rest, sc.entries);
-          std::uint32_t first = ~0u, last = 0;
-          for (std::uint32_t k = 0; k < sc.entries.size(); ++k)
-            if (words[p + k] != sc.entries[k]) {
-              words[p + k] = sc.entries[k];
-              first = std::min(first, p + k);
-              last = p + k;
-            }
-          if (first != ~0u) sc.rewritten.push_back({offset + first, offset + last + 1});
-          d.in_place = true;
-          d.count = std::uint32_t(set.size());
-          if (d.count != d.data_have->count) {
-            const std::uint32_t head = pool_.resizeOwn(offset, d.count);
-            sc.rewritten.push_back({head, head + 1});
-          }
-        } else {
-          entriesOf(t, c, set.data(), set.size(), lights, nullptr, reuse ? &*reuse : nullptr, d.entries);
-          if (!own) d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
-        }
-      }
-    }
+    if (has_data) deriveData(t, c, v, lights, d, scratch);
   };
-  if (touched.size() < 512) {
+  if (touched.size() < kParallelDeriveMinKeys) {
     for (std::size_t j = 0; j < touched.size(); ++j) derive(j);
   } else {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, touched.size(), 64), [&](const auto& r) {
       for (std::size_t j = r.begin(); j != r.end(); ++j) derive(j);
     });
   }
-
-  // 2. Sequentially, in key order: interning the wanted sets, the edit lists.
-  struct DescOp {
-    glm::uvec3 key;
-    bool present;
-    DescTraits::Payload p;
-  };
-  struct DataOp {
-    glm::uvec3 key;
-    bool present;
-    DataTraits::Payload p;
-  };
-  std::vector<std::vector<DescOp>> desc_ops(layers);
-  std::vector<std::vector<DataOp>> data_ops(layers);
-  std::vector<std::uint32_t> release;
-  st.keys += touched.size();
-  for (const Scratch& sc : scratch)
+  for (const DeriveScratch& sc : scratch)
     for (const auto& span : sc.rewritten) pool_.noteRewritten(span.first, span.end);
+  return derived;
+}
+
+void LinklessOctree::deriveData(unsigned t, const glm::uvec3& c, const SceneOctree::NodeView& v,
+                                const std::vector<gpu::PointLight>& lights, Derived& d, ScratchPerThread& sc) {
+  d.has_data = true;
+  d.data_have = data_[t - b_.start_depth - 1].lookup(c);
+  d.data_want = v.exists && v.leaf && !v.lights->empty();
+  if (!d.data_want) return;
+  // An own range that exists already lends its words and, with room for
+  // the set, takes the new ones in place.
+  const bool own = ownsRange(t);
+  const std::vector<std::uint32_t>& set = *v.lights;
+  std::optional<Reuse> reuse;
+  if (own && d.data_have)
+    reuse = Reuse{pool_.list().data() + d.data_have->offset,
+                  pool_.list().data() + d.data_have->offset + d.data_have->count};
+  if (reuse && set.size() <= pool_.capacityOf(d.data_have->offset)) {
+    rewriteInPlace(t, c, set, *d.data_have, lights, sc.local());
+    d.in_place = true;
+    d.count = std::uint32_t(set.size());
+    return;
+  }
+  entriesOf(t, c, set.data(), set.size(), lights, nullptr, reuse ? &*reuse : nullptr, d.entries);
+  if (!own) d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
+}
+
+void LinklessOctree::rewriteInPlace(unsigned t, const glm::uvec3& c, const std::vector<std::uint32_t>& set,
+                                    const DataTraits::Payload& have, const std::vector<gpu::PointLight>& lights,
+                                    DeriveScratch& sc) {
+  const std::uint32_t offset = have.offset;
+  std::uint32_t* words = pool_.ownWords(offset);
+  // The lights before the first change keep their words (their masks are
+  // current: applyOctantRewrites()); the rest are merged.
+  std::uint32_t p = 0;
+  const std::uint32_t common = std::min(std::uint32_t(set.size()), have.count);
+  while (p < common && entryLight(words[p]) == set[p]) ++p;
+  const Reuse rest{words + p, words + have.count};
+  entriesOf(t, c, set.data() + p, set.size() - p, lights, nullptr, &rest, sc.entries);
+  std::uint32_t first = ~0u, last = 0;
+  for (std::uint32_t k = 0; k < sc.entries.size(); ++k)
+    if (words[p + k] != sc.entries[k]) {
+      words[p + k] = sc.entries[k];
+      first = std::min(first, p + k);
+      last = p + k;
+    }
+  if (first != ~0u) sc.rewritten.push_back({offset + first, offset + last + 1});
+  if (set.size() != have.count) {
+    const std::uint32_t head = pool_.resizeOwn(offset, std::uint32_t(set.size()));
+    sc.rewritten.push_back({head, head + 1});
+  }
+}
+
+// Step 2, sequentially in key order: interning the wanted sets (so that
+// offsets do not depend on threads), and the edit lists per table.
+LinklessOctree::Plan LinklessOctree::planEdits(const std::vector<std::uint64_t>& touched,
+                                               const std::vector<Derived>& derived) {
+  const unsigned ds = b_.start_depth;
+  Plan plan;
+  plan.desc_ops.resize(layerCount());
+  plan.data_ops.resize(layerCount());
+  std::vector<std::uint32_t> release;
   for (std::size_t j = 0; j < touched.size(); ++j) {
     const Derived& d = derived[j];
     const unsigned t = keyDepth(touched[j]);
     const glm::uvec3 c = keyCoord(touched[j]);
-    if (d.desc_op) desc_ops[t - ds].push_back({c, d.desc_present, d.dp});
+    if (d.desc_op) plan.desc_ops[t - ds].push_back({c, d.desc_present, d.dp});
     if (!d.has_data) continue;
-    const unsigned i = t - ds - 1;
+    auto& ops = plan.data_ops[t - ds - 1];
     const auto& have = d.data_have;
     if (d.in_place) {
-      const std::uint32_t n = d.count;
-      if (n != have->count) data_ops[i].push_back({c, true, {have->offset, n}});  // resized in step 1
+      if (d.count != have->count) ops.push_back({c, true, {have->offset, d.count}});  // resized in step 1
     } else if (d.data_want) {
       const std::uint32_t offset = ownsRange(t) ? pool_.acquireOwn(d.entries) : pool_.acquire(d.entries, d.set_hash);
       const DataTraits::Payload p{offset, std::uint32_t(d.entries.size())};
       if (have && *have == p) {
         pool_.release(p.offset);
       } else {
-        data_ops[i].push_back({c, true, p});
+        ops.push_back({c, true, p});
         if (have) release.push_back(have->offset);
       }
     } else if (have) {
-      data_ops[i].push_back({c, false, {}});
+      ops.push_back({c, false, {}});
       release.push_back(have->offset);
     }
   }
   for (const auto off : release) pool_.release(off);
+  return plan;
+}
 
-  // 3. The table writes: tables are independent, so each is edited by its own
-  //    task with its own random stream (drawn here, in table order).
-  PshBuildParams rehash;
-  rehash.slack = cfg_.rehash_slack;
-  rehash.sigma = cfg_.rehash_sigma;
+// One table's edits: erases first (their slots may take the inserts), then
+// updates and inserts; the thesis's criterion, a new key that collides even
+// after re-offsetting its group, rebuilds the table. True if the table's
+// size (and so the GPU layout) changed.
+template <class Hash, class Ops>
+bool LinklessOctree::editTable(Hash& table, const Ops& ops, unsigned task, SplitMix64& rng, SyncStats& ts) {
+  TableEdits& edits = edits_[task];
+  for (const auto& op : ops)
+    if (!op.present) {
+      table.erase(op.key, &edits);
+      ++ts.erases;
+    }
+  std::vector<typename Hash::Entry> failed;
+  for (const auto& op : ops) {
+    if (!op.present) continue;
+    if (table.update(op.key, op.p, &edits)) {
+      ++ts.updates;
+      continue;
+    }
+    ++ts.inserts;
+    if (!failed.empty()) {
+      failed.push_back({op.key, op.p});
+      continue;
+    }
+    switch (table.insert(op.key, op.p, rng, &edits)) {
+      case Hash::InsertResult::InPlace: ++ts.in_place; break;
+      case Hash::InsertResult::Reoffset: ++ts.reoffsets; break;
+      case Hash::InsertResult::Failed: failed.push_back({op.key, op.p}); break;
+    }
+  }
+  if (failed.empty()) return false;
+  auto all = table.entries();
+  all.insert(all.end(), failed.begin(), failed.end());
+  PshBuildParams p;
+  p.slack = cfg_.rehash_slack;
+  p.sigma = cfg_.rehash_sigma;
+  p.seed = tableSeed(cfg_.seed, task / 2, task & 1) ^ rng.next();
+  const std::size_t old_slots = table.slots(), old_offsets = table.offsetCount();
+  table = Hash::build(all, p);
+  edits.markAll();
+  ++ts.rehashed_tables;
+  return table.slots() != old_slots || table.offsetCount() != old_offsets;
+}
+
+// Step 3, the table writes: tables are independent, so each is edited by
+// its own task with its own random stream (drawn here, in table order).
+void LinklessOctree::writeTables(const Plan& plan, SyncStats& st) {
+  const unsigned layers = layerCount();
   std::vector<SyncStats> task_stats(2 * layers);
   std::vector<std::uint8_t> task_layout(2 * layers, 0);
   std::vector<std::uint64_t> task_seed(2 * layers);
   std::size_t ops_total = 0;
-  for (unsigned i = 0; i < layers; ++i) ops_total += desc_ops[i].size() + data_ops[i].size();
+  for (unsigned i = 0; i < layers; ++i) ops_total += plan.desc_ops[i].size() + plan.data_ops[i].size();
   for (auto& sd : task_seed) sd = rng_.next();
-  auto apply = [&](auto& table, auto& ops, unsigned task) {
-    using Hash = std::decay_t<decltype(table)>;
-    if (ops.empty()) return;
-    SyncStats& ts = task_stats[task];
-    SplitMix64 rng{task_seed[task]};
-    // Erases first: their slots may take the inserts.
-    for (const auto& op : ops)
-      if (!op.present) {
-        table.erase(op.key);
-        ++ts.erases;
-      }
-    std::vector<typename Hash::Entry> failed;
-    for (const auto& op : ops) {
-      if (!op.present) continue;
-      if (table.update(op.key, op.p)) {
-        ++ts.updates;
-        continue;
-      }
-      ++ts.inserts;
-      if (!failed.empty()) {
-        failed.push_back({op.key, op.p});
-        continue;
-      }
-      switch (table.insert(op.key, op.p, rng)) {
-        case Hash::InsertResult::InPlace: ++ts.in_place; break;
-        case Hash::InsertResult::Reoffset: ++ts.reoffsets; break;
-        case Hash::InsertResult::Failed: failed.push_back({op.key, op.p}); break;
-      }
-    }
-    if (!failed.empty()) {
-      // The thesis's criterion: a new key collides -> rebuild this table.
-      auto all = table.entries();
-      all.insert(all.end(), failed.begin(), failed.end());
-      PshBuildParams p = rehash;
-      p.seed = tableSeed(cfg_.seed, task / 2, task & 1) ^ rng.next();
-      const std::size_t old_slots = table.slots(), old_offsets = table.offsetCount();
-      table = Hash::build(all, p);
-      ++ts.rehashed_tables;
-      if (table.slots() != old_slots || table.offsetCount() != old_offsets) task_layout[task] = 1;
-    }
-  };
   auto applyTask = [&](unsigned task) {
     const unsigned i = task / 2;
-    if (task & 1) apply(data_[i], data_ops[i], task);
-    else apply(desc_[i], desc_ops[i], task);
+    const bool data = task & 1;
+    if (data ? plan.data_ops[i].empty() : plan.desc_ops[i].empty()) return;
+    SplitMix64 rng{task_seed[task]};
+    task_layout[task] = data ? editTable(data_[i], plan.data_ops[i], task, rng, task_stats[task])
+                             : editTable(desc_[i], plan.desc_ops[i], task, rng, task_stats[task]);
   };
-  if (ops_total < 4096) {
+  if (ops_total < kParallelTableEditsMinOps) {
     for (unsigned task = 0; task < 2 * layers; ++task) applyTask(task);
   } else {
     tbb::parallel_for(0u, 2 * layers, applyTask);
@@ -488,11 +544,12 @@ bool LinklessOctree::compactIfWanted() {
   auto remapLayer = [&](unsigned i) {
     data_[i].remapPayloads([&](const DataTraits::Payload& p) { return DataTraits::Payload{remap[p.offset], p.count}; });
   };
-  if (pool_.list().size() < 16384) {
+  if (pool_.list().size() < kParallelRemapMinEntries) {
     for (unsigned i = 0; i < layerCount(); ++i) remapLayer(i);
   } else {
     tbb::parallel_for(0u, layerCount(), remapLayer);
   }
+  for (unsigned i = 0; i < layerCount(); ++i) edits_[2 * i + 1].markAll();
   return true;
 }
 

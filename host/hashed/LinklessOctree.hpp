@@ -35,6 +35,7 @@
 #include "host/hashed/OctreeBounds.hpp"
 #include "host/hashed/PerfectSpatialHash.hpp"
 #include "host/hashed/SceneOctree.hpp"
+#include "host/hashed/TableEdits.hpp"
 
 namespace ml::hashed {
 
@@ -99,12 +100,14 @@ class LinklessOctree {
   LightSetPool& pool() { return pool_; }
   const LightSetPool& pool() const { return pool_; }
   std::vector<LayerStats> layerStats() const;
-  const std::vector<LayerStats>& buildStats() const { return build_stats_; }
   std::size_t tableBytes() const;
   std::size_t gpuBytes() const;  // tables + header + light index list
 
   // GPU image.
   std::uint64_t layoutVersion() const { return layout_version_; }
+  // Table `layer`'s desc (data: false) or data hash's edits since the last
+  // take (all of it after a build, rehash or compaction).
+  TableEdits takeEdits(unsigned layer, bool data);
   std::vector<std::uint32_t> headerWords() const;
   std::size_t offsetBase(unsigned layer, bool data) const;  // in words
   std::size_t descSlotBase(unsigned layer) const;           // in slots
@@ -115,6 +118,8 @@ class LinklessOctree {
 
  private:
   void computeBases();
+  void hashTables(const std::vector<std::vector<DescHash::Entry>>& desc_entries,
+                  const std::vector<std::vector<DataHash::Entry>>& data_entries);
   bool ownsRange(unsigned t) const { return cfg_.octant_masks && t == b_.depth; }
   // A leaf's index list entries: its lights with their octant masks, from
   // `tables` when given, else from `lights`; with `reuse`, the
@@ -125,10 +130,30 @@ class LinklessOctree {
   void entriesOf(unsigned t, const glm::uvec3& c, const std::uint32_t* set, std::size_t n,
                  const std::vector<gpu::PointLight>& lights, const OctantTables* tables, const Reuse* reuse,
                  std::vector<std::uint32_t>& out) const;
+  // applyTouched()'s phases: derive what each touched key wants (parallel,
+  // with own ranges rewritten in place), plan the edits per table (interning
+  // sets in key order), write the tables (one task each).
+  struct Derived;
+  struct DeriveScratch;
+  struct ScratchPerThread;  // a DeriveScratch per thread, taken only when needed
+  struct Plan;
+  std::vector<Derived> deriveTouched(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights,
+                                     const std::vector<std::uint64_t>& touched);
+  void deriveData(unsigned t, const glm::uvec3& c, const SceneOctree::NodeView& v,
+                  const std::vector<gpu::PointLight>& lights, Derived& d, ScratchPerThread& sc);
+  void rewriteInPlace(unsigned t, const glm::uvec3& c, const std::vector<std::uint32_t>& set,
+                      const DataTraits::Payload& have, const std::vector<gpu::PointLight>& lights,
+                      DeriveScratch& sc);
+  Plan planEdits(const std::vector<std::uint64_t>& touched, const std::vector<Derived>& derived);
+  void writeTables(const Plan& plan, SyncStats& stats);
+  template <class Hash, class Ops>
+  bool editTable(Hash& table, const Ops& ops, unsigned task, SplitMix64& rng, SyncStats& stats);
+
   OctreeBounds b_;
   HashedConfig cfg_;
   std::vector<DescHash> desc_;
   std::vector<DataHash> data_;
+  std::vector<TableEdits> edits_;  // per table: desc 2i, data 2i + 1
   std::vector<LayerStats> build_stats_;
   LightSetPool pool_;
   SplitMix64 rng_;

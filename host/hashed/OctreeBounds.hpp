@@ -55,18 +55,6 @@ struct HashedConfig {
   // moving lights leave the octree (forcing a full rebuild) less often.
   // Empty space costs nothing but, at worst, one more layer.
   double bounds_padding = 0.05;
-  // Dynamic updates: skip removing moved lights from the nodes they left
-  // (extra indices are harmless: the light's attenuation is 0 there) until
-  // `lazy_flush_fraction` of the lights are stale; then clean up exactly.
-  bool lazy_removal = false;
-  double lazy_flush_fraction = 0.25;
-  // Dynamic updates: edit the scene octree for the moved lights in parallel,
-  // one task per subtree at depth 2 (SceneOctree::replaceAll), after all
-  // their octrees are built; off: one light at a time on one thread while
-  // the other threads build the octrees. Same result either way. Off by
-  // default: on the 2-core machine it was measured on, the reserved node
-  // blocks and the lost overlap cost more than the parallel edits saved.
-  bool parallel_tree_edits = false;
   // An update touching more than this fraction of the lights rebuilds
   // instead (same result, less work).
   double max_incremental_fraction = 0.5;

@@ -29,7 +29,8 @@
 //    slot is empty, else re-offsets the key's whole offset group (one Phi
 //    entry) into free slots, else reports Failed and the caller rebuilds the
 //    table; erase() marks the slot empty (its Phi entry stays). Edited slots
-//    and offsets are recorded for partial uploads.
+//    and offsets are noted into the caller's TableEdits, when given (for
+//    partial uploads).
 //  - Keys are < 2^15 per axis.
 #include <glm/glm.hpp>
 
@@ -41,6 +42,8 @@
 #include <optional>
 #include <stdexcept>
 #include <vector>
+
+#include "host/hashed/TableEdits.hpp"
 
 namespace ml::hashed {
 
@@ -115,10 +118,10 @@ class PerfectSpatialHash {
   void prefetchSlot(std::uint32_t s) const { __builtin_prefetch(&table_[std::size_t(s) * kWords]); }
 
   // --- dynamic edits ---
-  InsertResult insert(const glm::uvec3& key, const Payload& payload, SplitMix64& rng,
+  InsertResult insert(const glm::uvec3& key, const Payload& payload, SplitMix64& rng, TableEdits* edits = nullptr,
                       unsigned random_tries = 64);
-  bool update(const glm::uvec3& key, const Payload& payload);
-  bool erase(const glm::uvec3& key);
+  bool update(const glm::uvec3& key, const Payload& payload, TableEdits* edits = nullptr);
+  bool erase(const glm::uvec3& key, TableEdits* edits = nullptr);
 
   // --- contents and GPU images ---
   glm::uvec3 m() const { return m_; }  // hash table dimensions
@@ -154,25 +157,6 @@ class PerfectSpatialHash {
         std::uint32_t* w = &table_[std::size_t(s) * kWords];
         writeSlot(s, slotKey(s), f(Traits::unpack(w)));
       }
-    all_dirty_ = true;
-  }
-
-  // Edited slots/offsets since the last take; `all` when the whole table changed.
-  struct Dirty {
-    bool all = false;
-    std::vector<std::uint32_t> slots, offsets;
-  };
-  Dirty takeDirty() {
-    Dirty d;
-    d.all = all_dirty_;
-    all_dirty_ = false;
-    if (!d.all) {
-      d.slots.swap(dirty_slots_);
-      d.offsets.swap(dirty_offsets_);
-    }
-    dirty_slots_.clear();
-    dirty_offsets_.clear();
-    return d;
   }
 
  private:
@@ -201,7 +185,6 @@ class PerfectSpatialHash {
     for (std::uint32_t i = 0; i < free_.size(); ++i) free_[i] = free_pos_[i] = i;
     size_ = 0;
     members_.clear();
-    all_dirty_ = true;
   }
   void writeSlot(std::uint32_t s, const glm::uvec3& key, const Payload& payload) {
     if (slotEmpty(s)) {  // take s off the free list (swap with its last entry)
@@ -239,6 +222,14 @@ class PerfectSpatialHash {
   // free slot (scanned from a random start), checked for the other keys.
   template <class F>
   bool searchFree(const glm::uvec3& h0_first, SplitMix64& rng, F&& fits, glm::uvec3& found) const;
+  // True when two of a group's keys share h0: they collide under any offset.
+  bool sharesH0(const std::vector<glm::uvec3>& h0) const;
+  // An offset that puts every h0 of the group at Phi entry `o` on a free
+  // slot (`fits`): its assigned neighbours' offsets, then `random_tries`
+  // random ones, then searchFree().
+  template <class F>
+  bool findOffset(std::uint32_t o, const std::vector<std::uint8_t>* assigned, const std::vector<glm::uvec3>& h0,
+                  SplitMix64& rng, unsigned random_tries, F&& fits, glm::uvec3& found) const;
   enum class Assign { Ok, SharedH0, Failed };
   Assign assignAll(const std::vector<Entry>& entries, SplitMix64& rng, unsigned random_tries,
                    std::uint64_t& rejected);
@@ -253,8 +244,6 @@ class PerfectSpatialHash {
   std::vector<std::vector<std::uint32_t>> members_;
   // The empty slots, and each slot's position in that list (~0u: occupied).
   std::vector<std::uint32_t> free_, free_pos_;
-  bool all_dirty_ = true;
-  std::vector<std::uint32_t> dirty_slots_, dirty_offsets_;
 };
 
 // ---------------------------------------------------------------------------
@@ -334,6 +323,28 @@ bool PerfectSpatialHash<Traits>::searchFree(const glm::uvec3& h0, SplitMix64& rn
 }
 
 template <class Traits>
+bool PerfectSpatialHash<Traits>::sharesH0(const std::vector<glm::uvec3>& h0) const {
+  std::vector<std::uint32_t> index(h0.size());
+  for (std::size_t i = 0; i < h0.size(); ++i) index[i] = h0[i].x + m_.x * (h0[i].y + m_.y * h0[i].z);
+  std::sort(index.begin(), index.end());
+  return std::adjacent_find(index.begin(), index.end()) != index.end();
+}
+
+template <class Traits>
+template <class F>
+bool PerfectSpatialHash<Traits>::findOffset(std::uint32_t o, const std::vector<std::uint8_t>* assigned,
+                                            const std::vector<glm::uvec3>& h0, SplitMix64& rng,
+                                            unsigned random_tries, F&& fits, glm::uvec3& off) const {
+  if (tryNeighbours(o, assigned, fits, off)) return true;
+  const glm::uvec3 range = glm::min(m_, glm::uvec3(256));
+  for (unsigned t = 0; t < random_tries; ++t) {
+    off = glm::uvec3(rng.below(range.x), rng.below(range.y), rng.below(range.z));
+    if (fits(off)) return true;
+  }
+  return searchFree(h0[0], rng, fits, off);
+}
+
+template <class Traits>
 typename PerfectSpatialHash<Traits>::Assign PerfectSpatialHash<Traits>::assignAll(const std::vector<Entry>& entries,
                                                                                   SplitMix64& rng,
                                                                                   unsigned random_tries,
@@ -358,20 +369,14 @@ typename PerfectSpatialHash<Traits>::Assign PerfectSpatialHash<Traits>::assignAl
 
   std::vector<std::uint8_t> assigned(r, 0);
   std::vector<glm::uvec3> h0;
-  std::vector<std::uint32_t> h0_index;
   // Keys of one group sharing h0 collide under any offset: only a larger
   // offset table separates them. Cheap to see before placing anything.
   for (std::uint32_t o = 0; o < r; ++o) {
     if (start[o + 1] - start[o] < 2) continue;
-    h0_index.clear();
-    for (std::uint32_t i = start[o]; i < start[o + 1]; ++i) {
-      const glm::uvec3 h = entries[order[i]].key % m_;
-      h0_index.push_back(h.x + m_.x * (h.y + m_.y * h.z));
-    }
-    std::sort(h0_index.begin(), h0_index.end());
-    if (std::adjacent_find(h0_index.begin(), h0_index.end()) != h0_index.end()) return Assign::SharedH0;
+    h0.clear();
+    for (std::uint32_t i = start[o]; i < start[o + 1]; ++i) h0.push_back(entries[order[i]].key % m_);
+    if (sharesH0(h0)) return Assign::SharedH0;
   }
-  const glm::uvec3 range = glm::min(m_, glm::uvec3(256));
   for (const std::uint32_t o : groups) {
     const std::uint32_t b = start[o], e = start[o + 1];
     if (b == e) break;  // the rest are empty groups
@@ -386,13 +391,7 @@ typename PerfectSpatialHash<Traits>::Assign PerfectSpatialHash<Traits>::assignAl
       return true;
     };
     glm::uvec3 off;
-    bool ok = tryNeighbours(o, &assigned, fits, off);
-    for (unsigned t = 0; !ok && t < random_tries; ++t) {
-      off = glm::uvec3(rng.below(range.x), rng.below(range.y), rng.below(range.z));
-      ok = fits(off);
-    }
-    if (!ok) ok = searchFree(h0[0], rng, fits, off);
-    if (!ok) return Assign::Failed;
+    if (!findOffset(o, &assigned, h0, rng, random_tries, fits, off)) return Assign::Failed;
     offsets_[o] = packOffset(off);
     assigned[o] = 1;
     for (std::uint32_t i = b; i < e; ++i) {
@@ -445,7 +444,6 @@ PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<E
     if (rep.offset_growths > 200) throw std::logic_error("perfect spatial hash: construction does not converge");
   }
   rep.attempts = failures + 1;
-  h.all_dirty_ = true;
   rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (report) *report = rep;
   return h;
@@ -463,18 +461,21 @@ template <class Traits>
 typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::insert(const glm::uvec3& key,
                                                                                     const Payload& payload,
                                                                                     SplitMix64& rng,
+                                                                                    TableEdits* edits,
                                                                                     unsigned random_tries) {
+  TableEdits none{true, {}, {}};  // notes nothing
+  TableEdits& log = edits ? *edits : none;
   ensureMembers();
   const std::uint32_t s = slot(key);
   if (keyMatches(&table_[std::size_t(s) * kWords], key)) {
-    update(key, payload);
+    update(key, payload, edits);
     return InsertResult::InPlace;
   }
   const std::uint32_t o = offsetIndex(key);
   if (slotEmpty(s)) {
     writeSlot(s, key, payload);
     members_[o].push_back(s);
-    dirty_slots_.push_back(s);
+    log.slot(s);
     ++size_;
     return InsertResult::InPlace;
   }
@@ -489,13 +490,8 @@ typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::in
   for (const std::uint32_t gs : members_[o]) group.push_back({gs, slotKey(gs), slotPayload(gs)});
   group.push_back({~0u, key, payload});
   std::vector<glm::uvec3> h0;
-  std::vector<std::uint32_t> h0_index;
-  for (const auto& g : group) {
-    h0.push_back(g.key % m_);
-    h0_index.push_back(h0.back().x + m_.x * (h0.back().y + m_.y * h0.back().z));
-  }
-  std::sort(h0_index.begin(), h0_index.end());
-  if (std::adjacent_find(h0_index.begin(), h0_index.end()) != h0_index.end()) return InsertResult::Failed;
+  for (const auto& g : group) h0.push_back(g.key % m_);
+  if (sharesH0(h0)) return InsertResult::Failed;
   for (const auto& g : group)
     if (g.slot != ~0u) clearSlot(g.slot);
   auto fits = [&](const glm::uvec3& off) {
@@ -503,46 +499,39 @@ typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::in
       if (!slotEmpty(slotWith(h, off))) return false;
     return true;
   };
-  const glm::uvec3 range = glm::min(m_, glm::uvec3(256));
   glm::uvec3 off;
   // members_[o] is still listed, so tryNeighbours skips o itself by index.
-  bool ok = tryNeighbours(o, nullptr, fits, off);
-  for (unsigned t = 0; !ok && t < random_tries; ++t) {
-    off = glm::uvec3(rng.below(range.x), rng.below(range.y), rng.below(range.z));
-    ok = fits(off);
-  }
-  if (!ok) ok = searchFree(h0[0], rng, fits, off);
-  if (!ok) {
+  if (!findOffset(o, nullptr, h0, rng, random_tries, fits, off)) {
     for (const auto& g : group)
       if (g.slot != ~0u) writeSlot(g.slot, g.key, g.payload);
     return InsertResult::Failed;
   }
   for (const auto& g : group)
-    if (g.slot != ~0u) dirty_slots_.push_back(g.slot);
+    if (g.slot != ~0u) log.slot(g.slot);
   offsets_[o] = packOffset(off);
-  dirty_offsets_.push_back(o);
+  log.offset(o);
   members_[o].clear();
   for (std::size_t i = 0; i < group.size(); ++i) {
     const std::uint32_t ns = slotWith(h0[i], off);
     writeSlot(ns, group[i].key, group[i].payload);
     members_[o].push_back(ns);
-    dirty_slots_.push_back(ns);
+    log.slot(ns);
   }
   ++size_;
   return InsertResult::Reoffset;
 }
 
 template <class Traits>
-bool PerfectSpatialHash<Traits>::update(const glm::uvec3& key, const Payload& payload) {
+bool PerfectSpatialHash<Traits>::update(const glm::uvec3& key, const Payload& payload, TableEdits* edits) {
   const std::uint32_t s = slot(key);
   if (!keyMatches(&table_[std::size_t(s) * kWords], key)) return false;
   writeSlot(s, key, payload);
-  dirty_slots_.push_back(s);
+  if (edits) edits->slot(s);
   return true;
 }
 
 template <class Traits>
-bool PerfectSpatialHash<Traits>::erase(const glm::uvec3& key) {
+bool PerfectSpatialHash<Traits>::erase(const glm::uvec3& key, TableEdits* edits) {
   const std::uint32_t s = slot(key);
   if (!keyMatches(&table_[std::size_t(s) * kWords], key)) return false;
   clearSlot(s);
@@ -550,7 +539,7 @@ bool PerfectSpatialHash<Traits>::erase(const glm::uvec3& key) {
     auto& mem = members_[offsetIndex(key)];
     mem.erase(std::find(mem.begin(), mem.end(), s));
   }
-  dirty_slots_.push_back(s);
+  if (edits) edits->slot(s);
   --size_;
   return true;
 }

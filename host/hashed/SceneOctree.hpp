@@ -41,6 +41,10 @@ inline glm::uvec3 keyCoord(std::uint64_t k) { return unpackCoord(k & 0xFFFFFFFFF
 inline glm::uvec3 childCoord(const glm::uvec3& c, unsigned k) {
   return c * 2u + glm::uvec3(k & 1u, (k >> 1) & 1u, (k >> 2) & 1u);
 }
+// The inverse: which child of its parent node `child` is.
+inline unsigned childBit(const glm::uvec3& child) {
+  return (child.x & 1u) | ((child.y & 1u) << 1) | ((child.z & 1u) << 2);
+}
 
 class SceneOctree {
  public:
@@ -66,20 +70,12 @@ class SceneOctree {
   // Many lights' replacements at once, with the same result as replace() on
   // each: the subtrees at depth min(2, start depth) are disjoint, so each is
   // edited by its own task (TBB) with the lights whose old or new version
-  // reaches it. The tree is the same for any thread count; only which free
-  // node blocks hold which nodes varies. Ends as for replace(), not null.
-  struct Replacement {
-    const LightOctree* old_version;
-    const LightOctree* new_version;
-    const std::vector<std::uint32_t>* old_ends;
-    const std::vector<std::uint32_t>* new_ends;
-  };
-  void replaceAll(const std::vector<Replacement>& batch);
-  // The same for LightCells versions (null: none): each light goes to the
-  // subtrees its versions' cell boxes reach. A light whose worst-case splits
-  // do not fit the free node blocks left when its turn comes is edited
-  // after the parallel part, on this thread (the result is the same: edits
-  // of one subtree commute once normalized).
+  // reaches it (null: no version), as their cell boxes say. The tree is the
+  // same for any thread count; only which free node blocks hold which nodes
+  // varies. A light whose worst-case splits do not fit the free node blocks
+  // left when its turn comes is edited after the parallel part, on this
+  // thread (the result is the same: edits of one subtree commute once
+  // normalized).
   struct CellsReplacement {
     const LightCells* old_version;
     const LightCells* new_version;
@@ -88,8 +84,6 @@ class SceneOctree {
   void replaceAll(const std::vector<CellsReplacement>& batch);
   // Per node of `light`: one past its preorder subtree (what replace() walks by).
   static void subtreeEnds(const LightOctree& light, std::vector<std::uint32_t>& end);
-  // Removes `light` from every leaf (e.g. a light whose old octree is unknown).
-  void removeEverywhere(std::uint32_t light);
   void normalize();
 
   void setRecording(bool on) { recording_ = on; }
@@ -195,14 +189,17 @@ class SceneOctree {
   template <class Edit>
   void runLanes(unsigned P, const std::vector<std::int32_t>& part,
                 const std::vector<std::vector<std::uint32_t>>& work, Edit&& edit);
-  // Reserved blocks not yet promised to a lane's edit (replaceAll(cells)).
+  std::size_t worstSplits(const LightCells* v, unsigned P, const glm::uvec3& sub) const;
+  std::vector<std::vector<std::uint32_t>> routeCells(const std::vector<CellsReplacement>& batch,
+                                                     const std::vector<std::int32_t>& part, unsigned P) const;
+  // Fewer lights than this are edited one at a time: not worth the tasks.
+  static constexpr std::size_t kParallelEditMinLights = 32;
+  // Free node blocks kept for parallel edits: room for a few thousand splits at a time.
+  static constexpr std::size_t kReservedBlocks = 2048;
+  // Reserved blocks not yet promised to a lane's edit (replaceAll()).
   bool claimBlocks(std::size_t n);
   void returnBlocks(std::size_t n) { budget_.fetch_add(std::ptrdiff_t(n), std::memory_order_relaxed); }
   std::atomic<std::ptrdiff_t> budget_{0};
-  // A version's coverage of the node (t, c) with the stream positioned as
-  // replaceRec() expects it there (t must not exceed the version's depth).
-  static Cover coverAt(Stream& s, unsigned t, const glm::uvec3& c);
-  static std::size_t splitBound(const LightOctree& o, unsigned start_depth);
 
   template <class F>
   void walk(std::int32_t n, unsigned t, const glm::uvec3& c, F& f) const {
