@@ -53,14 +53,22 @@ jobs="${OCLGRIND_JOBS:-2}"
 
 # Groups: name, gtest filter, Oclgrind build options. The GPU-shape tests of
 # the primitives (scan, reduce, compact/unique, radix, bitonic, segmented
-# sort), then those of the tiled and clustered kernels. Left out for time:
-# Shapes/ClusteredAssign.*/gpu (the cluster_assign.cl GPU shape: seven
-# assigners over three frames: over 100 CPU-s unoptimized, unfinished); run it with
-# scripts/oclgrind.sh 'Shapes/ClusteredAssign.*/gpu'.
+# sort), then those of the tiled and clustered kernels. Left out for time
+# (about 4 minutes in all on two cores is the budget of this CI step):
+#   - Shapes/ClusteredAssign.*/gpu (the cluster_assign.cl GPU shape: seven
+#     assigners over three frames; over 100 CPU-s unoptimized, unfinished);
+#     scripts/oclgrind.sh 'Shapes/ClusteredAssign.*/gpu' runs it;
+#   - the radix sort tests but Gpu_Pairs32 (which runs both GPU kernels,
+#     radix_hist and radix_scatter, keys and values): each takes about two
+#     CPU-minutes; OCLGRIND_BUILD_OPTIONS= scripts/oclgrind.sh 'Compute/Radix*Gpu*'
+#     runs them all (OCLGRIND_BUILD_OPTIONS: a custom filter's build options,
+#     default -cl-opt-disable).
 if (($#)); then
-  groups=("custom|$1|-cl-opt-disable")
+  groups=("custom|$1|${OCLGRIND_BUILD_OPTIONS--cl-opt-disable}")
 else
-  groups=("primitives|Compute/*Gpu*|"
+  radix_left_out="Compute/RadixSortTest.MatchesStableSort/Gpu_Keys*:Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs32Bits13"
+  radix_left_out+=":Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs64:Compute/RadixShapeTest.*"
+  groups=("primitives|Compute/*Gpu*-$radix_left_out|"
           "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.*/gpu|-cl-opt-disable")
 fi
 
