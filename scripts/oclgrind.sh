@@ -62,14 +62,17 @@ jobs="${OCLGRIND_JOBS:-2}"
 #     radix_hist and radix_scatter, keys and values): each takes about two
 #     CPU-minutes; OCLGRIND_BUILD_OPTIONS= scripts/oclgrind.sh 'Compute/Radix*Gpu*'
 #     runs them all (OCLGRIND_BUILD_OPTIONS: a custom filter's build options,
-#     default -cl-opt-disable).
+#     default -cl-opt-disable);
+#   - ReduceShapeTest.SegmentedMinMaxFixedSize/Gpu and
+#     ClusteredUnique.EveryPixelADifferentCluster/gpu (a minute or more each
+#     here; their kernels run in the other reduce and unique tests).
 if (($#)); then
   groups=("custom|$1|${OCLGRIND_BUILD_OPTIONS--cl-opt-disable}")
 else
   radix_left_out="Compute/RadixSortTest.MatchesStableSort/Gpu_Keys*:Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs32Bits13"
   radix_left_out+=":Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs64:Compute/RadixShapeTest.*"
-  groups=("primitives|Compute/*Gpu*-$radix_left_out|"
-          "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.*/gpu|-cl-opt-disable")
+  groups=("primitives|Compute/*Gpu*-$radix_left_out:Compute/ReduceShapeTest.SegmentedMinMaxFixedSize/Gpu|"
+          "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.*/gpu-Shapes/ClusteredUnique.EveryPixelADifferentCluster/gpu|-cl-opt-disable")
 fi
 
 command -v oclgrind >/dev/null || { echo "oclgrind.sh: oclgrind is not installed (apt-get install oclgrind)" >&2; exit 2; }
