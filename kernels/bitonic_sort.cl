@@ -1,5 +1,5 @@
 /* Bitonic sort of uint keys (uint values alongside when has_values), any n,
- * in place; see prim_bitonic.cl for the network and the implicit padding.
+ * in place; see prim_bitonic_network.cl for the network and the implicit padding.
  * The host runs, with C the block a work-item (CPU) or work-group (GPU) sorts
  * in fast memory:
  *   bitonic_block_sort            every C-block sorted (all sizes <= C);
@@ -12,7 +12,7 @@
  * CPU: C = `block` elements per work-item, sorted in place in global memory
  * (cache-resident). GPU: C = 2 * WG, in local memory. The global stage's
  * comparator t maps to indices through its half-run length h. */
-#include "prim_bitonic.cl"
+#include "prim_bitonic_network.cl"
 
 #if !ML_GPU
 

@@ -119,7 +119,7 @@ __kernel void cluster_pixel_boxes(__global const float* depth, __global const ui
                                   __global float4* box_hi) {
   const uint t = get_global_id(0);
   if (t >= n_tiles) return;
-  const uint x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
+  const uint ty = t / tiles_x, x0 = (t - ty * tiles_x) * tile, y0 = ty * tile; /* no `%`: see reduce.cl */
   const uint x1 = min(x0 + tile, cam.width), y1 = min(y0 + tile, cam.height);
   const float sx = 2.0f / (float)cam.width, sy = 2.0f / (float)cam.height;
   const float ix = 1.0f / cam.proj[0], iy = 1.0f / cam.proj[5], ox = cam.proj[8], oy = cam.proj[9];
@@ -606,7 +606,7 @@ __kernel void cluster_pixel_boxes_wg(__global const float* depth, __global const
   __local uint lbase;
   __local int llo[PIX_SLOTS * 3], lhi[PIX_SLOTS * 3];
   const uint t = get_group_id(0), lid = get_local_id(0), lsize = get_local_size(0);
-  const uint x0 = (t % tiles_x) * tile, y0 = (t / tiles_x) * tile;
+  const uint ty = t / tiles_x, x0 = (t - ty * tiles_x) * tile, y0 = ty * tile; /* no `%`: see reduce.cl */
   const uint w = min(x0 + tile, cam.width) - x0, npx = w * (min(y0 + tile, cam.height) - y0);
   const float sx = 2.0f / (float)cam.width, sy = 2.0f / (float)cam.height;
   const float ix = 1.0f / cam.proj[0], iy = 1.0f / cam.proj[5], ox = cam.proj[8], oy = cam.proj[9];
@@ -617,7 +617,8 @@ __kernel void cluster_pixel_boxes_wg(__global const float* depth, __global const
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   for (uint i = lid; i < npx; i += lsize) {
-    const uint c = cluster_of[(y0 + i / w) * cam.width + x0 + i % w];
+    const uint row = i / w;
+    const uint c = cluster_of[(y0 + row) * cam.width + x0 + (i - row * w)];
     if (c != 0xffffffffu) atomic_min(&lbase, c);
   }
   barrier(CLK_LOCAL_MEM_FENCE);
@@ -625,7 +626,7 @@ __kernel void cluster_pixel_boxes_wg(__global const float* depth, __global const
   __global int* glo = (__global int*)box_lo;
   __global int* ghi = (__global int*)box_hi;
   for (uint i = lid; i < npx; i += lsize) {
-    const uint x = x0 + i % w, y = y0 + i / w, p = y * cam.width + x;
+    const uint row = i / w, x = x0 + (i - row * w), y = y0 + row, p = y * cam.width + x;
     const uint c = cluster_of[p];
     if (c == 0xffffffffu) continue;
     const float z = linear_depth(depth[p], &cam);

@@ -40,7 +40,7 @@ __kernel void cluster_keys(__global const float* depth, CameraParams cam, __glob
     keys[p] = CLUSTER_INVALID;
     return;
   }
-  const uint x = p % cam.width, y = p / cam.width;
+  const uint y = p / cam.width, x = p - y * cam.width; /* no `%`: see tile_minmax in reduce.cl */
   const uint k = slice_of(linear_depth(d, &cam), slice_bounds, slices);
   keys[p] = ((((y / tile) << x_bits) | (x / tile)) << k_bits) | k;
 }
@@ -109,7 +109,7 @@ __kernel void tile_gather(__global const uint* keys, uint width, uint height, ui
                           __global const uint* offsets, __global uint* sort_keys, __global uint* sort_vals) {
   const uint p = get_global_id(0);
   if (p >= width * height) return;
-  const uint x = p % width, y = p / width;
+  const uint y = p / width, x = p - y * width;
   const uint tx = x / tile, ty = y / tile;
   const uint w = min(tile, width - tx * tile);
   const uint pos = offsets[ty * tiles_x + tx] + (y - ty * tile) * w + (x - tx * tile);

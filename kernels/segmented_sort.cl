@@ -1,6 +1,6 @@
 /* Many independent segments of uint keys (uint values alongside when
  * has_values) sorted in one launch, a bitonic network per segment (see
- * prim_bitonic.cl). Segment s is [offsets[s], offsets[s + 1]) (clamped to n)
+ * prim_bitonic_network.cl). Segment s is [offsets[s], offsets[s + 1]) (clamped to n)
  * when use_offsets, else [s * seg_size, (s + 1) * seg_size) clamped to n.
  * CPU: work-item g sorts segments [g * segs_per_item, (g + 1) * segs_per_item)
  * in place; a segment is small and stays in cache. GPU: work-group s sorts
@@ -8,7 +8,7 @@
  * global memory (the same network, global-memory barriers) so that no segment
  * size is refused. Both shapes take the same arguments; the last one is
  * segs_per_item on CPUs and max_np on GPUs (see below). */
-#include "prim_bitonic.cl"
+#include "prim_bitonic_network.cl"
 
 /* Segment s as [begin, end); two functions rather than out-parameters so
  * that the work-group kernel keeps no private variable whose address is

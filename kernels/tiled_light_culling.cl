@@ -130,7 +130,7 @@ __kernel void tile_depth_bounds(__global const float* depth, CameraParams cam, u
                                 __global float* lanes) {
   const uint t = get_global_id(0);
   if (t >= tiles_x * tiles_y) return;
-  const uint tx = t % tiles_x, ty = t / tiles_x;
+  const uint ty = t / tiles_x, tx = t - ty * tiles_x; /* no `%`: see tile_minmax in reduce.cl */
   const uint x0 = tx * TILE_SIZE, y0 = ty * TILE_SIZE;
   const uint x1 = min(x0 + TILE_SIZE, cam.width), y1 = min(y0 + TILE_SIZE, cam.height);
   float zmin = INFINITY, zmax = -INFINITY;
@@ -175,11 +175,12 @@ __kernel void tile_depth_bounds_wg(__global const float* depth, CameraParams cam
     lmask = 0u;
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  const uint tx = t % tiles_x, ty = t / tiles_x;
+  const uint ty = t / tiles_x, tx = t - ty * tiles_x; /* no `%`: see tile_minmax in reduce.cl */
   const uint x0 = tx * TILE_SIZE, y0 = ty * TILE_SIZE;
   const uint w = min((uint)TILE_SIZE, cam.width - x0), h = min((uint)TILE_SIZE, cam.height - y0);
   for (uint i = lid; i < w * h; i += lsize) {
-    const float d = depth[(y0 + i / w) * cam.width + x0 + i % w];
+    const uint row = i / w;
+    const float d = depth[(y0 + row) * cam.width + x0 + (i - row * w)];
     if (!is_sky_depth(d)) {
       const uint z = as_uint(linear_depth(d, &cam));
       atomic_min(&lmin, z);
@@ -193,7 +194,8 @@ __kernel void tile_depth_bounds_wg(__global const float* depth, CameraParams cam
     const float inv = 1.0f / fmax(zmax - zmin, 1e-20f);
     uint mask = 0;
     for (uint i = lid; i < w * h; i += lsize) {
-      const float d = depth[(y0 + i / w) * cam.width + x0 + i % w];
+      const uint row = i / w;
+      const float d = depth[(y0 + row) * cam.width + x0 + (i - row * w)];
       if (!is_sky_depth(d)) mask |= 1u << bin_of(linear_depth(d, &cam), zmin, inv);
     }
     atomic_or(&lmask, mask);
@@ -278,8 +280,11 @@ inline bool sphere_hits_tile_box(float4 c, float xl, float xr, float yb, float y
   return dx * dx + dy * dy + dz * dz <= c.w * c.w * (1.0f + 4.0f * DEPTH_EPS);
 }
 
-/* Does the sphere reach any shaded point of tile (tx, ty)? Conservative. */
-inline bool light_hits_tile(const LightRect* lr, int tx, int ty, const CameraParams* cam,
+/* Does the sphere reach any shaded point of tile (tx, ty)? Conservative.
+ * Always inlined: as a call, LLVM passes `undef` for the argument a depth mode
+ * does not read, and Oclgrind 21.10's uninitialized-value checker crashes on
+ * it (scripts/oclgrind.sh). */
+__attribute__((always_inline)) inline bool light_hits_tile(const LightRect* lr, int tx, int ty, const CameraParams* cam,
                             __global const float4* bounds, __global const uint* masks, uint tiles_x) {
   const uint t = (uint)ty * tiles_x + (uint)tx;
 #if DEPTH_MODE != DEPTH_NONE
@@ -445,7 +450,8 @@ __kernel void cull_scatter(__global const LightRect* rects, uint n, uint tiles_x
     while (word) {
       const uint k = base + (31u - clz(word & (~word + 1u)));
       word &= word - 1u;
-      const uint t = (uint)(lr.ty0 + (int)k / w) * tiles_x + (uint)(lr.tx0 + (int)k % w);
+      const int row = (int)k / w;
+      const uint t = (uint)(lr.ty0 + row) * tiles_x + (uint)(lr.tx0 + ((int)k - row * w));
       indices[offsets[t] + atomic_inc(&cursor[t])] = i;
     }
   }
@@ -639,8 +645,9 @@ inline int tile_of_bit(const LightRect* lr, uint k, uint tiles_x, int* tx, int* 
   const int w = lr->tx1 - lr->tx0 + 1;
   const uint area = (uint)(w * (lr->ty1 - lr->ty0 + 1));
   if (k >= area) return -1;
-  *tx = lr->tx0 + (int)(k % (uint)w);
-  *ty = lr->ty0 + (int)(k / (uint)w);
+  const uint row = k / (uint)w; /* no `%`: see tile_minmax in reduce.cl */
+  *tx = lr->tx0 + (int)(k - row * (uint)w);
+  *ty = lr->ty0 + (int)row;
   return *ty * (int)tiles_x + *tx;
 }
 

@@ -169,10 +169,12 @@ TEST_P(ClusteredUnique, EveryPixelADifferentCluster) {
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
   ClusterUniquer u(test::runtime(), UniqueMethod::PageTable, 6, GetParam());
-  const ClusterGrid g = syntheticGrid(96, 64, 1, 8);  // one pixel per tile
-  std::vector<std::uint32_t> keys(96 * 64);
-  for (unsigned y = 0; y < 64; ++y)
-    for (unsigned x = 0; x < 96; ++x) keys[y * 96 + x] = g.key(x, y, unsigned(rng() % 256));
+  // 6,144 clusters; 768 under MANYLIGHTS_TEST_SMALL (for Oclgrind).
+  const unsigned w = test::smallTests() ? 32u : 96u, h = test::smallTests() ? 24u : 64u;
+  const ClusterGrid g = syntheticGrid(w, h, 1, 8);  // one pixel per tile
+  std::vector<std::uint32_t> keys(w * h);
+  for (unsigned y = 0; y < h; ++y)
+    for (unsigned x = 0; x < w; ++x) keys[y * w + x] = g.key(x, y, unsigned(rng() % 256));
   checkAllMethods(u, keys, g);
 }
 

@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "host/scene/LightSet.hpp"
 #include "host/shared/gpu_types.h"
 
 namespace ml {
@@ -19,7 +20,8 @@ class LightAnimator {
  public:
   // UserError (naming --animate / --animate-speed) for a fraction outside
   // [0, 1] or a speed that is not positive and finite.
-  LightAnimator(std::vector<gpu::PointLight> lights, double fraction, std::uint64_t seed = 23, double speed = 0.25);
+  LightAnimator(std::vector<gpu::PointLight> lights, double fraction, std::uint64_t seed = kThesisSeed,
+                double speed = 0.25);
 
   std::size_t movesPerStep() const { return moves_; }
   const std::vector<gpu::PointLight>& step();

@@ -1,4 +1,4 @@
-/* Bitonic compare-exchange networks shared by bitonic_sort.cl and
+/* Include-only (no __kernel): bitonic compare-exchange networks shared by bitonic_sort.cl and
  * segmented_sort.cl.
  *
  * The network is the "flip" form: merging blocks of `size` first compares
