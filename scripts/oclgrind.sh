@@ -4,6 +4,7 @@
 # API and out-of-bounds checking, at small sizes (MANYLIGHTS_TEST_SMALL=1).
 # Passes only when every test passes and Oclgrind reports nothing.
 #   scripts/oclgrind.sh                 the tests below, two processes in parallel
+#   scripts/oclgrind.sh --ci             CI's shorter selection
 #   scripts/oclgrind.sh 'Gtest.Filter*' other tests (one gtest filter, -cl-opt-disable)
 # Env: BUILD_DIR (default build; must hold a built manylights-tests),
 #      OCLGRIND_JOBS (parallel processes, default 2), KEEP_LOGS=1 (keep logs).
@@ -66,7 +67,18 @@ jobs="${OCLGRIND_JOBS:-2}"
 #   - ReduceShapeTest.SegmentedMinMaxFixedSize/Gpu and
 #     ClusteredUnique.EveryPixelADifferentCluster/gpu (a minute or more each
 #     here; their kernels run in the other reduce and unique tests).
-if (($#)); then
+if [[ "${1:-}" == --ci ]]; then
+  # CI's selection (about 4 minutes on two idle cores): each GPU-shape kernel at
+  # least once, one test per primitive family; the rest of the default set runs
+  # without --ci.
+  prims="Compute/BitonicSortTest.MatchesStdSort/Gpu_Pairs:Compute/CompactTest.ValuesAndIndicesMatchCopyIf/Gpu_Half"
+  prims+=":Compute/UniqueTest.MatchesStdUnique/Gpu_Random:Compute/ReduceTest.MinMaxSumMatchStd/Gpu_F32"
+  prims+=":Compute/ReduceShapeTest.SegmentedMinMaxWithOffsets/Gpu:Compute/ReduceShapeTest.TileMinMaxOfDepthImage/Gpu"
+  prims+=":Compute/ScanTest.MatchesStdScan/Gpu_Exclusive:Compute/ScanTest.InPlace/Gpu_Inclusive"
+  prims+=":Compute/SegmentedSortShapeTest.OffsetSegmentsWithAStatedBound/Gpu:Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs32"
+  groups=("primitives|$prims|"
+          "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.AllPixelsOneCluster/gpu|-cl-opt-disable")
+elif (($#)); then
   groups=("custom|$1|${OCLGRIND_BUILD_OPTIONS--cl-opt-disable}")
 else
   radix_left_out="Compute/RadixSortTest.MatchesStableSort/Gpu_Keys*:Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs32Bits13"

@@ -31,7 +31,7 @@ step "tests (Release)"
 # The GPU-shape kernel tests under the Oclgrind device simulator (races,
 # uninitialized values, out-of-bounds accesses, API errors), at small sizes.
 if [[ "${OCLGRIND:-1}" != 0 ]]; then
-  scripts/oclgrind.sh
+  scripts/oclgrind.sh --ci
   step "Oclgrind"
 fi
 
