@@ -1,7 +1,7 @@
 #pragma once
-// Which octree nodes contain geometry (future work A of the thesis, seed 003
-// §2): the scene's triangles voxelised at the octree's cell resolution, and
-// the same occupancy for every shallower depth. Contract:
+// Which octree nodes contain geometry (future work A of the thesis,
+// Tegelaers, KU Leuven, §8.2): the scene's triangles voxelised at the
+// octree's cell resolution, and the same occupancy for every shallower depth. Contract:
 //  - A cell counts as containing geometry when a triangle touches the cell's
 //    box widened by `margin_cells` on every side (triangle/box separating-axis
 //    test), so points computed on or near a surface (interpolated in forward,

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "host/shared/gpu_types.h"
+#include "host/util/ThesisSeed.hpp"
 
 namespace ml::hashed {
 
@@ -41,7 +42,7 @@ struct HashedConfig {
   bool geometry_mask = false;
   // Build refuses parameter sets whose estimated footprint exceeds this.
   std::size_t memory_limit = std::size_t(1) << 30;
-  std::uint64_t seed = 23;  // the thesis's seed for random offset candidates
+  std::uint64_t seed = kThesisSeed;  // for random offset candidates
   // Hash tables get m >= slack * n entries: 1.0 is the thesis's sizing; a
   // dynamic update that forces a rehash rebuilds that table with
   // `rehash_slack` so that later inserts find empty slots more often.

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "host/hashed/TableEdits.hpp"
+#include "host/util/ThesisSeed.hpp"
 
 namespace ml::hashed {
 
@@ -63,7 +64,7 @@ struct SplitMix64 {
 };
 
 struct PshBuildParams {
-  std::uint64_t seed = 23;
+  std::uint64_t seed = kThesisSeed;
   double slack = 1.0;              // slots >= slack * (1.01) n
   double sigma = 1.0 / 6.0;        // offset entries per key (LH06, the thesis: 1/6)
   unsigned random_tries = 64;      // random offset candidates per group before the exhaustive search

@@ -54,7 +54,8 @@ class SceneOctree {
   void remove(const LightOctree& light);
   // A light's new version replacing its old one (same index): walks both
   // octrees together and touches only the nodes whose coverage differs
-  // (seed 003's additions and removals per node), which for small moves is
+  // (the additions and removals per node of the thesis's future-work chapter,
+  // Tegelaers, KU Leuven, §8.2), which for small moves is
   // a thin shell instead of two whole spheres.
   // `old_ends`/`new_ends`: subtreeEnds() of the two versions when the caller
   // has them (e.g. computed in parallel for a batch), else null.

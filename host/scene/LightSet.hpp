@@ -13,13 +13,9 @@
 #include <vector>
 
 #include "host/shared/gpu_types.h"
+#include "host/util/ThesisSeed.hpp"
 
 namespace ml {
-
-// The seed of the thesis's random choices (its light sets): the default seed
-// wherever this project draws one (light generation and animation, hash-table
-// and octree-offset searches), so that runs compare with the thesis's.
-inline constexpr std::uint64_t kThesisSeed = 23;
 
 struct LightVolume {
   glm::vec3 min{0.0f};
