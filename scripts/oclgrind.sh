@@ -119,19 +119,45 @@ run() {
 reports() { [[ -s "$1" ]] && awk 'BEGIN { RS = "" } END { print NR }' "$1" || echo 0; }
 
 SECONDS=0
-# 1. The canaries, in each build setup: each seeded bug must be reported, the
-# two workaround cases not.
-canary_ok=1
 setups=()
 for g in "${groups[@]}"; do
   [[ " ${setups[*]/#/|} " == *" |${g##*|} "* ]] || setups+=("${g##*|}")
 done
+# Every run at once (canaries of each build setup, every group's shards):
+# each Oclgrind process is single-threaded, and starting them together keeps
+# both cores busy to the end instead of waiting for each group's slowest shard.
+pids=() shards=() failed=0 c=0
+for opts in "${setups[@]}"; do
+  c=$((c + 1))
+  MANYLIGHTS_OCLGRIND_CANARY=1 run "canary$c" "ComputeOclgrindCanary.*" "$opts" &
+  pids+=($!)
+done
+ncanary=${#pids[@]}
+for g in "${groups[@]}"; do
+  IFS='|' read -r gname gfilter gopts <<<"$g"
+  for ((i = 0; i < jobs; ++i)); do
+    GTEST_TOTAL_SHARDS="$jobs" GTEST_SHARD_INDEX="$i" run "$gname$i" "$gfilter" "$gopts" &
+    pids+=($!)
+    shards+=("$gname$i")
+  done
+done
+canary_ok=1
+for ((k = 0; k < ${#pids[@]}; ++k)); do
+  if ! wait "${pids[$k]}"; then
+    if ((k < ncanary)); then
+      echo "oclgrind.sh: canary tests failed:" >&2; cat "$work/canary$((k + 1)).out" >&2; canary_ok=0
+    else
+      failed=1
+    fi
+  fi
+done
+echo "oclgrind: all runs done at ${SECONDS}s"
+
+# The canaries, in each build setup: each seeded bug must be reported, the
+# two workaround cases not.
 c=0
 for opts in "${setups[@]}"; do
   c=$((c + 1))
-  if ! MANYLIGHTS_OCLGRIND_CANARY=1 run "canary$c" "ComputeOclgrindCanary.*" "$opts"; then
-    echo "oclgrind.sh: canary tests failed (build options '$opts'):" >&2; cat "$work/canary$c.out" >&2; canary_ok=0
-  fi
   for kernel in canary_local_race canary_uninitialized_read canary_out_of_bounds; do
     if ! grep -q "Kernel: $kernel\b" "$work/canary$c.log" 2>/dev/null; then
       echo "oclgrind.sh: Oclgrind did not report the seeded bug in $kernel (build options '$opts')" >&2; canary_ok=0
@@ -141,21 +167,6 @@ for opts in "${setups[@]}"; do
     echo "oclgrind.sh: Oclgrind reported a correct kernel (canary_clean*): the shadow fix does not work" >&2
     awk 'BEGIN { RS = ""; ORS = "\n\n" } /canary_clean/' "$work/canary$c.log" | head -40 >&2; canary_ok=0
   fi
-done
-
-# 2. The kernel tests, group by group, each split over $jobs processes by
-# gtest sharding.
-failed=0 shards=()
-for g in "${groups[@]}"; do
-  IFS='|' read -r gname gfilter gopts <<<"$g"
-  pids=()
-  for ((i = 0; i < jobs; ++i)); do
-    GTEST_TOTAL_SHARDS="$jobs" GTEST_SHARD_INDEX="$i" run "$gname$i" "$gfilter" "$gopts" &
-    pids+=($!)
-    shards+=("$gname$i")
-  done
-  for p in "${pids[@]}"; do wait "$p" || failed=1; done
-  echo "oclgrind: $gname done at ${SECONDS}s"
 done
 
 ran=0 total=0

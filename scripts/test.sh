@@ -20,12 +20,36 @@ step() { echo "== $1: ${SECONDS}s =="; SECONDS=0; }
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
+# The suite as one gtest process per core (gtest sharding, logs in
+# <build>/tests-shard<i>.log), not one process per test as ctest runs it: each
+# process loads ~270 shared libraries and opens its own CL and GL contexts and
+# kernel cache, which cost more than most tests (`ctest` still runs them one
+# by one). A shard that crashes names its log; every shard's summary is printed.
+#   run_shards BUILD_DIR ENV_ASSIGNMENTS
+run_shards() {
+  local dir="$1" envs="$2" pids=() failed=0 i
+  for ((i = 0; i < jobs; ++i)); do
+    env $envs GTEST_TOTAL_SHARDS="$jobs" GTEST_SHARD_INDEX="$i" \
+      timeout 1800 "$dir/tests/manylights-tests" --gtest_brief=1 >"$dir/tests-shard$i.log" 2>&1 &
+    pids+=($!)
+  done
+  for ((i = 0; i < jobs; ++i)); do
+    if ! wait "${pids[$i]}"; then
+      echo "== shard $i failed ($dir/tests-shard$i.log) ==" >&2
+      grep -E '^\[  FAILED  \]' "$dir/tests-shard$i.log" >&2 || tail -60 "$dir/tests-shard$i.log" >&2
+      failed=1
+    fi
+    grep -E '^\[  (PASSED|SKIPPED|FAILED)  \] [0-9]+ test' "$dir/tests-shard$i.log" | sed "s/^/shard $i: /" || true
+  done
+  ((failed == 0))
+}
+
 SECONDS=0
 scripts/setup.sh --no-build
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DMANYLIGHTS_WERROR=ON "${launcher[@]}" >/dev/null
 cmake --build build -j"$jobs"
 step "build (Release)"
-ctest --test-dir build --output-on-failure -j"$jobs"
+run_shards build ""
 step "tests (Release)"
 
 # The GPU-shape kernel tests under the Oclgrind device simulator (races,
@@ -52,26 +76,7 @@ if [[ "${1:-}" != "--no-asan" ]]; then
   step "build (ASan + UBSan)"
   # Leak checking is off: the OpenCL ICD loader, PoCL and Mesa keep process-lifetime
   # allocations that LeakSanitizer reports; memory errors and UB still abort.
-  # A few processes for the whole suite (gtest sharding, one per core), not
-  # one per test: 350 sanitized process start-ups (each creating a CL context
-  # and a GL context) would cost more than the tests.
-  pids=()
-  for ((i = 0; i < jobs; ++i)); do
-    GTEST_TOTAL_SHARDS="$jobs" GTEST_SHARD_INDEX="$i" \
-      ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-      build-asan/tests/manylights-tests --gtest_brief=1 >"build-asan/tests-shard$i.log" 2>&1 &
-    pids+=($!)
-  done
-  failed=0
-  for ((i = 0; i < jobs; ++i)); do
-    if ! wait "${pids[$i]}"; then
-      echo "== ASan shard $i failed (build-asan/tests-shard$i.log) ==" >&2
-      tail -60 "build-asan/tests-shard$i.log" >&2
-      failed=1
-    fi
-    grep -E '^\[  (PASSED|FAILED)  \]' "build-asan/tests-shard$i.log" | sed "s/^/shard $i: /" || true
-  done
+  run_shards build-asan "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1"
   step "tests (ASan + UBSan)"
-  ((failed == 0))
 fi
 echo "== total: $(($(date +%s) - start))s =="

@@ -99,6 +99,7 @@ Summary summarize(std::vector<double> values) {
   for (double v : values) sum += v;
   s.mean = sum / static_cast<double>(values.size());
   s.median = percentile(values, 0.5);
+  s.p5 = percentile(values, 0.05);
   s.p95 = percentile(values, 0.95);
   s.max = values.back();
   s.min = values.front();

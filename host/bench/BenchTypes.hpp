@@ -42,9 +42,9 @@ std::vector<std::size_t> selectFrames(const FrameRange& range, std::size_t path_
 
 struct Summary {
   std::size_t n = 0;
-  double mean = 0, median = 0, p95 = 0, max = 0, min = 0;
+  double mean = 0, median = 0, p5 = 0, p95 = 0, max = 0, min = 0;
 };
-// p95 and median interpolate linearly between order statistics (numpy's default).
+// p5, p95 and median interpolate linearly between order statistics (numpy's default).
 Summary summarize(std::vector<double> values);
 // The q-quantile (0..1) of ascending values, interpolated the same way; 0 when empty.
 double percentile(const std::vector<double>& sorted, double q);
