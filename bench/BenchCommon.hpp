@@ -15,18 +15,16 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "host/bench/BenchTypes.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml::benchutil {
 
 using Clock = std::chrono::steady_clock;
 
-// Upper median (the middle element of the sorted copy); 0 for no samples.
-inline double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+// The project's one median (ml::summarize, interpolated between order
+// statistics, as `render` and `bench` report it); 0 for no samples.
+inline double median(std::vector<double> v) { return summarize(std::move(v)).median; }
 
 // One untimed warm-up call (kernel compile, buffer growth), then the median
 // wall time of `reps` calls, in seconds.
