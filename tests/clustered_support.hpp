@@ -1,59 +1,16 @@
 #pragma once
-// Random views for the clustered tests: a depth buffer of rectangles at random
-// distances (with slopes) over sky, and lights around the view including
-// huge ones and ones straddling the near plane / containing the eye.
-#include <glm/gtc/matrix_transform.hpp>
-
-#include <algorithm>
-#include <random>
-#include <vector>
-
-#include "host/scene/Camera.hpp"
-#include "host/scene/LightSet.hpp"
+// Random views for the clustered tests (support/RandomView.hpp, with depths
+// across the whole range and tiny lights at the near plane).
+#include "support/RandomView.hpp"
 
 namespace ml::test {
 
-struct ClusterCase {
-  Camera camera;
-  unsigned width = 0, height = 0;
-  std::vector<float> depth;  // window depth, row 0 bottom
-  std::vector<gpu::PointLight> lights;
-  gpu::CameraParams cam() const { return camera.params(width, height); }
-};
+using ClusterCase = RandomView;
 
+// Rectangles anywhere up to 80% of the far plane, and tiny lights at the near plane.
 inline ClusterCase randomClusterCase(std::mt19937_64& rng, unsigned w, unsigned h, std::size_t n_lights,
                                      float far_plane = 100.0f) {
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  ClusterCase c;
-  c.width = w;
-  c.height = h;
-  c.camera.eye = {u(rng) * 4 - 2, u(rng) * 2, u(rng) * 4 - 2};
-  c.camera.center = c.camera.eye + glm::vec3(u(rng) - 0.5f, u(rng) * 0.4f - 0.2f, -1.0f);
-  c.camera.fovy_degrees = 30 + u(rng) * 60;
-  c.camera.near_plane = 0.1f;
-  c.camera.far_plane = far_plane;
-  const glm::mat4 proj = c.camera.projection(float(w) / float(h));
-  auto window_depth = [&](float dist) { return gpu::distance_to_depth(dist, proj[2][2], proj[3][2]); };
-  c.depth.assign(std::size_t(w) * h, gpu::kSkyDepth);
-  for (int r = 0; r < 12; ++r) {
-    const unsigned x0 = unsigned(u(rng) * w), y0 = unsigned(u(rng) * h);
-    const unsigned x1 = std::min(w, x0 + 1 + unsigned(u(rng) * w / 2)), y1 = std::min(h, y0 + 1 + unsigned(u(rng) * h / 2));
-    const float d0 = 0.11f + u(rng) * 0.8f * far_plane, slope = (u(rng) - 0.5f) * 0.3f;
-    for (unsigned y = y0; y < y1; ++y)
-      for (unsigned x = x0; x < x1; ++x)
-        c.depth[y * w + x] = window_depth(std::clamp(d0 + slope * float(x - x0), 0.1f, far_plane));
-  }
-  const glm::mat4 inv_view = glm::inverse(c.camera.view());
-  for (std::size_t i = 0; i < n_lights; ++i) {
-    glm::vec3 v{u(rng) * 40 - 20, u(rng) * 30 - 15, -u(rng) * 40 + 5};
-    float r = 0.2f + u(rng) * 4;
-    if (i % 17 == 0) r = 20 + u(rng) * 30;                          // huge
-    if (i % 23 == 0) v = {u(rng) - 0.5f, u(rng) - 0.5f, -0.1f};     // straddling near / around the eye
-    if (i % 29 == 0) v.z = -0.1f + (u(rng) - 0.5f) * 0.05f, r = 0.02f;  // small, at the near plane
-    const glm::vec3 world = glm::vec3(inv_view * glm::vec4(v, 1));
-    c.lights.push_back(makeLight(world, r, {u(rng), u(rng), u(rng)}));
-  }
-  return c;
+  return randomView(rng, w, h, n_lights, {far_plane, 0.11f, 0.8f * far_plane, 0.3f, 0.1f, true});
 }
 
 }  // namespace ml::test

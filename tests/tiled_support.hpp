@@ -15,51 +15,16 @@
 #include "host/scene/LightSet.hpp"
 #include "host/tiled/TileCullerReference.hpp"
 #include "host/tiled/TileLightCuller.hpp"
+#include "support/RandomView.hpp"
 #include "support/TestDevice.hpp"
 
 namespace ml::test {
 
-struct CullCase {
-  Camera camera;
-  unsigned width, height;
-  std::vector<float> depth;  // window depth, row 0 bottom
-  std::vector<gpu::PointLight> lights;
-};
+using CullCase = RandomView;
 
-// A random view of a random "scene" depth: the buffer is made of rectangles at
-// random distances over a background, so tiles see empty space, single
-// surfaces and depth discontinuities.
+// A random view (support/RandomView.hpp) with rectangles within 30 units.
 inline CullCase randomCase(std::mt19937_64& rng, unsigned w, unsigned h, std::size_t n_lights) {
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  CullCase c;
-  c.width = w;
-  c.height = h;
-  c.camera.eye = {u(rng) * 4 - 2, u(rng) * 2, u(rng) * 4 - 2};
-  c.camera.center = c.camera.eye + glm::vec3(u(rng) - 0.5f, u(rng) * 0.4f - 0.2f, -1.0f);
-  c.camera.fovy_degrees = 30 + u(rng) * 60;
-  c.camera.near_plane = 0.1f;
-  c.camera.far_plane = 100.0f;
-  const glm::mat4 proj = c.camera.projection(float(w) / float(h));
-  auto window_depth = [&](float dist) { return gpu::distance_to_depth(dist, proj[2][2], proj[3][2]); };
-  c.depth.assign(std::size_t(w) * h, gpu::kSkyDepth);
-  for (int r = 0; r < 12; ++r) {
-    const unsigned x0 = unsigned(u(rng) * w), y0 = unsigned(u(rng) * h);
-    const unsigned x1 = std::min(w, x0 + 1 + unsigned(u(rng) * w / 2)), y1 = std::min(h, y0 + 1 + unsigned(u(rng) * h / 2));
-    const float d0 = 0.5f + u(rng) * 30, slope = (u(rng) - 0.5f) * 0.2f;
-    for (unsigned y = y0; y < y1; ++y)
-      for (unsigned x = x0; x < x1; ++x) c.depth[y * w + x] = window_depth(std::max(0.2f, d0 + slope * float(x - x0)));
-  }
-  // Lights around the view: in front, behind, containing the camera, straddling the near plane, huge.
-  const glm::mat4 inv_view = glm::inverse(c.camera.view());
-  for (std::size_t i = 0; i < n_lights; ++i) {
-    glm::vec3 v{u(rng) * 40 - 20, u(rng) * 30 - 15, -u(rng) * 40 + 5};
-    float r = 0.2f + u(rng) * 4;
-    if (i % 17 == 0) r = 20 + u(rng) * 30;              // huge
-    if (i % 23 == 0) v = {u(rng) - 0.5f, u(rng) - 0.5f, -0.1f};  // at the near plane / around the eye
-    const glm::vec3 world = glm::vec3(inv_view * glm::vec4(v, 1));
-    c.lights.push_back(makeLight(world, r, {u(rng), u(rng), u(rng)}));
-  }
-  return c;
+  return randomView(rng, w, h, n_lights);
 }
 
 // Runs `culler` on the case with poisoned outputs and checks the grid's
