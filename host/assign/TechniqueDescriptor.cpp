@@ -122,48 +122,28 @@ ParamValues TechniqueDescriptor::defaults() const {
   return v;
 }
 
+// ParamSpec is an aggregate: each builder names only the fields of its type.
 ParamSpec countParam(std::string key, std::string default_value, unsigned min, unsigned max, std::string help,
                      std::vector<std::string> words) {
-  ParamSpec p;
-  p.key = std::move(key);
-  p.type = ParamType::Count;
-  p.default_value = std::move(default_value);
-  p.help = std::move(help);
-  p.min = min;
-  p.max = max;
-  p.choices = std::move(words);
-  return p;
+  return {.key = std::move(key), .type = ParamType::Count, .default_value = std::move(default_value),
+          .help = std::move(help), .min = min, .max = max, .choices = std::move(words)};
 }
 
 ParamSpec choiceParam(std::string key, std::string default_value, std::vector<std::string> choices,
                       std::string help) {
-  ParamSpec p;
-  p.key = std::move(key);
-  p.type = ParamType::Choice;
-  p.default_value = std::move(default_value);
-  p.help = std::move(help);
-  p.choices = std::move(choices);
-  return p;
+  return {.key = std::move(key), .type = ParamType::Choice, .default_value = std::move(default_value),
+          .help = std::move(help), .choices = std::move(choices)};
 }
 
 ParamSpec switchParam(std::string key, bool default_value, std::string help) {
-  ParamSpec p;
-  p.key = std::move(key);
-  p.type = ParamType::Switch;
-  p.default_value = default_value ? "on" : "off";
-  p.help = std::move(help);
-  return p;
+  return {.key = std::move(key), .type = ParamType::Switch, .default_value = default_value ? "on" : "off",
+          .help = std::move(help)};
 }
 
 ParamSpec textParam(std::string key, std::string default_value, std::string help,
                     std::function<std::string(const std::string&)> check) {
-  ParamSpec p;
-  p.key = std::move(key);
-  p.type = ParamType::Text;
-  p.default_value = std::move(default_value);
-  p.help = std::move(help);
-  p.check = std::move(check);
-  return p;
+  return {.key = std::move(key), .type = ParamType::Text, .default_value = std::move(default_value),
+          .help = std::move(help), .check = std::move(check)};
 }
 
 ParamSpec kernelShapeParam() {

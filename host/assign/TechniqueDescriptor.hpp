@@ -39,10 +39,10 @@ struct ParamSpec {
   std::string default_value;
   std::string help;
   unsigned min = 0, max = 0;         // Count
-  std::vector<std::string> choices;  // Choice; Count: words accepted besides numbers
+  std::vector<std::string> choices{};  // Choice; Count: words accepted besides numbers
   // Text: "" when the value is accepted, else what is expected; "" is never
   // accepted, so check("") says what is expected (for help and errors).
-  std::function<std::string(const std::string&)> check;
+  std::function<std::string(const std::string&)> check{};
 
   std::string renderFlag() const;  // "--tile-depth"
   std::string allowed() const;     // "1..256", "1..1024 or auto", "none|minmax|mask", "on|off"
