@@ -67,6 +67,14 @@ void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, 
   checkVoxelGrid(grid);
   const std::size_t edge = grid.edge;
   const std::size_t bytes = edge * edge * edge * sizeof(gpu::VoxelAccum);
+  // The shader indexes one unsized SSBO array: past the driver's block limit
+  // its writes would be dropped without an error.
+  GLint64 max_block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  if (max_block > 0 && bytes > static_cast<std::size_t>(max_block))
+    throw UserError("voxel grid edge " + std::to_string(edge) + " needs " + std::to_string(bytes >> 20) +
+                    " MiB of voxel sums, more than this GL's shader storage block limit (" +
+                    std::to_string(max_block >> 20) + " MiB)");
   accum_->reserve(bytes);
   grid_ = grid;
   GlPassScope scope(timer, "vct-voxelize");

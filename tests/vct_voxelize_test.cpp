@@ -294,5 +294,23 @@ TEST(VctVoxelizePass, BadGridsAreUserErrors) {
   EXPECT_FLOAT_EQ(g.origin_voxel_size.x + 4 * g.origin_voxel_size.w, 0.5f);
 }
 
+// A grid whose sums exceed the GL's storage block limit is reported, not
+// voxelized into a truncated buffer.
+TEST(VctVoxelizePass, GridBeyondTheStorageBlockLimitIsAUserError) {
+  test::glContext();
+  GLint64 max_block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  const std::uint64_t largest = std::uint64_t(ML_VOXEL_MAX_EDGE) * ML_VOXEL_MAX_EDGE * ML_VOXEL_MAX_EDGE * sizeof(gpu::VoxelAccum);
+  if (std::uint64_t(max_block) >= largest) GTEST_SKIP() << "this GL takes the largest grid";
+  unsigned edge = ML_VOXEL_MAX_EDGE;
+  while (edge > 1 && std::uint64_t(edge / 2) * (edge / 2) * (edge / 2) * sizeof(gpu::VoxelAccum) > std::uint64_t(max_block)) edge /= 2;
+  std::mt19937 rng(1);
+  const Scene scene = sceneFromGrid(axisAlignedBox(rng, 8), randomGrid(rng, 8), {1, 1, 1, 1});
+  SceneGpu gpu_scene(scene);
+  VoxelizePass pass(test::runtime());
+  EXPECT_THROW(pass.run(gpu_scene, fitVoxelGrid(scene.bounds, edge, 1), nullptr), UserError);
+  glCheck("after the refused grid");
+}
+
 }  // namespace
 }  // namespace ml
