@@ -18,6 +18,7 @@
 #include "gl/SceneGpu.hpp"
 #include "gl/VoxelizePass.hpp"
 #include "host/util/Error.hpp"
+#include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 #include "support/TriangleBox.hpp"
@@ -292,6 +293,41 @@ TEST(VctVoxelizePass, BadGridsAreUserErrors) {
   const gpu::VoxelGridParams g = fitVoxelGrid(b, 8, 4);
   EXPECT_FLOAT_EQ(g.origin_voxel_size.w * 8, 3.0f * 1.01f);
   EXPECT_FLOAT_EQ(g.origin_voxel_size.x + 4 * g.origin_voxel_size.w, 0.5f);
+}
+
+// The Cornell box as loaded from glTF, in a fitted grid: the voxels the red and
+// green walls' inner faces cross (away from the other walls) are filled with
+// those walls' albedo only, so per-batch materials reach the sums.
+TEST(VctVoxelizePass, CornellWallsCarryTheirAlbedo) {
+  test::glContext();
+  const Scene scene = loadGltfScene(std::string(MANYLIGHTS_TEST_DATA_DIR) + "/cornell/cornell.gltf");
+  constexpr unsigned kEdge = 32;
+  const gpu::VoxelGridParams grid = fitVoxelGrid(scene.bounds, kEdge, 1);
+  SceneGpu gpu_scene(scene);
+  VoxelizePass pass(test::runtime());
+  pass.run(gpu_scene, grid, nullptr);
+  std::vector<gpu::VoxelAccum> v(kEdge * kEdge * kEdge);
+  pass.accum().download(v.data(), v.size() * sizeof(gpu::VoxelAccum));
+  const glm::vec3 origin(grid.origin_voxel_size.x, grid.origin_voxel_size.y, grid.origin_voxel_size.z);
+  const float vs = grid.origin_voxel_size.w;
+  const auto cell = [&](float w, int axis) { return unsigned((w - origin[axis]) / vs); };
+  struct Wall {
+    float x;
+    glm::vec3 albedo;  // scripts/make_cornell_box.py
+  };
+  std::size_t checked = 0;
+  for (const Wall& wall : {Wall{-1.0f + 1e-3f, {0.63f, 0.065f, 0.05f}}, Wall{1.0f - 1e-3f, {0.14f, 0.45f, 0.091f}}}) {
+    const unsigned x = cell(wall.x, 0);
+    for (unsigned z = cell(-0.8f, 2); z <= cell(0.8f, 2); ++z)
+      for (unsigned y = cell(0.3f, 1); y <= cell(1.8f, 1); ++y) {
+        const gpu::VoxelAccum& a = v[x + kEdge * (y + kEdge * z)];
+        ASSERT_GT(a.albedo_count[3], 0u) << "voxel " << x << " " << y << " " << z;
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(a.albedo_count[c] / double(a.albedo_count[3]) / 255.0, wall.albedo[c], 1.0 / 255.0);
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 200u);
 }
 
 // A grid whose sums exceed the GL's storage block limit is reported, not
