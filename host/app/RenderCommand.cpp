@@ -99,6 +99,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--animate-speed", a.animate_speed,
                   "--animate step per axis, times the light radius (lights stay within twice that of their start)")
       ->capture_default_str();
+  addGiFlags(*cmd, a.gi);
   addTechniqueFlags(*cmd, a.params, &a.views);
   return cmd;
 }
@@ -123,6 +124,7 @@ void checkRenderFlags(const RenderArgs& a, const TechniqueInfo& tech) {
   requireImageFile("--out", a.out);
   requireImageFile("--heatmap", a.heatmap);
   requireOutputFile("--stats-json", a.stats_json);
+  checkGiFlags(a.gi, a.out);
   std::uint64_t count = 0;
   if (parseLightCount(a.inputs.lights, count)) checkLightLimits("--lights", count, {&tech}, "generated");
 }
@@ -138,6 +140,7 @@ struct RenderRun {
   bool has_counts = false;
   std::size_t animated_per_frame = 0;
   std::vector<std::pair<std::string, double>> stats;
+  GiResult gi;
 };
 
 void printTimes(const TimedFrame& t) {
@@ -224,6 +227,12 @@ void writeStatsJson(const RenderArgs& a, const TechniqueInfo& tech, const SceneI
   nlohmann::ordered_json st = nlohmann::ordered_json::object();
   for (const auto& [k, v] : run.stats) st[k] = v;
   j["technique_stats"] = st;
+  j["gi"] = a.gi.mode;
+  if (run.gi.ran) {
+    j["gi_samples"] = a.gi.samples;
+    j["gi_shadows"] = a.gi.shadows;
+    j["gi_reference_ms"] = run.gi.ms;
+  }
   j["device"] = ctx.cl->info().name;
   j["gl"] = ctx.gl->describe();
   writeFileAtomically("--stats-json", a.stats_json, j.dump(2) + "\n");
@@ -254,7 +263,8 @@ int runRender(const RenderArgs& a) {
   FrameRenderer renderer(*ctx.cl, inputs.scene, width, height);
   renderer.setLights(inputs.lights);
   auto assigner = makeAssigner(tech, *ctx.cl, params, &inputs.scene);
-  const RenderRun run = renderFrames(a, tech, inputs, renderer, *assigner);
+  RenderRun run = renderFrames(a, tech, inputs, renderer, *assigner);
+  run.gi = runGi(a.gi, inputs, inputs.cameras.frames[a.frame], width, height, a.out);
   if (!run.stats.empty()) {
     std::printf("\n");
     for (const auto& [k, v] : run.stats) std::printf("%-20s%14.6g\n", k.c_str(), v);

@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include "host/app/GiOptions.hpp"
 #include "host/app/SceneInputs.hpp"
 #include "host/techniques/Registry.hpp"
 
@@ -32,6 +33,7 @@ struct RenderArgs {
   // (distinct, chosen at random, seed 23) takes a random step (LightAnimator).
   double animate = 0.0;
   double animate_speed = 0.25;
+  GiArgs gi;                                  // --gi reference: the ray-traced indirect image
   std::map<std::string, std::string> params;  // technique flags given, by parameter key ("tile" -> "32")
   std::map<std::string, std::string> views;   // debug views asked for, by view name ("cluster" -> "c.png")
 };

@@ -1,0 +1,75 @@
+#pragma once
+// Voxelization of voxel cone tracing (002's single pass): the scene's triangles,
+// projected along their dominant axis and rasterised conservatively, add their
+// albedo, normal and a count to every level-0 voxel they cross, as the integer
+// sums of host/shared/voxel_types.h (VoxelAccum), in a SharedBuffer so that the
+// OpenCL kernels (resolve, injection, mips) read the result where it lies.
+//
+// One grid, a cube fitted around the scene's bounds (fitVoxelGrid), instead of
+// 002's camera-centred cascade: the scenes here are rooms of bounded size
+// (Cornell box, the default scene), the grid is voxelized once for static
+// geometry and reused from every viewpoint, and the Embree reference it is
+// compared with sees the whole scene too; a cascade would re-voxelize as the
+// camera moves and make the error depend on the viewpoint.
+//
+// Conservativeness: triangle dilation by half a voxel in the geometry shader
+// (Hasselgren et al., GPU Gems 2 ch. 42) so that every pixel whose square the
+// projected triangle touches gets a fragment; in the fragment shader the
+// triangle's 2D bounds test (their AABB clip) and then the exact clip of the
+// pixel's square against the triangle's edges, whose depth range along the
+// column gives the voxels the triangle crosses there. So a voxel is filled
+// exactly when the triangle crosses it (up to float rounding at voxel faces).
+#include <memory>
+
+#include "gl/GlPassTimer.hpp"
+#include "gl/SceneGpu.hpp"
+#include "gl/ShaderProgram.hpp"
+#include "gl/SharedBuffer.hpp"
+#include "host/scene/Scene.hpp"
+#include "host/shared/voxel_types.h"
+
+namespace ml {
+
+// A cube of `edge` voxels per axis around `bounds` (centred, 1% larger than the
+// longest side, so geometry on the bounds lies strictly inside). Throws
+// UserError for an edge that is not a power of two in 1..ML_VOXEL_MAX_EDGE,
+// levels outside 1..log2(edge)+1, or empty bounds.
+gpu::VoxelGridParams fitVoxelGrid(const Aabb& bounds, unsigned edge, unsigned levels);
+// The same checks on a grid built by hand (tests, benchmarks).
+void checkVoxelGrid(const gpu::VoxelGridParams& grid);
+
+struct VoxelizeOptions {
+  // Off only to show that it matters (tests): without dilation, pixels that a
+  // triangle covers only partly, away from their centre, get no fragment.
+  bool dilate = true;
+};
+
+class VoxelizePass {
+ public:
+  VoxelizePass(ClRuntime& cl, const VoxelizeOptions& options = {});
+  ~VoxelizePass();
+  VoxelizePass(const VoxelizePass&) = delete;
+  VoxelizePass& operator=(const VoxelizePass&) = delete;
+
+  // Clears the accumulation buffer (grown to grid.edge^3 VoxelAccums when
+  // needed) and voxelizes `scene` into it; a GL pass named `vct-voxelize`.
+  // GL owns the buffer afterwards (writes are visible to buffer reads and CL
+  // acquisition).
+  void run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, GlPassTimer* timer);
+
+  SharedBuffer& accum() { return *accum_; }
+  const gpu::VoxelGridParams& grid() const { return grid_; }
+  std::size_t voxelBytes() const { return accum_->used(); }
+
+ private:
+  void bindEmptyFramebuffer(unsigned edge);
+  ClRuntime& cl_;
+  VoxelizeOptions options_;
+  ShaderProgram program_;
+  std::unique_ptr<SharedBuffer> accum_;
+  GLuint fbo_ = 0;
+  unsigned fbo_edge_ = 0;
+  gpu::VoxelGridParams grid_{};
+};
+
+}  // namespace ml

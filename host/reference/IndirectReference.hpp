@@ -1,0 +1,47 @@
+#pragma once
+// Ray-traced one-bounce diffuse indirect light on the CPU (Embree 3, TBB): the
+// reference voxel cone tracing is measured against.
+//
+// Per pixel: the primary hit x of the camera ray through the pixel centre
+// (the GL renderer's camera and pixel convention); `samples` cosine-weighted
+// directions over x's hemisphere (Latin-hypercube stratified in both
+// dimensions, seeded per pixel from `seed`, so the image does not depend on
+// thread scheduling); at each secondary hit y the direct diffuse radiance of
+// the renderer's shading model (gl/shaders/shading.glsl, without its ambient
+// term and 0.9 weight):
+//     B(y) = albedo(y) * sum_i I_i * max(0, n_y . l_i) * clamp(1 - d_i / r_i, 0, 1)^2
+// optionally only over lights visible from y (a shadow ray each); then
+//     indirect(x) = albedo(x) * mean over the samples of B(y)
+// (the cosine-weighted estimate of albedo/pi * integral of B cos). Normals are
+// the interpolated vertex normals, turned to the side of the surface (by its
+// geometric normal) that the ray arrived on; albedo is the material's base colour times its texture (bilinear,
+// level 0, the bytes as GL samples them). Misses contribute 0.
+#include <cstdint>
+#include <vector>
+
+#include "host/scene/Camera.hpp"
+#include "host/scene/Scene.hpp"
+#include "host/shared/gpu_types.h"
+
+namespace ml {
+
+struct IndirectOptions {
+  unsigned samples = 64;      // hemisphere samples per pixel, >= 1
+  std::uint64_t seed = 23;
+  bool shadow_rays = false;   // visibility of the lights from the secondary hits
+};
+
+struct IndirectImage {
+  unsigned width = 0, height = 0;
+  // Linear RGBA, rows bottom-up (GL order); alpha 1 where the pixel sees the
+  // scene, 0 where it sees nothing (rgb 0 there).
+  std::vector<float> rgba;
+  double ms = 0;  // wall time of the trace (scene build included)
+};
+
+// Throws UserError for samples == 0 or a zero-sized image.
+IndirectImage traceIndirectReference(const Scene& scene, const std::vector<gpu::PointLight>& lights,
+                                     const Camera& camera, unsigned width, unsigned height,
+                                     const IndirectOptions& options);
+
+}  // namespace ml
