@@ -1,0 +1,72 @@
+/* Voxel mip propagation (voxel cone tracing), one launch per level; parent
+ * voxel p of a level with edge ep = 1 << ep_log2 has children 2x..2x+1,
+ * 2y..2y+1, 2z..2z+1 at the finer level (edge 2ep). Offsets and strides are
+ * in float4 elements (host/shared/voxel_types.h: layout of both volumes).
+ *   mip_iso:   parent = the mean of the 8 children, premultiplied. With
+ *              radiance premultiplied by opacity this is 002's alpha-weighted
+ *              box filter (colour sum(c a) / sum(a), opacity sum(a) / 8),
+ *              and opacity stays separate from colour: an opaque black child
+ *              adds opacity, an empty one does not.
+ *   mip_aniso: per direction of travel d (+X, -X, +Y, -Y, +Z, -Z), each of
+ *              the 4 child pairs along d's axis composited front to back
+ *              (front + (1 - front.a) * back), then the 4 results averaged
+ *              (Crassin 2011). Children: direction d of the finer anisotropic
+ *              level, or, for level 1, isotropic level 0 (src_dir_stride 0).
+ * Shapes (vct_common.cl): ML_GPU=0 walks a contiguous range of parents per
+ * work-item (local size 1); ML_GPU=1 maps one parent to a work-item in groups
+ * of WG (consecutive work-items write consecutive parents). Every child is
+ * read once per parent and direction, so local memory would save nothing.
+ * FP_CONTRACT is off so the sums and composites round as in the C++ twin
+ * (host/vct/VoxelMipsReference.hpp), which the tests compare bit for bit. */
+#pragma OPENCL FP_CONTRACT OFF
+#include "vct_common.cl"
+
+/* The children's first element and strides in x, y, z. */
+ML_INLINE uint child_base(uint p, uint ep_log2) {
+  const uint mask = (1u << ep_log2) - 1u;
+  const uint x = p & mask, y = (p >> ep_log2) & mask, z = p >> (2u * ep_log2);
+  const uint ec = 2u << ep_log2;
+  return 2u * x + ec * (2u * y + ec * 2u * z);
+}
+
+ML_INLINE float4 mean8(__global const float4* c, uint sy, uint sz) {
+  return ((c[0] + c[1]) + (c[sy] + c[sy + 1])) + ((c[sz] + c[sz + 1]) + (c[sz + sy] + c[sz + sy + 1]));
+}
+
+ML_INLINE float4 over(float4 front, float4 back) { return front + (1.0f - front.w) * back; }
+
+/* Direction d of one parent: the 4 pairs along d's axis (step `s` between
+ * the pair's children, `u`, `v` the other two axes' strides). */
+ML_INLINE float4 aniso_dir(__global const float4* c, uint d, uint sy, uint sz) {
+  const uint axis = d >> 1;
+  const uint s = axis == 0 ? 1u : axis == 1 ? sy : sz;
+  const uint u = axis == 0 ? sy : 1u;
+  const uint v = axis == 2 ? sy : sz;
+  const uint f = (d & 1u) ? s : 0u; /* -axis travel meets the high child first */
+  const uint b = s - f;
+  const float4 p0 = over(c[f], c[b]);
+  const float4 p1 = over(c[u + f], c[u + b]);
+  const float4 p2 = over(c[v + f], c[v + b]);
+  const float4 p3 = over(c[u + v + f], c[u + v + b]);
+  return ((p0 + p1) + (p2 + p3)) * 0.25f;
+}
+
+__kernel VCT_ATTR void mip_iso(__global float4* vol, uint src_off, uint dst_off, uint ep_log2, uint n, uint chunk) {
+  uint b, e;
+  item_range(n, chunk, &b, &e);
+  const uint ec = 2u << ep_log2;
+  for (uint p = b; p < e; ++p)
+    vol[dst_off + p] = mean8(vol + src_off + child_base(p, ep_log2), ec, ec * ec) * 0.125f;
+}
+
+__kernel VCT_ATTR void mip_aniso(__global const float4* src, uint src_off, uint src_dir_stride,
+                                 __global float4* dst, uint dst_off, uint ep_log2, uint n, uint chunk) {
+  uint b, e;
+  item_range(n, chunk, &b, &e);
+  const uint ec = 2u << ep_log2;
+  for (uint p = b; p < e; ++p) {
+    const uint c = child_base(p, ep_log2);
+    for (uint d = 0; d < 6u; ++d)
+      dst[dst_off + d * n + p] = aniso_dir(src + src_off + d * src_dir_stride + c, d, ec, ec * ec);
+  }
+}
