@@ -160,7 +160,9 @@ TEST_P(VctInject, MatchesTwinOnRandomVolumes) {
 
 // One light far outside the grid reaching none of it, one outside reaching in.
 TEST_P(VctInject, LightsOutsideTheGrid) {
-  std::mt19937_64 rng(test::freshSeed());
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
   Case c{randomAccum(8, rng), randomGrid(8, rng), {}};
   const glm::vec3 o(c.grid.origin_voxel_size.x, c.grid.origin_voxel_size.y, c.grid.origin_voxel_size.z);
   const float size = 8 * c.grid.origin_voxel_size.w;
