@@ -208,7 +208,7 @@ TEST_P(VctInject, HashedLookupPortMatchesHost) {
   const auto& b = hs.linkless().bounds();
   const glm::vec3 lo = b.origin_f, hi = lo + glm::vec3(float(1u << b.depth) / b.cell_scale);
   std::vector<F4> points;
-  for (int i = 0; i < 20000; ++i) {
+  for (int i = 0; i < (test::smallTests() ? 2000 : 20000); ++i) {
     const glm::vec3 t(uni(rng, -0.1f, 1.1f), uni(rng, -0.1f, 1.1f), uni(rng, -0.1f, 1.1f));
     const glm::vec3 p = lo + t * (hi - lo);
     points.push_back({p.x, p.y, p.z, 0});
