@@ -35,19 +35,31 @@ ML_INLINE float4 mean8(__global const float4* c, uint sy, uint sz) {
 
 ML_INLINE float4 over(float4 front, float4 back) { return front + (1.0f - front.w) * back; }
 
-/* Direction d of one parent: the 4 pairs along d's axis (step `s` between
- * the pair's children, `u`, `v` the other two axes' strides). */
-ML_INLINE float4 aniso_dir(__global const float4* c, uint d, uint sy, uint sz) {
+/* A parent's 8 children, k[x + 2y + 4z]. */
+ML_INLINE void load8(__global const float4* c, uint sy, uint sz, float4* k) {
+  k[0] = c[0];
+  k[1] = c[1];
+  k[2] = c[sy];
+  k[3] = c[sy + 1];
+  k[4] = c[sz];
+  k[5] = c[sz + 1];
+  k[6] = c[sz + sy];
+  k[7] = c[sz + sy + 1];
+}
+
+/* Direction d of one parent: the 4 pairs along d's axis (bit s of the child
+ * index), u and v the other two axes' bits, in the twin's order. */
+ML_INLINE float4 aniso_dir(const float4* k, uint d) {
   const uint axis = d >> 1;
-  const uint s = axis == 0 ? 1u : axis == 1 ? sy : sz;
-  const uint u = axis == 0 ? sy : 1u;
-  const uint v = axis == 2 ? sy : sz;
+  const uint s = 1u << axis;
+  const uint u = axis == 0 ? 2u : 1u;
+  const uint v = axis == 2 ? 2u : 4u;
   const uint f = (d & 1u) ? s : 0u; /* -axis travel meets the high child first */
   const uint b = s - f;
-  const float4 p0 = over(c[f], c[b]);
-  const float4 p1 = over(c[u + f], c[u + b]);
-  const float4 p2 = over(c[v + f], c[v + b]);
-  const float4 p3 = over(c[u + v + f], c[u + v + b]);
+  const float4 p0 = over(k[f], k[b]);
+  const float4 p1 = over(k[u + f], k[u + b]);
+  const float4 p2 = over(k[v + f], k[v + b]);
+  const float4 p3 = over(k[u + v + f], k[u + v + b]);
   return ((p0 + p1) + (p2 + p3)) * 0.25f;
 }
 
@@ -65,8 +77,13 @@ __kernel VCT_ATTR void mip_aniso(__global const float4* src, uint src_off, uint 
   item_range(n, chunk, &b, &e);
   const uint ec = 2u << ep_log2;
   for (uint p = b; p < e; ++p) {
-    const uint c = child_base(p, ep_log2);
-    for (uint d = 0; d < 6u; ++d)
-      dst[dst_off + d * n + p] = aniso_dir(src + src_off + d * src_dir_stride + c, d, ec, ec * ec);
+    __global const float4* c = src + src_off + child_base(p, ep_log2);
+    float4 k[8];
+    if (src_dir_stride == 0u) load8(c, ec, ec * ec, k); /* level 1: one set of children for all */
+#pragma unroll
+    for (uint d = 0; d < 6u; ++d) {
+      if (src_dir_stride != 0u) load8(c + d * src_dir_stride, ec, ec * ec, k);
+      dst[dst_off + d * n + p] = aniso_dir(k, d);
+    }
   }
 }

@@ -30,8 +30,9 @@ std::size_t VoxelInjector::prepare(cl::Kernel& k, const gpu::VoxelGridParams& g,
   std::size_t chunk = 1, global = n;
   local = tuning_.wg;
   if (!tuning_.gpu()) {
-    // Few voxels per work-item: a filled voxel costs a light loop, so even a
-    // 32^3 grid needs many work-items to keep every core busy.
+    // A filled voxel costs a whole light loop, so the chunk floor is 64
+    // voxels, not the primitives' 4096: a 16^3 grid is still split among all
+    // work-items (tuning().chunks of them at most) and PoCL's threads.
     chunk = tuning_.cpuChunk(n, 64);
     global = compute::detail::ceilDiv(n, chunk);
     local = 1;
