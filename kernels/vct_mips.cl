@@ -15,13 +15,14 @@
  * Shapes (vct_common.cl): ML_GPU=0 walks a contiguous range of parents per
  * work-item (local size 1); ML_GPU=1 maps one parent to a work-item in groups
  * of WG (consecutive work-items write consecutive parents). Every child is
- * read once per parent and direction, so local memory would save nothing.
+ * read once per parent and value set (anisotropic level 1: once for all six
+ * directions), so local memory would save nothing.
  * FP_CONTRACT is off so the sums and composites round as in the C++ twin
  * (host/vct/VoxelMipsReference.hpp), which the tests compare bit for bit. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "vct_common.cl"
 
-/* The children's first element and strides in x, y, z. */
+/* The index of parent p's child (0, 0, 0) in the finer level. */
 ML_INLINE uint child_base(uint p, uint ep_log2) {
   const uint mask = (1u << ep_log2) - 1u;
   const uint x = p & mask, y = (p >> ep_log2) & mask, z = p >> (2u * ep_log2);
