@@ -81,25 +81,9 @@ void HashedAssigner::assign(const FrameInputs& in) {
   upload();
 }
 
-HashedAssigner::Image HashedAssigner::packHost() const {
-  const hashed::LinklessOctree& lo = structure_->linkless();
-  Image im;
-  im.header = lo.headerWords();
-  im.offsets.resize(lo.offsetWordCount());
-  im.desc.resize(lo.descSlotCount() * 2);
-  im.data.resize(lo.dataSlotCount() * 4);
-  for (unsigned i = 0; i < lo.layerCount(); ++i) {
-    std::copy(lo.desc(i).offsetWords().begin(), lo.desc(i).offsetWords().end(), im.offsets.begin() + lo.offsetBase(i, false));
-    std::copy(lo.data(i).offsetWords().begin(), lo.data(i).offsetWords().end(), im.offsets.begin() + lo.offsetBase(i, true));
-    std::copy(lo.desc(i).tableWords().begin(), lo.desc(i).tableWords().end(), im.desc.begin() + lo.descSlotBase(i) * 2);
-    std::copy(lo.data(i).tableWords().begin(), lo.data(i).tableWords().end(), im.data.begin() + lo.dataSlotBase(i) * 4);
-  }
-  return im;
-}
-
 bool HashedAssigner::gpuMatchesHost(std::string* why) const {
   if (!structure_ || !structure_->built()) return false;
-  const Image im = packHost();
+  const hashed::LinklessOctree::GpuImage im = structure_->linkless().packGpuImage();
   const auto& list = structure_->linkless().pool().list();
   auto same = [&](const Buffer& b, const std::vector<std::uint32_t>& want, const char* what) {
     std::vector<std::uint32_t> got(want.size());
@@ -116,7 +100,7 @@ bool HashedAssigner::gpuMatchesHost(std::string* why) const {
 void HashedAssigner::uploadAll() {
   hashed::LinklessOctree& lo = structure_->linkless();
   upload_bytes_ = 0;
-  const Image im = packHost();
+  const hashed::LinklessOctree::GpuImage im = structure_->linkless().packGpuImage();
   for (unsigned i = 0; i < lo.layerCount(); ++i) {
     lo.takeEdits(i, false);
     lo.takeEdits(i, true);

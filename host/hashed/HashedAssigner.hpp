@@ -58,10 +58,6 @@ class HashedAssigner final : public LightAssigner {
   template <class Hash>
   void uploadTable(const Hash& h, const hashed::TableEdits& edits, GLuint slots_buf, std::size_t slot_base,
                    std::size_t offset_base);
-  struct Image {
-    std::vector<std::uint32_t> header, offsets, desc, data;
-  };
-  Image packHost() const;
   static void ensure(Buffer& b, std::size_t bytes, bool keep_headroom);
 
   std::string name_;

@@ -192,6 +192,21 @@ std::vector<std::uint32_t> LinklessOctree::headerWords() const {
   return h;
 }
 
+LinklessOctree::GpuImage LinklessOctree::packGpuImage() const {
+  GpuImage im;
+  im.header = headerWords();
+  im.offsets.resize(offsetWordCount());
+  im.desc.resize(descSlotCount() * 2);
+  im.data.resize(dataSlotCount() * 4);
+  for (unsigned i = 0; i < layerCount(); ++i) {
+    std::copy(desc_[i].offsetWords().begin(), desc_[i].offsetWords().end(), im.offsets.begin() + offsetBase(i, false));
+    std::copy(data_[i].offsetWords().begin(), data_[i].offsetWords().end(), im.offsets.begin() + offsetBase(i, true));
+    std::copy(desc_[i].tableWords().begin(), desc_[i].tableWords().end(), im.desc.begin() + descSlotBase(i) * 2);
+    std::copy(data_[i].tableWords().begin(), data_[i].tableWords().end(), im.data.begin() + dataSlotBase(i) * 4);
+  }
+  return im;
+}
+
 LinklessOctree::Range LinklessOctree::lookup(const glm::vec3& world) const {
   // Mirrors lightListFor() in gl/shaders/lookup_hashed.glsl.
   const glm::vec3 q = (world - b_.origin_f) * b_.cell_scale;

@@ -109,6 +109,12 @@ class LinklessOctree {
   // take (all of it after a build, rehash or compaction).
   TableEdits takeEdits(unsigned layer, bool data);
   std::vector<std::uint32_t> headerWords() const;
+  // The whole image as lookup_hashed.glsl binds it (the light index list is
+  // pool().list()): what a full upload writes, and what kernels read.
+  struct GpuImage {
+    std::vector<std::uint32_t> header, offsets, desc, data;
+  };
+  GpuImage packGpuImage() const;
   std::size_t offsetBase(unsigned layer, bool data) const;  // in words
   std::size_t descSlotBase(unsigned layer) const;           // in slots
   std::size_t dataSlotBase(unsigned layer) const;

@@ -60,6 +60,33 @@ inline constexpr ml_uint voxel_level_offset(ml_uint edge, ml_uint level) {
   return offset;
 }
 
+/* The radiance/opacity volume (host/vct/VoxelVolume.hpp): one float4 per
+ * voxel of every level at voxel_level_offset(), premultiplied radiance in
+ * rgb, opacity in a.
+ * The anisotropic volume (Crassin 2011): levels >= 1 only, 6 float4 per
+ * voxel, one per direction of travel of a cone through it (+X, -X, +Y, -Y,
+ * +Z, -Z: ML_VOXEL_DIR_*). Level l's block starts at
+ *     6 * (voxel_level_offset(edge, l) - edge^3)
+ * and holds the 6 directions one after another, each a full e^3 volume in
+ * the same x-fastest order, so that GL can unpack each direction of a level
+ * as one 3D texture. voxel_aniso_index() gives the float4 index. */
+#define ML_VOXEL_DIRECTIONS 6u
+#define ML_VOXEL_DIR_POS_X 0u
+#define ML_VOXEL_DIR_NEG_X 1u
+#define ML_VOXEL_DIR_POS_Y 2u
+#define ML_VOXEL_DIR_NEG_Y 3u
+#define ML_VOXEL_DIR_POS_Z 4u
+#define ML_VOXEL_DIR_NEG_Z 5u
+
+#ifdef __OPENCL_VERSION__
+inline uint voxel_aniso_index(uint edge, uint level, uint dir, uint voxel) {
+#else
+inline constexpr ml_uint voxel_aniso_index(ml_uint edge, ml_uint level, ml_uint dir, ml_uint voxel) {
+#endif
+  ml_uint e = edge >> level;
+  return ML_VOXEL_DIRECTIONS * (voxel_level_offset(edge, level) - edge * edge * edge) + dir * e * e * e + voxel;
+}
+
 #ifndef __OPENCL_VERSION__
 }  // namespace ml::gpu
 #endif

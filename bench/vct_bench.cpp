@@ -1,0 +1,206 @@
+// manylights-vct-bench: the compute side of voxel cone tracing on one device,
+// peers in the same run.
+//  - Mip propagation (isotropic and anisotropic, both kernel shapes) at
+//    --edges with --levels: bytes moved per second against an OpenCL copy
+//    kernel moving the same bytes (read + write), the bandwidth bound.
+//    Bytes moved: every level >= 1 reads its 8 children once per stored
+//    value set (isotropic: 1, anisotropic: 6, but level 1 reads isotropic
+//    level 0 once) and writes itself.
+//  - Injection of --lights lights into a synthetic room (walls one voxel
+//    thick, a block in the middle) at --inject-edge: through the hashed
+//    structure's lists against brute force over all lights; the mean list
+//    length per filled voxel says why.
+// Prints tables and, with --json, one record per case.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "host/bench/BenchInputs.hpp"
+#include "host/cl/ClRuntime.hpp"
+#include "host/cl/KernelArgs.hpp"
+#include "host/cl/KernelLimits.hpp"
+#include "host/compute/HostIo.hpp"
+#include "host/hashed/HashedStructure.hpp"
+#include "host/scene/LightSet.hpp"
+#include "host/util/ThesisSeed.hpp"
+#include "host/vct/VoxelGrid.hpp"
+#include "host/vct/VoxelInjector.hpp"
+#include "host/vct/VoxelMips.hpp"
+#include "BenchCommon.hpp"
+
+namespace {
+using namespace ml;
+using benchutil::timeMedian;
+
+// The positive integers of a comma list; UserError naming `flag` otherwise.
+std::vector<unsigned> parseCounts(const std::string& list, const char* flag) {
+  std::vector<unsigned> out;
+  for (const auto& item : splitList(list)) {
+    std::size_t used = 0;
+    unsigned long v = 0;
+    try {
+      v = std::stoul(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || v == 0 || v > 10000000ul)
+      throw UserError(std::string(flag) + ": '" + item + "' is not a count from 1 to 10000000");
+    out.push_back(unsigned(v));
+  }
+  if (out.empty()) throw UserError(std::string(flag) + ": empty list");
+  return out;
+}
+
+constexpr const char* kCopySource =
+    "__kernel void copy4(__global const float4* restrict a, __global float4* restrict b, uint n) {\n"
+    "  const uint i = get_global_id(0); if (i < n) b[i] = a[i]; }\n";
+
+// Bytes the mips read and write, per the header.
+double mipBytes(unsigned edge, unsigned levels, bool aniso) {
+  double b = 0;
+  for (unsigned l = 1; l < levels; ++l) {
+    const double n = double(edge >> l) * double(edge >> l) * double(edge >> l);
+    const double sets = aniso ? 6 : 1, read_sets = aniso && l > 1 ? 6 : 1;
+    b += 16 * n * (8 * read_sets + sets);
+  }
+  return b;
+}
+
+struct Bench {
+  ClRuntime& rt;
+  int reps;
+  nlohmann::json records = nlohmann::json::array();
+
+  double copySeconds(double bytes) {
+    const std::size_t n = std::size_t(bytes / 32);
+    cl::Program p(rt.context(), kCopySource, true);
+    cl::Kernel k(p, "copy4");
+    cl::Buffer a(rt.context(), CL_MEM_READ_WRITE, n * 16), b(rt.context(), CL_MEM_READ_WRITE, n * 16);
+    rt.queue().enqueueFillBuffer(a, cl_uint(1), 0, n * 16);
+    setArgs(k, a, b, cl_uint(n));
+    return timeMedian(reps, [&] {
+      rt.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange((n + 255) / 256 * 256), cl::NDRange(256));
+      rt.queue().finish();
+    });
+  }
+
+  void mips(unsigned edge, unsigned levels) {
+    const gpu::VoxelGridParams g{{0, 0, 0, 1}, edge, levels, 0, 0};
+    std::vector<gpu::ml_float4> v(gpu::voxel_level_offset(edge, levels), gpu::ml_float4{0.5f, 0.25f, 0.125f, 0.75f});
+    cl::Buffer vol = compute::upload(rt.context(), rt.queue(), v);
+    cl::Buffer aniso(rt.context(), CL_MEM_READ_WRITE, std::size_t(gpu::voxel_aniso_index(edge, levels, 0, 0)) * 16);
+    for (bool an : {false, true}) {
+      const double bytes = mipBytes(edge, levels, an), t_copy = copySeconds(bytes);
+      for (KernelShape shape : {KernelShape::CpuChunked, KernelShape::GpuWorkGroup}) {
+        vct::VoxelMips m(compute::ComputeEnv(rt), compute::Options{.shape = shape});
+        const double t = timeMedian(reps, [&] {
+          an ? m.anisotropic(rt.queue(), g, vol, aniso) : m.isotropic(rt.queue(), g, vol);
+          rt.queue().finish();
+        });
+        std::printf("%5u^3 %6u %-12s %-5s %10.3f %9.2f %9.2f %8.0f%%\n", edge, levels, an ? "anisotropic" : "isotropic",
+                    kernelShapeName(shape), t * 1e3, bytes / t * 1e-9, bytes / t_copy * 1e-9, 100 * t_copy / t);
+        records.push_back({{"name", std::string("mips.") + (an ? "anisotropic" : "isotropic")},
+                           {"edge", edge}, {"levels", levels}, {"shape", kernelShapeName(shape)}, {"seconds", t},
+                           {"bytes", bytes}, {"copy_seconds", t_copy}, {"fraction_of_copy", t_copy / t}});
+      }
+    }
+  }
+
+  // A room: the grid's outer voxel shell plus a centred block, albedo 0.5.
+  static std::vector<gpu::VoxelAccum> room(unsigned e, std::size_t& filled) {
+    std::vector<gpu::VoxelAccum> a(std::size_t(e) * e * e, gpu::VoxelAccum{});
+    filled = 0;
+    for (unsigned z = 0; z < e; ++z)
+      for (unsigned y = 0; y < e; ++y)
+        for (unsigned x = 0; x < e; ++x) {
+          const bool wall = x == 0 || y == 0 || z == 0 || x == e - 1 || y == e - 1 || z == e - 1;
+          const auto in = [&](unsigned c) { return c >= 3 * e / 8 && c < 5 * e / 8; };
+          if (!wall && !(in(x) && in(y) && in(z))) continue;
+          const int ny = y == 0 ? 1024 : (y == e - 1 ? -1024 : 0), nx = x == 0 ? 1024 : (x == e - 1 ? -1024 : 0);
+          a[x + e * (y + std::size_t(e) * z)] = {{128, 128, 128, 1}, {nx, ny, ny || nx ? 0 : 1024, 0}};
+          ++filled;
+        }
+    return a;
+  }
+
+  void inject(unsigned edge, std::size_t n_lights, double radius) {
+    const gpu::VoxelGridParams g{{0, 0, 0, 1.0f / float(edge)}, edge, 1, 0, 0};
+    std::size_t filled = 0;
+    const auto accum = room(edge, filled);
+    std::mt19937_64 rng(kThesisSeed + n_lights);
+    std::uniform_real_distribution<float> u(0.02f, 0.98f);
+    std::vector<gpu::PointLight> lights;
+    for (std::size_t i = 0; i < n_lights; ++i)
+      lights.push_back(makeLight({u(rng), u(rng), u(rng)}, float(radius), glm::vec3(u(rng), u(rng), u(rng))));
+    auto& q = rt.queue();
+    cl::Buffer ab = compute::upload(rt.context(), q, accum), lb = compute::upload(rt.context(), q, lights);
+    cl::Buffer out(rt.context(), CL_MEM_READ_WRITE, accum.size() * 16);
+    hashed::HashedStructure hs{hashed::HashedConfig{}};
+    hs.build(lights);
+    const compute::ComputeEnv env(rt);
+    vct::HashedListsCl lists(env);
+    lists.upload(q, hs.linkless());
+    double entries = 0;  // list entries the hashed kernel walks
+    for (std::size_t i = 0; i < accum.size(); ++i)
+      if (accum[i].albedo_count[3]) {
+        const float s = g.origin_voxel_size.w;
+        const glm::vec3 p((float(i % edge) + 0.5f) * s, (float(i / edge % edge) + 0.5f) * s, (float(i / edge / edge) + 0.5f) * s);
+        entries += hs.linkless().lookup(p).count;
+      }
+    vct::VoxelInjector inj(env);
+    const double t_brute = timeMedian(reps, [&] { inj.brute(q, g, ab, lb, lights.size(), out); q.finish(); });
+    const double t_hashed = timeMedian(reps, [&] { inj.hashed(q, g, ab, lb, lights.size(), lists, out); q.finish(); });
+    std::printf("%5u^3 %8zu %7zu %6.3f %10.1f %12.3f %12.3f %8.1fx %12.1f\n", edge, n_lights, filled, radius,
+                hs.lastBuild().total_ms, t_brute * 1e3, t_hashed * 1e3, t_brute / t_hashed, entries / double(filled));
+    records.push_back({{"name", "inject"}, {"edge", edge}, {"lights", n_lights}, {"radius", radius},
+                       {"filled_voxels", filled}, {"brute_seconds", t_brute}, {"hashed_seconds", t_hashed},
+                       {"speedup", t_brute / t_hashed}, {"hashed_build_ms", hs.lastBuild().total_ms},
+                       {"mean_list_entries", entries / double(filled)}, {"shape", kernelShapeName(inj.tuning().shape)}});
+  }
+};
+
+int run(int argc, char** argv) {
+  CLI::App app{"Voxel cone tracing, compute side: mip bandwidth vs copy, hashed vs brute-force injection"};
+  std::string json_path, edges = "32,64,128", light_counts = "1000,10000", device;
+  unsigned levels = 4, inject_edge = 64;
+  double radius = 0.1;
+  int reps = 5;
+  app.add_option("--json", json_path, "write records as JSON");
+  app.add_option("--edges", edges, "mip grid edges (powers of two)")->capture_default_str();
+  app.add_option("--levels", levels, "mip levels")->capture_default_str();
+  app.add_option("--lights", light_counts, "injection light counts")->capture_default_str();
+  app.add_option("--inject-edge", inject_edge, "injection grid edge")->capture_default_str();
+  app.add_option("--radius", radius, "light radius, as a fraction of the room")->capture_default_str();
+  app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
+  app.add_option("--device", device, "OpenCL device");
+  CLI11_PARSE(app, argc, argv);
+  benchutil::requireWritable("--json", json_path);
+  if (reps < 1) throw UserError("--reps: must be at least 1");
+  if (!(radius > 0)) throw UserError("--radius: must be positive");
+  const std::vector<unsigned> edge_list = parseCounts(edges, "--edges"), light_list = parseCounts(light_counts, "--lights");
+  for (unsigned e : edge_list) vct::checkVoxelGrid({e, levels, false});
+  vct::checkVoxelGrid({inject_edge, 1, false});
+  auto rt = ClRuntime::create(DeviceChoice::resolve(device));
+  std::printf("%s\n", rt->describe().c_str());
+  Bench b{*rt, reps};
+  std::printf("\nMip propagation, all levels (median of %d); GB/s = bytes read + written per second\n", reps);
+  std::printf("%7s %6s %-12s %-5s %10s %9s %9s %9s\n", "grid", "levels", "filter", "shape", "ms", "GB/s", "copy GB/s",
+              "of copy");
+  for (unsigned e : edge_list) b.mips(e, levels);
+  std::printf("\nInjection (median of %d): hashed lists vs brute force, room of %u^3 voxels\n", reps, inject_edge);
+  std::printf("%7s %8s %7s %6s %10s %12s %12s %9s %12s\n", "grid", "lights", "filled", "radius", "build ms",
+              "brute ms", "hashed ms", "speedup", "list/voxel");
+  for (unsigned n : light_list) b.inject(inject_edge, n, radius);
+  benchutil::writeJson(json_path, b.records);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ml::benchutil::benchMain("manylights-vct-bench", [&] { return run(argc, argv); });
+}

@@ -1,0 +1,184 @@
+// Voxel mip propagation (kernels/vct_mips.cl through vct::VoxelMips) against
+// its C++ twin (host/vct/VoxelMipsReference.hpp), both kernel shapes,
+// isotropic and anisotropic: random volumes of edge 1 .. 64, empty, fully
+// opaque, checkerboard, one opaque black voxel among empty ones; full and
+// partial pyramids. Bit for bit: the kernels turn FP_CONTRACT off and do the
+// twin's additions and multiplications in its order (no division or sqrt),
+// so any difference is a bug, not rounding. Outputs are poisoned first, and
+// level 0 must come back untouched. Known values pin the filters themselves
+// (a twin sharing a kernel's bug would otherwise pass).
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "host/compute/HostIo.hpp"
+#include "host/vct/VoxelGrid.hpp"
+#include "host/vct/VoxelMips.hpp"
+#include "host/vct/VoxelMipsReference.hpp"
+#include "shape_support.hpp"
+#include "support/TestDevice.hpp"
+
+namespace ml::vct {
+namespace {
+
+using F4 = gpu::ml_float4;
+constexpr std::uint32_t kPoison = 0xDEADBEEFu;
+
+enum class Pattern { Random, Empty, Opaque, Checkerboard, BlackAmongEmpty };
+const char* patternName(Pattern p) {
+  const char* names[] = {"random", "empty", "opaque", "checkerboard", "black-among-empty"};
+  return names[int(p)];
+}
+
+// Level 0 of a volume: premultiplied radiance (radiance up to 4) and opacity.
+std::vector<F4> levelZero(unsigned edge, Pattern p, std::mt19937_64& rng) {
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::vector<F4> v(std::size_t(edge) * edge * edge, F4{0, 0, 0, 0});
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::size_t x = i % edge, y = i / edge % edge, z = i / edge / edge;
+    float a = 0;
+    switch (p) {
+      case Pattern::Random: a = rng() % 3 == 0 ? 0.f : (rng() % 3 == 0 ? 1.f : u(rng)); break;
+      case Pattern::Empty: a = 0; break;
+      case Pattern::Opaque: a = 1; break;
+      case Pattern::Checkerboard: a = float((x + y + z) & 1); break;
+      case Pattern::BlackAmongEmpty: v[i] = F4{0, 0, 0, i == v.size() / 2 ? 1.f : 0.f}; continue;
+    }
+    v[i] = F4{4 * u(rng) * a, 4 * u(rng) * a, 4 * u(rng) * a, a};
+  }
+  return v;
+}
+
+std::vector<std::uint32_t> words(const std::vector<F4>& v) {
+  std::vector<std::uint32_t> w(v.size() * 4);
+  if (!v.empty()) std::memcpy(w.data(), v.data(), w.size() * 4);
+  return w;
+}
+
+// First differing float4, as "element i: got (..) want (..)", or "".
+std::string firstDifference(const std::vector<F4>& got, const std::vector<F4>& want) {
+  const auto g = words(got), w = words(want);
+  for (std::size_t i = 0; i < w.size(); ++i)
+    if (g[i] != w[i]) {
+      const F4 a = got[i / 4], b = want[i / 4];
+      return "element " + std::to_string(i / 4) + ": got (" + std::to_string(a.x) + ", " + std::to_string(a.y) + ", " +
+             std::to_string(a.z) + ", " + std::to_string(a.w) + ") want (" + std::to_string(b.x) + ", " +
+             std::to_string(b.y) + ", " + std::to_string(b.z) + ", " + std::to_string(b.w) + ")";
+    }
+  return "";
+}
+
+gpu::VoxelGridParams grid(unsigned edge, unsigned levels) {
+  gpu::VoxelGridParams g{};
+  g.origin_voxel_size = {0, 0, 0, 1};
+  g.edge = edge;
+  g.levels = levels;
+  return g;
+}
+
+// Runs both filters on `level0` and compares every level with the twins.
+void checkVolume(VoxelMips& mips, const std::vector<F4>& level0, unsigned edge, unsigned levels) {
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  const std::size_t all = gpu::voxel_level_offset(edge, levels);
+  std::vector<F4> want = level0;
+  want.resize(all);
+  mipIsotropicTwin(want, edge, levels);
+  std::vector<F4> want_aniso;
+  mipAnisotropicTwin(want, want_aniso, edge, levels);
+
+  std::vector<F4> poisoned = level0;
+  F4 p;
+  std::memcpy(&p, std::vector<std::uint32_t>(4, kPoison).data(), 16);
+  poisoned.resize(all, p);
+  cl::Buffer vol = compute::upload(rt.context(), q, poisoned);
+  cl::Buffer aniso(rt.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(want_aniso.size() * 16, 16));
+  compute::poison(q, aniso);
+  const gpu::VoxelGridParams g = grid(edge, levels);
+  mips.isotropic(q, g, vol);
+  mips.anisotropic(q, g, vol, aniso);
+  EXPECT_EQ(firstDifference(compute::download<F4>(q, vol, all), want), "") << "isotropic";
+  EXPECT_EQ(firstDifference(compute::download<F4>(q, aniso, want_aniso.size()), want_aniso), "") << "anisotropic";
+}
+
+class VctMips : public ::testing::TestWithParam<KernelShape> {};
+
+TEST_P(VctMips, MatchTwinOnVolumes) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  VoxelMips mips(compute::ComputeEnv(test::runtime()), compute::Options{.shape = GetParam()});
+  const unsigned largest = test::smallTests() ? 16 : 64;
+  for (unsigned edge = 1; edge <= largest; edge *= 2)
+    for (Pattern p : {Pattern::Random, Pattern::Empty, Pattern::Opaque, Pattern::Checkerboard, Pattern::BlackAmongEmpty})
+      for (unsigned levels : {log2Exact(edge) + 1, std::min(2u, log2Exact(edge) + 1)}) {
+        SCOPED_TRACE("edge=" + std::to_string(edge) + " levels=" + std::to_string(levels) + " " + patternName(p));
+        checkVolume(mips, levelZero(edge, p, rng), edge, levels);
+      }
+}
+
+// Known values at edge 2: child (0,0,0) opaque red, (1,0,0) opaque green.
+TEST_P(VctMips, FiltersKnownValues) {
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  VoxelMips mips(compute::ComputeEnv(rt), compute::Options{.shape = GetParam()});
+  std::vector<F4> v(9, F4{0, 0, 0, 0});
+  v[0] = {1, 0, 0, 1};
+  v[1] = {0, 1, 0, 1};
+  cl::Buffer vol = compute::upload(rt.context(), q, v);
+  cl::Buffer aniso(rt.context(), CL_MEM_READ_WRITE, 6 * 16);
+  compute::poison(q, aniso);
+  mips.isotropic(q, grid(2, 2), vol);
+  mips.anisotropic(q, grid(2, 2), vol, aniso);
+  const F4 iso = compute::download<F4>(q, vol, 9)[8];
+  EXPECT_EQ(iso.x, 0.125f);
+  EXPECT_EQ(iso.y, 0.125f);
+  EXPECT_EQ(iso.w, 0.25f);
+  const auto a = compute::download<F4>(q, aniso, 6);
+  // +X meets red first, -X green; along Y and Z each pair keeps its colour.
+  EXPECT_EQ(a[ML_VOXEL_DIR_POS_X].x, 0.25f);
+  EXPECT_EQ(a[ML_VOXEL_DIR_POS_X].y, 0.0f);
+  EXPECT_EQ(a[ML_VOXEL_DIR_POS_X].w, 0.25f);
+  EXPECT_EQ(a[ML_VOXEL_DIR_NEG_X].x, 0.0f);
+  EXPECT_EQ(a[ML_VOXEL_DIR_NEG_X].y, 0.25f);
+  for (unsigned d : {ML_VOXEL_DIR_POS_Y, ML_VOXEL_DIR_NEG_Y, ML_VOXEL_DIR_POS_Z, ML_VOXEL_DIR_NEG_Z}) {
+    EXPECT_EQ(a[d].x, 0.25f) << d;
+    EXPECT_EQ(a[d].y, 0.25f) << d;
+    EXPECT_EQ(a[d].w, 0.5f) << d;
+  }
+}
+
+// An opaque black voxel is not an empty one: its parent keeps its opacity.
+TEST_P(VctMips, OpaqueBlackKeepsOpacity) {
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  VoxelMips mips(compute::ComputeEnv(rt), compute::Options{.shape = GetParam()});
+  std::vector<F4> v(gpu::voxel_level_offset(4, 3), F4{0, 0, 0, 0});
+  v[0] = {0, 0, 0, 1};
+  cl::Buffer vol = compute::upload(rt.context(), q, v);
+  mips.isotropic(q, grid(4, 3), vol);
+  const auto got = compute::download<F4>(q, vol, v.size());
+  EXPECT_EQ(got[64].w, 0.125f);       // level 1, parent of the black voxel
+  EXPECT_EQ(got[64].x, 0.0f);
+  EXPECT_EQ(got[65].w, 0.0f);         // its empty neighbour
+  EXPECT_EQ(got[72].w, 1.0f / 64.0f);  // level 2
+}
+
+TEST_P(VctMips, RejectsSmallBuffers) {
+  auto& rt = test::runtime();
+  VoxelMips mips(compute::ComputeEnv(rt), compute::Options{.shape = GetParam()});
+  cl::Buffer small(rt.context(), CL_MEM_READ_WRITE, 16 * 64);
+  EXPECT_THROW(mips.isotropic(rt.queue(), grid(4, 2), small), std::invalid_argument);
+  cl::Buffer tiny(rt.context(), CL_MEM_READ_WRITE, 16 * 8);  // level 1's 6 x 8 voxels need 48 float4
+  EXPECT_THROW(mips.anisotropic(rt.queue(), grid(4, 3), small, tiny), std::invalid_argument);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, VctMips, ::testing::ValuesIn(test::kBothShapes),
+                         [](const auto& info) { return test::shapeLabel(info.param); });
+
+}  // namespace
+}  // namespace ml::vct
