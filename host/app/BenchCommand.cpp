@@ -272,7 +272,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       "  manylights bench --techniques forward,deferred --lights 256,1024 --sizes 320x180,640x360 --frames ::4\n"
       + paramKeysHelp() +
       "Light sets (--lights, comma list): JSON files; names under the suite's lights/; 'thesis' (the thesis's set\n"
-      "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).");
+      "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).\n" +
+      std::string(kLightLimitsHelp));
   cmd->add_option("--suite,--scene", a.scene.suite,
                   "scene: a thesis scene-suite folder (geometry/ obj/ lights/ camera/), a folder with scene.glb + "
                   "camera.json + lights.json, or a .gltf/.glb file (default: data/default)");

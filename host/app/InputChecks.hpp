@@ -26,6 +26,16 @@ inline constexpr const char* kLightDensityHelp =
     "surface point (mean exact lower bound per covered pixel), from the light volumes' total volume V: "
     "K = 0.5 N/V 4/3 pi r^3 (1+jitter^2), 0.5 for surfaces bounding the volumes; not with --light-radius";
 
+// The hard light-count limits, for the --lights help of render and bench
+// (README, "Scaling to a million lights"): kMaxLights and kHostBytesPerLight
+// (LightSet.hpp), hashed::kMaxHashedLights and the octree's build-memory limit
+// (host/hashed/OctreeBounds.hpp), checkDeviceLightLimits. Every other structure
+// grows with its lists.
+inline constexpr const char* kLightLimitsHelp =
+    "Limits: 2^27 lights; about 512 bytes of host memory per light; the light buffer within the device's largest "
+    "allocation. hashed: 2^24-1 lights, and its octree build within 1 GiB (constant density on data/default: "
+    "--node-size 0.5r holds about 500k lights, 1r 1M); refused with one line before or at the build, never cut.";
+
 inline constexpr const char* kNoShadingHelp =
     "skip the shading pass: depth and light-assignment passes only, to measure assignment without paying for "
     "shading; counts then give the exact lower bound but no light evaluations (reports say 'shaded: false')";

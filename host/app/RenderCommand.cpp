@@ -84,6 +84,7 @@ void addTechniqueFlags(CLI::App& cmd, std::map<std::string, std::string>& params
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   auto* cmd = app.add_subcommand("render", "Render one frame with one technique; print per-pass times and counts");
   addSceneInputFlags(*cmd, a.inputs);
+  cmd->footer(kLightLimitsHelp);
   cmd->add_option("--technique", a.technique, "one of: " + techniqueNames())->capture_default_str();
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--frame", a.frame, "index into the camera path")->capture_default_str();
