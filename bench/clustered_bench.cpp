@@ -19,6 +19,7 @@
 
 #include "gl/FrameRenderer.hpp"
 #include "gl/GlContext.hpp"
+#include "host/app/InputChecks.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/app/SceneInputs.hpp"
 #include "host/cl/ClRuntime.hpp"
@@ -48,7 +49,7 @@ int run(int argc, char** argv) {
   std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000", leaf_sizes = "8,32";
   unsigned tile = 0, tiled_tile = 16;
   unsigned brute_max = 100000;
-  float light_radius = 0.0f;
+  float light_radius = 0.0f, light_density = 0.0f;
   bool key_order = false;
   int reps = 5;
   std::string device, bounds = "pixels";
@@ -67,6 +68,7 @@ int run(int argc, char** argv) {
   app.add_option("--light-radius", light_radius,
                  "radius of the generated lights of the assignment cases (0: the scene's default)")
       ->capture_default_str();
+  app.add_option("--light-density", light_density, kLightDensityHelp)->check(finitePositive());
   app.add_flag("--key-order", key_order,
                "assignment passes over the clusters in key order instead of tile-Morton order");
   app.add_option("--brute-max-lights", brute_max, "skip brute-force assignment above this many lights")->capture_default_str();
@@ -151,6 +153,7 @@ int run(int argc, char** argv) {
       SceneInputArgs args;
       args.lights = ls;
       args.light_radius = light_radius;
+      args.light_density = light_density;
       const auto lights = loadSceneInputs(args).lights;
       const auto n = std::uint32_t(lights.size());
       cl::Buffer lbuf(rt->context(), CL_MEM_READ_ONLY, std::max<std::size_t>(32, n * sizeof(gpu::PointLight)));
@@ -260,6 +263,7 @@ int run(int argc, char** argv) {
       for (const auto& ls : splitList(frame_lights)) {
         SceneInputArgs args;
         args.lights = ls;
+        args.light_density = light_density;
         r.setLights(loadSceneInputs(args).lights);
         for (auto [tech, pipe] : {std::pair{"clustered-forward", Pipeline::Forward}, std::pair{"clustered-deferred", Pipeline::Deferred},
                                   std::pair{"tiled-forward", Pipeline::Forward}, std::pair{"tiled-deferred", Pipeline::Deferred}}) {

@@ -23,6 +23,7 @@
 
 #include "gl/FrameRenderer.hpp"
 #include "gl/GlContext.hpp"
+#include "host/app/InputChecks.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/app/SceneInputs.hpp"
 #include "host/techniques/Registry.hpp"
@@ -146,10 +147,12 @@ int run(int argc, char** argv) {
   std::string compare = "tiled-deferred,tiled-deferred@32/none,clustered-deferred", device;
   std::string update_fractions = "0.01,0.1,1";
   int reps = 3, update_reps = 5;
+  float light_density = 0.0f;
   unsigned camera_frames = 4;
   bool no_render = false, no_octant_masks = false;
   app.add_option("--json", json_path, "write records as JSON");
   app.add_option("--lights", light_counts, "generated light counts in the default scene")->capture_default_str();
+  app.add_option("--light-density", light_density, kLightDensityHelp)->check(finitePositive());
   app.add_option("--node-sizes", node_sizes, "node sizes to sweep")->capture_default_str();
   app.add_option("--size", size, "render resolution for light evaluations")->capture_default_str();
   app.add_option("--camera-frames", camera_frames, "camera path frames averaged")->capture_default_str();
@@ -179,6 +182,7 @@ int run(int argc, char** argv) {
   for (const auto& c : splitList(light_counts)) {
     SceneInputArgs a;
     a.lights = c;
+    a.light_density = light_density;
     light_sets.emplace_back(c, loadSceneInputs(a).lights);
   }
 

@@ -15,6 +15,7 @@
 
 #include "gl/FrameRenderer.hpp"
 #include "gl/GlContext.hpp"
+#include "host/app/InputChecks.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/app/SceneInputs.hpp"
 #include "host/cl/ClPassTimer.hpp"
@@ -38,6 +39,7 @@ int run(int argc, char** argv) {
   std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000", depth_mode = "minmax";
   unsigned tile = 16;
   int reps = 5;
+  float light_density = 0.0f;
   std::string device;
   bool no_legacy = false, passes = false;
   app.add_option("--json", json_path, "write records as JSON");
@@ -47,6 +49,7 @@ int run(int argc, char** argv) {
   app.add_option("--lights", light_counts, "culling light counts")->capture_default_str();
   app.add_option("--frame-sizes", frame_sizes, "resolutions of the frame breakdowns ('' for none)")->capture_default_str();
   app.add_option("--frame-lights", frame_lights, "light counts of the frame breakdowns")->capture_default_str();
+  app.add_option("--light-density", light_density, kLightDensityHelp)->check(finitePositive());
   app.add_option("--tile", tile, "tile size")->capture_default_str();
   app.add_option("--tile-depth", depth_mode, "none|minmax|mask")->capture_default_str();
   app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
@@ -84,6 +87,7 @@ int run(int argc, char** argv) {
     for (const auto& ls : splitList(light_counts)) {
       SceneInputArgs args;
       args.lights = ls;
+      args.light_density = light_density;
       const auto lights = loadSceneInputs(args).lights;
       const auto n = std::uint32_t(lights.size());
       auto& q = rt->queue();
@@ -147,6 +151,7 @@ int run(int argc, char** argv) {
       for (const auto& ls : splitList(frame_lights)) {
         SceneInputArgs args;
         args.lights = ls;
+        args.light_density = light_density;
         r.setLights(loadSceneInputs(args).lights);
         for (auto [tech, pipe] : {std::pair{"tiled-forward", Pipeline::Forward}, std::pair{"tiled-deferred", Pipeline::Deferred}}) {
           TiledAssigner a(*rt, tile, mode);

@@ -116,6 +116,7 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
   const bool deferred = options.pipeline == Pipeline::Deferred;
   const bool needs_depth = assigner.needsDepth();
   const bool count = options.count_lights;
+  result.shaded = options.shade;
 
   glViewport(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_));
   // Reversed-Z (host/shared/depth_convention.h): [0, 1] clip depth, cleared
@@ -130,7 +131,6 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, stats_ssbo_);
   }
   const GLfloat clear_color[4] = {0, 0, 0, 1};
-  const GLuint clear_counts[4] = {0, 0, 0, 0};
   const GLfloat clear_depth = gpu::kSkyDepth;
 
   // 1. Depth: G-buffer (deferred) or pre-pass (forward, only if the technique needs depth).
@@ -146,7 +146,7 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
     p.use();
     setFrameUniforms(p, view, proj);
     scene_->draw(p, true);
-  } else if (needs_depth) {
+  } else if (needs_depth || (count && !options.shade)) {
     GlPassScope s(&gl_timer_, "depth-prepass");
     glBindFramebuffer(GL_FRAMEBUFFER, targets_->outputFbo());
     glDepthMask(GL_TRUE);
@@ -189,7 +189,30 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
   }
   lights_changed_ = false;
 
-  // 3. Shading.
+  if (options.shade) shade(deferred, count, view, proj, assigner);
+  glFinish();
+  cl_.queue().finish();
+  result.host_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+
+  // Device-side pass times, in pipeline order.
+  PassTimings gl_cl;
+  gl_timer_.collect(gl_cl);
+  cl_timer_.collect(gl_cl);
+  gl_cl.merge(result.passes);
+  result.passes = gl_cl;
+  result.memory_bytes = assigner.memoryBytes();
+
+  if (count) countLights(deferred, view, proj, result);
+  return result;
+}
+
+// 3. Shading: forward (re-drawing the scene, against the pre-pass depth when
+// there is one) or one full-screen deferred pass over the G-buffer.
+void FrameRenderer::shade(bool deferred, bool count, const glm::mat4& view, const glm::mat4& proj,
+                          LightAssigner& assigner) {
+  const GLfloat clear_color[4] = {0, 0, 0, 1};
+  const GLuint clear_counts[4] = {0, 0, 0, 0};
+  const GLfloat clear_depth = gpu::kSkyDepth;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_->gl());
   glBindFramebuffer(GL_FRAMEBUFFER, targets_->outputFbo());
   glClearNamedFramebufferfv(targets_->outputFbo(), GL_COLOR, 0, clear_color);
@@ -210,7 +233,7 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
     glEnable(GL_DEPTH_TEST);
   } else {
     GlPassScope s(&gl_timer_, "forward-shading");
-    if (needs_depth) {
+    if (assigner.needsDepth()) {
       shadeOnlyFirstEqualFragment();
     } else {
       glClearNamedFramebufferfv(targets_->outputFbo(), GL_DEPTH, 0, &clear_depth);
@@ -226,20 +249,6 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
     glDepthMask(GL_TRUE);
   }
   glCheck("shading pass");
-  glFinish();
-  cl_.queue().finish();
-  result.host_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-
-  // Device-side pass times, in pipeline order.
-  PassTimings gl_cl;
-  gl_timer_.collect(gl_cl);
-  cl_timer_.collect(gl_cl);
-  gl_cl.merge(result.passes);
-  result.passes = gl_cl;
-  result.memory_bytes = assigner.memoryBytes();
-
-  if (count) countLights(deferred, view, proj, result);
-  return result;
 }
 
 void FrameRenderer::countLights(bool deferred, const glm::mat4& view, const glm::mat4& proj, FrameResult& result) {
@@ -263,10 +272,12 @@ void FrameRenderer::countLights(bool deferred, const glm::mat4& view, const glm:
   for (std::size_t i = 0; i < depth.size(); ++i) {
     if (gpu::is_sky_depth(depth[i])) continue;
     ++result.covered_pixels;
-    result.light_evaluations += counts[2 * i];
     result.lower_bound += bound[i];
+    if (!result.shaded) continue;  // no shading pass: nothing was evaluated
+    result.light_evaluations += counts[2 * i];
     if (bound[i] > counts[2 * i + 1]) result.missed_lights += bound[i] - counts[2 * i + 1];
   }
+  if (!result.shaded) return;
   GLuint stats[2] = {0, 0};
   glGetNamedBufferSubData(stats_ssbo_, 0, sizeof stats, stats);
   result.fragment_evaluations = (static_cast<std::uint64_t>(stats[1]) << 32) | stats[0];

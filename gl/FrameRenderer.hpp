@@ -30,6 +30,12 @@ struct FrameOptions {
   // (host/assign/ExactLowerBound.hpp) from the frame's depth. Costs shading
   // time and a CL pass; timings of counted frames are not comparable.
   bool count_lights = false;
+  // false (--no-shading): depth and light assignment only, so that the
+  // assignment's cost is measured without the shading pass (on llvmpipe the
+  // larger part of a many-light frame). Counting then yields the exact lower
+  // bound and covered pixels (a depth pre-pass runs for it if the technique
+  // has none) but no light evaluations.
+  bool shade = true;
 };
 
 struct FrameResult {
@@ -45,6 +51,7 @@ struct FrameResult {
   std::uint64_t fragment_evaluations = 0;  // over every shaded fragment, overdraw included
   std::uint64_t covered_pixels = 0;
   std::size_t memory_bytes = 0;            // assigner structures
+  bool shaded = true;                      // false: FrameOptions::shade was off (no evaluations counted)
 };
 
 class FrameRenderer {
@@ -65,6 +72,7 @@ class FrameRenderer {
   void exportDepth(bool deferred, PassTimings& passes);
   void shadeOnlyFirstEqualFragment();
   void readDepthInto(bool deferred);
+  void shade(bool deferred, bool count, const glm::mat4& view, const glm::mat4& proj, LightAssigner& assigner);
   void countLights(bool deferred, const glm::mat4& view, const glm::mat4& proj, FrameResult& result);
   void setFrameUniforms(const ShaderProgram& p, const glm::mat4& view, const glm::mat4& proj) const;
 

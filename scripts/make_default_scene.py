@@ -702,10 +702,13 @@ def generate_lights(volumes, count, radius, jitter, seed):
     return lights
 
 
+LIGHT_INSET = 0.3  # light volumes stay this far from floors, walls and ceilings
+
+
 def light_volumes():
     """Interiors (inset from walls, floor and ceiling) of every room and corridor;
     weight = volume so the light density is uniform over the level."""
-    inset = 0.3
+    inset = LIGHT_INSET
     boxes = []
 
     def room(name, spec):
@@ -779,8 +782,8 @@ def main():
     radius, jitter = 2.5, 0.4
     volumes = light_volumes()
     with open(os.path.join(args.out, "light_volumes.json"), "w") as f:
-        f.write('{"radius": %s, "radius_jitter": %s, "seed": %d, "count": %d, "volumes": [\n'
-                % (fmt_f32(radius), fmt_f32(jitter), args.seed, args.lights))
+        f.write('{"radius": %s, "radius_jitter": %s, "seed": %d, "count": %d, "surface_inset": %s, "volumes": [\n'
+                % (fmt_f32(radius), fmt_f32(jitter), args.seed, args.lights, fmt_f32(LIGHT_INSET)))
         f.write(",\n".join('  {"name": "%s", "min": %s, "max": %s, "weight": %s}'
                            % (v["name"], vec_json(v["min"]), vec_json(v["max"]), fmt_f32(v["weight"]))
                            for v in volumes))

@@ -3,6 +3,7 @@
 // with 66,000 lights reaching every pixel, the lit ones last, a light loop
 // that stops there renders the unlit image. Every registered technique must
 // render brute force's image, and all must report the same lower bound.
+#include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR (generated)
 #include <gtest/gtest.h>
 
 #include "gl/FrameRenderer.hpp"
@@ -18,6 +19,12 @@ namespace {
 
 constexpr unsigned kW = 16, kH = 12;
 constexpr std::uint32_t kLights = 66000, kLit = 8;
+
+// The default scene's volumes with a fixed radius: list lengths grow with the count.
+std::vector<gpu::PointLight> defaultSceneLights(std::uint32_t count, std::uint64_t seed) {
+  const std::string volumes = std::string(MANYLIGHTS_TEST_DATA_DIR) + "/default/light_volumes.json";
+  return generateLightsIn(volumes, {}, {}, count, seed, 1.5f);
+}
 
 // Every light's sphere holds the whole scene; the first kLights - kLit are dark.
 std::vector<gpu::PointLight> crowdedLights(const Camera& cam) {
@@ -105,6 +112,37 @@ TEST(RenderLightLimit, EveryTechniqueReportsTheSameLowerBound) {
     EXPECT_EQ(f.result.missed_lights, 0u);
     EXPECT_GE(f.result.light_evaluations, f.result.lower_bound);
   }
+}
+
+// Issue 17, item 3: structures sized by one frame must grow (or report) when
+// the next frame's lists are longer, never drop what does not fit. One
+// assigner per technique renders 300 lights, then 20x as many at the same
+// radius (every tile, cluster and hash cell list about 20x longer), then the
+// small set and the large one again: no bound light is missed, and every
+// technique counts the same bound.
+TEST(RenderLightLimit, ListsSizedByASmallSetGrowForALargeOne) {
+  test::glContext();
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  const SceneInputs& in = test::referenceScene();
+  const Camera& cam = in.cameras.frames.front();
+  FrameRenderer r(test::runtime(), in.scene, 160, 90);
+  const std::vector<gpu::PointLight> sets[2] = {defaultSceneLights(300, seed), defaultSceneLights(6000, seed + 1)};
+  std::uint64_t bound[2] = {0, 0};
+  for (const auto& t : techniques()) {
+    if (t.name == "forward" || t.name == "deferred") continue;  // brute force keeps no lists
+    SCOPED_TRACE(t.name);
+    const auto assigner = makeAssigner(t.name, test::runtime());
+    for (const int s : {0, 1, 0, 1}) {
+      r.setLights(sets[s]);
+      const FrameResult f = r.render(cam, *assigner, {t.pipeline, true});
+      EXPECT_EQ(f.missed_lights, 0u) << "set " << s;
+      EXPECT_GE(f.light_evaluations, f.lower_bound) << "set " << s;
+      if (bound[s] == 0) bound[s] = f.lower_bound;
+      EXPECT_EQ(f.lower_bound, bound[s]) << "set " << s;
+    }
+  }
+  EXPECT_GT(bound[1], 10 * bound[0]);  // the large set's lists really are longer
 }
 
 }  // namespace

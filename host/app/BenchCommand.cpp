@@ -144,6 +144,11 @@ void printSummaries(const std::vector<RunSummary>& sums) {
                 "bound mean", "/bound");
     for (const auto& s : sums) {
       if (!s.counted) continue;
+      if (!s.shaded) {  // --no-shading: the bound only
+        std::printf("%-*s %6zu %14s %14s %14s %14s %14.0f %8s\n", W, s.run.c_str(), s.frames, "-", "-", "-", "-",
+                    s.lower_bound.mean, "-");
+        continue;
+      }
       std::printf("%-*s %6zu %14.0f %14.0f %14.0f %14.0f %14.0f %8.2f\n", W, s.run.c_str(), s.frames,
                   s.light_evaluations.mean, s.light_evaluations.median, s.light_evaluations.p95,
                   s.light_evaluations.max, s.lower_bound.mean,
@@ -151,7 +156,10 @@ void printSummaries(const std::vector<RunSummary>& sums) {
     }
   }
   if (any_times) {
-    std::printf("\nframe time, sum of device passes, ms (host wall in the last column)\n");
+    bool unshaded = false;
+    for (const auto& s : sums) unshaded |= !s.shaded;
+    std::printf("\nframe time, sum of device passes, ms (host wall in the last column)%s\n",
+                unshaded ? "; --no-shading: depth and assignment passes only, no shading pass" : "");
     std::printf("%-*s %6s %10s %10s %10s %10s %10s %12s\n", W, "run", "frames", "mean", "median", "p95", "max",
                 "host mean", "memory max");
     for (const auto& s : sums) {
@@ -202,6 +210,7 @@ nlohmann::ordered_json benchMeta(const BenchArgs& a, const BenchScene& scene, co
   meta["variants"] = vj;
   meta["counts"] = plan.counts;
   meta["timing"] = plan.timing;
+  meta["shading"] = plan.shade;
   meta["repeat"] = plan.repeat;
   meta["warmup"] = plan.warmup;
   meta["animate"] = plan.animate;
@@ -263,7 +272,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       "  manylights bench --techniques forward,deferred --lights 256,1024 --sizes 320x180,640x360 --frames ::4\n"
       + paramKeysHelp() +
       "Light sets (--lights, comma list): JSON files; names under the suite's lights/; 'thesis' (the thesis's set\n"
-      "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).");
+      "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).\n" +
+      std::string(kLightLimitsHelp));
   cmd->add_option("--suite,--scene", a.scene.suite,
                   "scene: a thesis scene-suite folder (geometry/ obj/ lights/ camera/), a folder with scene.glb + "
                   "camera.json + lights.json, or a .gltf/.glb file (default: data/default)");
@@ -272,6 +282,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       ->check(nonEmptyList("a comma list of light sets (leave the flag out for the scene's)"));
   cmd->add_option("--light-volumes", a.scene.light_volumes, "boxes for generated lights (glTF scenes)");
   cmd->add_option("--light-radius", a.scene.light_radius, "radius of generated lights")->check(finitePositive());
+  cmd->add_option("--light-density", a.scene.light_density, kLightDensityHelp)->check(finitePositive());
   cmd->add_option("--seed", a.scene.seed, "seed of generated lights")->capture_default_str();
   cmd->add_option("--techniques", a.techniques, "comma list of: " + techniqueNames() + " (default: all)")
       ->check(nonEmptyList("a comma list of techniques (leave the flag out for all)"));
@@ -297,6 +308,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       ->capture_default_str();
   cmd->add_flag("--no-counts", a.no_counts, "skip the counting render (times only)");
   cmd->add_flag("--no-timing", a.no_timing, "skip the timed renders (counts only)");
+  cmd->add_flag("--no-shading", a.no_shading, kNoShadingHelp);
   cmd->add_option("--json", a.json, "write per-frame records and per-run summaries as JSON");
   cmd->add_option("--csv", a.csv, "write per-frame records as CSV");
   cmd->add_option("--plot", a.plot, "render thesis-style figures (PNG) into this folder (python3-matplotlib)");
@@ -327,6 +339,7 @@ int runBench(const BenchArgs& a) {
   const Progress::Mode progress_mode = Progress::parseMode(a.progress, "--progress");
   (void)LightAnimator({}, a.animate, 23, a.animate_speed);  // validates --animate, --animate-speed
   if (a.no_counts && a.no_timing) throw UserError("--no-counts and --no-timing together leave nothing to measure");
+  if (a.no_shading && !a.images.empty()) throw UserError("--images: there is no shaded image with --no-shading");
   if (!a.plot.empty() && findPlotPython().empty())
     throw UserError("--plot: no python3 with matplotlib found; install python3-matplotlib (or set MANYLIGHTS_PYTHON)");
   if (a.fovy != 0 && !(a.fovy > 0 && a.fovy < 180)) throw UserError("--fovy: must be in (0, 180) degrees");
@@ -350,6 +363,7 @@ int runBench(const BenchArgs& a) {
   plan.frames = selectFrames(range, scene.cameras.frames.size(), "--frames");
   plan.counts = !a.no_counts;
   plan.timing = !a.no_timing;
+  plan.shade = !a.no_shading;
   plan.repeat = std::max(a.repeat, 1u);
   plan.warmup = a.warmup;
   plan.image_dir = a.images;

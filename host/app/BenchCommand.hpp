@@ -33,6 +33,7 @@ struct BenchArgs {
   double animate_speed = 0.25;
   bool no_counts = false;
   bool no_timing = false;
+  bool no_shading = false;     // depth + assignment passes only (FrameOptions::shade)
   float fovy = 0, near_plane = 0, far_plane = 0;  // 0: keep the path's
   std::string command_line;  // for the JSON's meta
 };

@@ -19,6 +19,27 @@ namespace ml {
 // 0, -1, nan and inf are refused naming the flag.
 CLI::Validator finitePositive();
 
+// Help of --light-density (render, bench, the bench mains); the constant is
+// explained at densityRadius() in host/scene/LightSet.hpp.
+inline constexpr const char* kLightDensityHelp =
+    "generated lights at constant density: radius scaled as N^(-1/3) so that about K lights cover each visible "
+    "surface point (mean exact lower bound per covered pixel), from the light volumes' total volume V: "
+    "K = 0.5 N/V 4/3 pi r^3 (1+jitter^2), 0.5 for surfaces bounding the volumes; not with --light-radius";
+
+// The hard light-count limits, for the --lights help of render and bench
+// (README, "Scaling to a million lights"): kMaxLights and kHostBytesPerLight
+// (LightSet.hpp), hashed::kMaxHashedLights and the octree's build-memory limit
+// (host/hashed/OctreeBounds.hpp), checkDeviceLightLimits. Every other structure
+// grows with its lists.
+inline constexpr const char* kLightLimitsHelp =
+    "Limits: 2^27 lights; about 512 bytes of host memory per light; the light buffer within the device's largest "
+    "allocation. hashed: 2^24-1 lights, and its octree build within 1 GiB (constant density on data/default: "
+    "--node-size 0.5r holds about 500k lights, 1r 1M); refused with one line before or at the build, never cut.";
+
+inline constexpr const char* kNoShadingHelp =
+    "skip the shading pass: depth and light-assignment passes only, to measure assignment without paying for "
+    "shading; counts then give the exact lower bound but no light evaluations (reports say 'shaded: false')";
+
 // "1000" -> 1000 (up to 2^64-1, so that huge counts get a limit message rather
 // than "not a file"); false when `text` is not a plain decimal count.
 bool parseLightCount(const std::string& text, std::uint64_t& count);

@@ -40,6 +40,7 @@ void addSceneInputFlags(CLI::App& cmd, SceneInputArgs& a) {
   cmd.add_option("--light-volumes", a.light_volumes, "JSON boxes that generated lights are placed in");
   cmd.add_option("--light-radius", a.light_radius, "radius of generated lights (default: from the volume file)")
       ->check(finitePositive());
+  cmd.add_option("--light-density", a.light_density, kLightDensityHelp)->check(finitePositive());
   cmd.add_option("--seed", a.seed, "seed for generated lights (default 23, the thesis's)");
 }
 
@@ -83,6 +84,7 @@ void addTechniqueFlags(CLI::App& cmd, std::map<std::string, std::string>& params
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   auto* cmd = app.add_subcommand("render", "Render one frame with one technique; print per-pass times and counts");
   addSceneInputFlags(*cmd, a.inputs);
+  cmd->footer(kLightLimitsHelp);
   cmd->add_option("--technique", a.technique, "one of: " + techniqueNames())->capture_default_str();
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--frame", a.frame, "index into the camera path")->capture_default_str();
@@ -94,6 +96,7 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--heatmap-max", a.heatmap_max, "count mapped to the top of the palette (default: frame max)");
   cmd->add_flag("--counts", a.counts, "count light evaluations and the exact lower bound (extra frame)");
   cmd->add_option("--stats-json", a.stats_json, "write times and counts as JSON (implies --counts)");
+  cmd->add_flag("--no-shading", a.no_shading, kNoShadingHelp);
   cmd->add_option("--animate", a.animate,
                   "move this fraction of the lights (0..1) before every timed frame (hashed: incremental update)");
   cmd->add_option("--animate-speed", a.animate_speed,
@@ -123,6 +126,9 @@ void checkRenderFlags(const RenderArgs& a, const TechniqueInfo& tech) {
   }
   requireImageFile("--out", a.out);
   requireImageFile("--heatmap", a.heatmap);
+  if (a.no_shading && !a.out.empty()) throw UserError("--out: there is no shaded image with --no-shading");
+  if (a.no_shading && !a.heatmap.empty())
+    throw UserError("--heatmap: light evaluations are not counted with --no-shading");
   requireOutputFile("--stats-json", a.stats_json);
   checkGiFlags(a.gi, a.out);
   std::uint64_t count = 0;
@@ -144,6 +150,7 @@ struct RenderRun {
 };
 
 void printTimes(const TimedFrame& t) {
+  if (!t.shaded) std::printf("\nno shading pass (--no-shading): depth and light assignment only\n");
   std::printf("\n%-24s %10s\n", "pass", "ms (median)");
   for (const auto& [name, ms] : t.passes.entries()) std::printf("%-24s %10.3f\n", name.c_str(), ms);
   std::printf("%-24s %10.3f\n", "sum of passes", t.passes_total_ms);
@@ -154,6 +161,12 @@ void printCounts(const FrameResult& c) {
   const double per_px = c.covered_pixels ? double(c.light_evaluations) / c.covered_pixels : 0.0;
   const double lb_px = c.covered_pixels ? double(c.lower_bound) / c.covered_pixels : 0.0;
   auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+  if (!c.shaded) {
+    std::printf("\nlight evaluations   %14s  (not counted: no shading pass)\n", "-");
+    std::printf("exact lower bound   %14llu  (%.2f per covered pixel)\n", u(c.lower_bound), lb_px);
+    std::printf("covered pixels      %14llu\n", u(c.covered_pixels));
+    return;
+  }
   std::printf("\nlight evaluations   %14llu  (%.2f per covered pixel)\n", u(c.light_evaluations), per_px);
   std::printf("exact lower bound   %14llu  (%.2f per covered pixel)\n", u(c.lower_bound), lb_px);
   std::printf("missed lights       %14llu  (bound lights not evaluated: must be 0)\n", u(c.missed_lights));
@@ -175,14 +188,15 @@ void writeHeatmap(const RenderArgs& a, const TechniqueInfo& tech, const FrameRen
 RenderRun renderFrames(const RenderArgs& a, const TechniqueInfo& tech, const SceneInputs& inputs,
                        FrameRenderer& renderer, LightAssigner& assigner) {
   const Camera& camera = inputs.cameras.frames[a.frame];
-  for (unsigned i = 0; i < a.warmup; ++i) renderer.render(camera, assigner, {tech.pipeline, false});
+  const FrameOptions options{tech.pipeline, false, !a.no_shading};
+  for (unsigned i = 0; i < a.warmup; ++i) renderer.render(camera, assigner, options);
   LightAnimator animator(inputs.lights, a.animate, 23, a.animate_speed);
   RenderRun run;
   run.animated_per_frame = animator.movesPerStep();
   if (a.animate > 0.0)
     std::printf("animate: %zu of %zu lights move before each timed frame (step %g r)\n", animator.movesPerStep(),
                 inputs.lights.size(), a.animate_speed);
-  run.timed = timedRenders(renderer, assigner, tech.pipeline, camera, a.frames, [&] {
+  run.timed = timedRenders(renderer, assigner, options, camera, a.frames, [&] {
     if (animator.movesPerStep() > 0) renderer.setLights(animator.step());
   });
   if (!a.out.empty())
@@ -190,7 +204,7 @@ RenderRun renderFrames(const RenderArgs& a, const TechniqueInfo& tech, const Sce
   printTimes(run.timed);
   run.has_counts = a.counts || !a.stats_json.empty() || !a.heatmap.empty();
   if (run.has_counts) {
-    run.counted = countedRender(renderer, assigner, tech.pipeline, camera);
+    run.counted = countedRender(renderer, assigner, options, camera);
     if (!a.heatmap.empty()) writeHeatmap(a, tech, renderer);
     printCounts(run.counted);
   }
@@ -218,11 +232,14 @@ void writeStatsJson(const RenderArgs& a, const TechniqueInfo& tech, const SceneI
   for (const auto& [name, ms] : run.timed.passes.entries()) passes[name] = ms;
   j["passes"] = passes;
   j["frame_host_ms"] = run.timed.host_ms;
-  j["light_evaluations"] = run.counted.light_evaluations;
+  const bool shaded = !a.no_shading;
+  auto evals = [&](std::uint64_t v) { return shaded ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
+  j["shaded"] = shaded;
+  j["light_evaluations"] = evals(run.counted.light_evaluations);
   j["lower_bound"] = run.counted.lower_bound;
-  j["missed_lights"] = run.counted.missed_lights;
+  j["missed_lights"] = evals(run.counted.missed_lights);
   j["covered_pixels"] = run.counted.covered_pixels;
-  j["fragment_evaluations"] = run.counted.fragment_evaluations;
+  j["fragment_evaluations"] = evals(run.counted.fragment_evaluations);
   j["memory_bytes"] = run.counted.memory_bytes;
   nlohmann::ordered_json st = nlohmann::ordered_json::object();
   for (const auto& [k, v] : run.stats) st[k] = v;

@@ -26,6 +26,7 @@ struct RenderArgs {
   std::string heatmap;     // lights evaluated per pixel, cubehelix
   unsigned heatmap_max = 0;
   bool counts = false;
+  bool no_shading = false;  // depth + assignment passes only (FrameOptions::shade)
   unsigned frame = 0;     // index into the camera path
   unsigned frames = 3;    // timed frames
   unsigned warmup = 1;

@@ -17,6 +17,7 @@ SceneInputs loadSceneInputs(const SceneInputArgs& args) {
   const bool generated = parseLightCount(args.lights, count);
   if (args.light_radius != 0.0f && !generated)
     throw UserError("--light-radius: only generated lights (--lights N) take a radius; light files carry their own");
+  checkLightDensityFlag(args.light_density, args.light_radius, generated);
   if (generated) checkLightCount("--lights", count, "generated");  // before any memory is spent on them
   SceneInputs out;
   const bool default_scene = args.scene.empty();
@@ -31,8 +32,10 @@ SceneInputs loadSceneInputs(const SceneInputArgs& args) {
     std::string vol_path = args.light_volumes;
     if (vol_path.empty() && default_scene) vol_path = dataPath("default/light_volumes.json");
     out.lights = generateLightsIn(vol_path, out.scene.bounds.min, out.scene.bounds.max,
-                                  static_cast<std::uint32_t>(count), args.seed, args.light_radius);
-    out.lights_label = std::to_string(count) + " generated (seed " + std::to_string(args.seed) + ")";
+                                  static_cast<std::uint32_t>(count), args.seed, args.light_radius,
+                                  args.light_density);
+    out.lights_label = std::to_string(count) + " generated (seed " + std::to_string(args.seed) +
+                       densityLabel(args.light_density, out.lights) + ")";
   } else {
     if (args.lights.size() > 0 && args.lights[0] == '-')
       throw UserError("--lights: expected a light count or a JSON file, got '" + args.lights + "'");

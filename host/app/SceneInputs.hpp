@@ -17,6 +17,7 @@ struct SceneInputArgs {
   std::string camera;       // camera or path JSON; empty: data/default/camera.json
   std::string light_volumes;  // JSON boxes for generated lights; empty: scene's default or its bounds
   float light_radius = 0;   // generated lights; 0: the volume file's radius or 1/20 of the scene size
+  float light_density = 0;  // generated lights; > 0: radius from densityRadius() (LightSet.hpp)
   std::uint64_t seed = kThesisSeed;
 };
 

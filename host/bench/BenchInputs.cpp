@@ -113,6 +113,13 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::
     items = {scene.default_lights};
   }
   const bool suite = scene.format == "ntiled-suite";
+  // A density applies to generated sets only: some item must be one.
+  bool generates = false;
+  for (const std::string& item : items) {
+    std::uint32_t n = 0;
+    generates |= !suite && parseCount(item, n);
+  }
+  checkLightDensityFlag(args.light_density, args.light_radius, generates);
   std::vector<LightSetInput> out;
   auto addFile = [&](const std::string& file) {
     LightSetInput s;
@@ -147,9 +154,9 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::
       if (vol.empty() && !scene.dir.empty() && fs::is_regular_file(fs::path(scene.dir) / "light_volumes.json"))
         vol = (fs::path(scene.dir) / "light_volumes.json").string();
       LightSetInput s;
-      s.label = item + " generated";
       s.lights = generateLightsIn(vol, scene.scene.bounds.min, scene.scene.bounds.max, count, args.seed,
-                                  args.light_radius);
+                                  args.light_radius, args.light_density);
+      s.label = item + " generated" + densityLabel(args.light_density, s.lights);
       out.push_back(std::move(s));
     } else {
       std::string file = item;

@@ -28,6 +28,7 @@ struct BenchSceneArgs {
   std::string camera;         // camera path JSON (glTF scenes); empty: the folder's camera.json
   std::string light_volumes;  // boxes for generated lights (glTF scenes)
   float light_radius = 0;     // generated lights; 0: the volume file's or 1/20 of the scene size
+  float light_density = 0;    // generated lights; > 0: radius from densityRadius() (LightSet.hpp)
   std::uint64_t seed = kThesisSeed;
   std::string geometry;       // suite: geometry file under geometry/
   bool allow_missing_meshes = false;

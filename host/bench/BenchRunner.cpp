@@ -54,20 +54,20 @@ void runFrames(ClRuntime& cl, const Run& run, Progress* progress, std::size_t& d
     if (animator.movesPerStep() > 0) renderer.setLights(animator.step());
   };
   auto assigner = makeAssigner(*run.variant.info, cl, run.variant.params, &run.scene.scene);
-  const Pipeline pipeline = run.variant.pipeline;
+  const FrameOptions options{run.variant.pipeline, false, plan.shade};
   if (progress) progress->update(done, run.label + " (warm-up)");
   if (!plan.frames.empty())
     for (unsigned w = 0; w < plan.warmup; ++w)
-      renderer.render(run.scene.cameras.frames[plan.frames.front()], *assigner, {pipeline, false});
+      renderer.render(run.scene.cameras.frames[plan.frames.front()], *assigner, options);
   for (std::size_t frame : plan.frames) {
     if (progress) progress->update(done, run.label + " frame " + std::to_string(frame));
     const Camera& cam = run.scene.cameras.frames[frame];
     FrameRecord r = recordOf(run, frame);
     if (plan.counts) {
       animate();
-      setCounts(r, countedRender(renderer, *assigner, pipeline, cam));
+      setCounts(r, countedRender(renderer, *assigner, options, cam));
     }
-    if (plan.timing) setTimes(r, timedRenders(renderer, *assigner, pipeline, cam, plan.repeat, animate));
+    if (plan.timing) setTimes(r, timedRenders(renderer, *assigner, options, cam, plan.repeat, animate));
     if (!plan.image_dir.empty())  // the folder was checked before the first frame (requireOutputDir)
       writeImageAtomically("--images", plan.image_dir + "/" + fileSafe(run.label) + "_f" + std::to_string(frame) + ".png",
                            renderer.width(), renderer.height(), 4, renderer.targets().readColor());

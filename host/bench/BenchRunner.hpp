@@ -28,6 +28,7 @@ struct BenchPlan {
   std::vector<std::size_t> frames;  // indices into the scene's camera path
   bool counts = true;
   bool timing = true;
+  bool shade = true;  // false: no shading pass (FrameOptions::shade), records say so
   unsigned repeat = 1;
   unsigned warmup = 1;
   // > 0: before every counted and timed render, this fraction of the lights

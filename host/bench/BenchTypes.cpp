@@ -193,6 +193,7 @@ std::vector<RunSummary> summarizeRuns(const std::vector<FrameRecord>& records) {
     std::vector<double> le, lb, cov, total, host, mem;
     std::vector<std::string> pass_names;
     for (const FrameRecord* r : list) {
+      s.shaded = s.shaded && r->shaded;
       if (r->counted) {
         s.counted = true;
         le.push_back(static_cast<double>(r->light_evaluations));
@@ -246,10 +247,12 @@ nlohmann::ordered_json recordJson(const FrameRecord& r) {
   nlohmann::ordered_json j = runJson(r);
   j["frame"] = r.frame;
   auto count = [&](std::uint64_t v) { return r.counted ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
-  j["light_evaluations"] = count(r.light_evaluations);
+  auto evals = [&](std::uint64_t v) { return r.shaded ? count(v) : nlohmann::ordered_json(); };
+  j["shaded"] = r.shaded;
+  j["light_evaluations"] = evals(r.light_evaluations);
   j["lower_bound"] = count(r.lower_bound);
   j["covered_pixels"] = count(r.covered_pixels);
-  j["fragment_evaluations"] = count(r.fragment_evaluations);
+  j["fragment_evaluations"] = evals(r.fragment_evaluations);
   nlohmann::ordered_json passes = nlohmann::ordered_json::object();
   if (r.timed)
     for (const auto& [name, ms] : r.passes.entries()) passes[name] = ms;
@@ -267,7 +270,8 @@ nlohmann::ordered_json summaryJson(const RunSummary& s) {
   nlohmann::ordered_json j = runJson(s);
   j["frames"] = s.frames;
   auto opt = [](bool have, const Summary& v) { return have ? toJson(v) : nlohmann::ordered_json(); };
-  j["light_evaluations"] = opt(s.counted, s.light_evaluations);
+  j["shaded"] = s.shaded;
+  j["light_evaluations"] = opt(s.counted && s.shaded, s.light_evaluations);
   j["lower_bound"] = opt(s.counted, s.lower_bound);
   j["covered_pixels"] = opt(s.counted, s.covered_pixels);
   j["passes_total_ms"] = opt(s.timed, s.passes_total_ms);
@@ -318,11 +322,12 @@ std::string benchCsv(const std::vector<FrameRecord>& records) {
   out += '\n';
   for (const auto& r : records) {
     auto count = [&](std::uint64_t v) { return r.counted ? std::to_string(v) : std::string(); };
+    auto evals = [&](std::uint64_t v) { return r.shaded ? count(v) : std::string(); };
     const std::vector<std::string> fields = {
         csvField(r.run), csvField(r.technique), r.pipeline, csvField(paramsText(r.params)), csvField(r.lights),
         csvField(r.light_file), std::to_string(r.light_count), std::to_string(r.width), std::to_string(r.height),
-        std::to_string(r.frame), count(r.light_evaluations), count(r.lower_bound), count(r.covered_pixels),
-        count(r.fragment_evaluations), std::to_string(r.memory_bytes), r.timed ? num(r.passes_total_ms) : std::string(),
+        std::to_string(r.frame), evals(r.light_evaluations), count(r.lower_bound), count(r.covered_pixels),
+        evals(r.fragment_evaluations), std::to_string(r.memory_bytes), r.timed ? num(r.passes_total_ms) : std::string(),
         r.timed ? num(r.host_ms) : std::string()};
     for (std::size_t i = 0; i < fields.size(); ++i) {
       if (i) out += ',';

@@ -88,6 +88,9 @@ struct FrameRecord {
   double host_ms = 0;
   std::size_t memory_bytes = 0;
   std::vector<std::pair<std::string, double>> technique_stats;
+  // false: rendered without the shading pass (--no-shading): light and
+  // fragment evaluations are not counted (null in JSON, empty in CSV).
+  bool shaded = true;
 };
 
 struct RunSummary {
@@ -96,7 +99,7 @@ struct RunSummary {
   std::uint32_t light_count = 0;
   unsigned width = 0, height = 0;
   std::size_t frames = 0;
-  bool counted = false, timed = false;
+  bool counted = false, timed = false, shaded = true;
   Summary light_evaluations, lower_bound, covered_pixels, passes_total_ms, host_ms, memory_bytes;
   std::vector<std::pair<std::string, Summary>> passes;
 };

@@ -31,25 +31,30 @@ TimedFrame medianOf(const std::vector<FrameResult>& frames) {
   t.host_ms = summarize(host).median;
   t.passes_total_ms = t.passes.total();
   t.memory_bytes = frames.back().memory_bytes;
+  t.shaded = frames.back().shaded;
   return t;
 }
 
-TimedFrame timedRenders(FrameRenderer& renderer, LightAssigner& assigner, Pipeline pipeline, const Camera& camera,
+TimedFrame timedRenders(FrameRenderer& renderer, LightAssigner& assigner, FrameOptions options, const Camera& camera,
                         unsigned repeat, const std::function<void()>& before) {
+  options.count_lights = false;
   std::vector<FrameResult> frames;
   for (unsigned i = 0; i < std::max(repeat, 1u); ++i) {
     if (before) before();
-    frames.push_back(renderer.render(camera, assigner, {pipeline, false}));
+    frames.push_back(renderer.render(camera, assigner, options));
   }
   return medianOf(frames);
 }
 
-FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, Pipeline pipeline, const Camera& camera) {
-  return renderer.render(camera, assigner, {pipeline, true});
+FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, FrameOptions options,
+                          const Camera& camera) {
+  options.count_lights = true;
+  return renderer.render(camera, assigner, options);
 }
 
 void setCounts(FrameRecord& r, const FrameResult& c) {
   r.counted = true;
+  r.shaded = c.shaded;
   r.light_evaluations = c.light_evaluations;
   r.lower_bound = c.lower_bound;
   r.covered_pixels = c.covered_pixels;
@@ -59,6 +64,7 @@ void setCounts(FrameRecord& r, const FrameResult& c) {
 
 void setTimes(FrameRecord& r, const TimedFrame& t) {
   r.timed = true;
+  r.shaded = t.shaded;
   r.passes = t.passes;
   r.passes_total_ms = t.passes_total_ms;
   r.host_ms = t.host_ms;

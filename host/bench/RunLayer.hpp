@@ -33,15 +33,18 @@ struct TimedFrame {
   double passes_total_ms = 0;
   double host_ms = 0;
   std::size_t memory_bytes = 0;  // of the last render
+  bool shaded = true;            // false: rendered without the shading pass (--no-shading)
 };
 TimedFrame medianOf(const std::vector<FrameResult>& frames);
 
 // `repeat` (at least 1) uncounted renders of `camera`; `before` runs before
-// each (e.g. a light animation step).
-TimedFrame timedRenders(FrameRenderer& renderer, LightAssigner& assigner, Pipeline pipeline, const Camera& camera,
+// each (e.g. a light animation step). `options.count_lights` is ignored.
+TimedFrame timedRenders(FrameRenderer& renderer, LightAssigner& assigner, FrameOptions options, const Camera& camera,
                         unsigned repeat, const std::function<void()>& before = {});
-// One render that counts light evaluations and the exact lower bound (untimed).
-FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, Pipeline pipeline, const Camera& camera);
+// One render that counts light evaluations and the exact lower bound (untimed);
+// without shading (options.shade off) only the bound and covered pixels.
+FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, FrameOptions options,
+                          const Camera& camera);
 
 // A record's counted and timed fields from those renders.
 void setCounts(FrameRecord& record, const FrameResult& counted);

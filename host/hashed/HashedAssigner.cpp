@@ -78,7 +78,7 @@ void HashedAssigner::assign(const FrameInputs& in) {
   in.host_timings.add(st.full_rebuild ? "hashed-build" : "hashed-update", st.total_ms);
   // GL_TIME_ELAPSED on GPUs (glFinish-bracketed host clock on software GL), not the host clock of the calls.
   GlPassScope timed(in.gl_timer, "hashed-upload");
-  upload();
+  upload(st.full_rebuild);
 }
 
 bool HashedAssigner::gpuMatchesHost(std::string* why) const {
@@ -140,10 +140,12 @@ void HashedAssigner::uploadTable(const Hash& h, const hashed::TableEdits& d, GLu
   upload_bytes_ += uploadRuns(offsets_.id, offset_base, 1, h.offsetWords(), d.offsets);
 }
 
-void HashedAssigner::upload() {
+void HashedAssigner::upload(bool rebuilt) {
   const auto t0 = Clock::now();
   hashed::LinklessOctree& lo = structure_->linkless();
-  if (lo.layoutVersion() != uploaded_layout_) {
+  // A full rebuild makes a new octree whose layout version starts over, so
+  // it can equal the uploaded one while every table changed size.
+  if (rebuilt || lo.layoutVersion() != uploaded_layout_) {
     uploadAll();
   } else {
     upload_bytes_ = 0;

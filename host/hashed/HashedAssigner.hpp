@@ -52,7 +52,7 @@ class HashedAssigner final : public LightAssigner {
     GLuint id = 0;
     std::size_t capacity = 0;  // bytes
   };
-  void upload();
+  void upload(bool rebuilt);  // rebuilt: the structure was built anew (everything is uploaded)
   void uploadAll();
   void uploadWholeList();
   template <class Hash>

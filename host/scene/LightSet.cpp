@@ -210,6 +210,10 @@ LightVolumeSet loadLightVolumesJson(const std::string& path) {
     if (!(d.radius_jitter >= 0.0f && d.radius_jitter < 1.0f))
       throw UserError(path + ": \"radius_jitter\" must be in [0, 1)");
   }
+  if (auto s = doc.find("surface_inset"); s != doc.end()) {
+    set.surface_inset = scene_json::toFloat(*s, path, "surface_inset");
+    if (!(set.surface_inset >= 0.0f)) throw UserError(path + ": \"surface_inset\" must be >= 0");
+  }
   if (auto s = doc.find("seed"); s != doc.end()) {
     if (!s->is_number_unsigned()) throw UserError(path + ": \"seed\" must be a non-negative integer");
     d.seed = s->get<std::uint64_t>();
@@ -223,7 +227,8 @@ LightVolumeSet loadLightVolumesJson(const std::string& path) {
 }
 
 std::vector<gpu::PointLight> generateLightsIn(const std::string& volumes_path, glm::vec3 lo, glm::vec3 hi,
-                                              std::uint32_t count, std::uint64_t seed, float radius) {
+                                              std::uint32_t count, std::uint64_t seed, float radius,
+                                              float density) {
   LightVolumeSet vf;
   if (!volumes_path.empty()) {
     vf = loadLightVolumesJson(volumes_path);
@@ -234,9 +239,55 @@ std::vector<gpu::PointLight> generateLightsIn(const std::string& volumes_path, g
   gp.count = count;
   gp.seed = seed;
   const glm::vec3 ext = hi - lo;
+  if (radius > 0 && density > 0)
+    throw UserError("light generation: give a radius or a density, not both");
   if (radius > 0) gp.radius = radius;
+  else if (density > 0) {
+    for (LightVolume& v : vf.volumes) {  // out to the surfaces (LightVolumeSet::surface_inset)
+      v.min -= glm::vec3(vf.surface_inset);
+      v.max += glm::vec3(vf.surface_inset);
+    }
+    gp.radius = densityRadius(vf.volumes, count, density, gp.radius_jitter);
+  }
   else if (volumes_path.empty()) gp.radius = std::max({ext.x, ext.y, ext.z}) / 20.0f;
   return generateLights(vf.volumes, gp);
+}
+
+std::string densityLabel(float density, const std::vector<gpu::PointLight>& lights) {
+  if (!(density > 0.0f)) return "";
+  double sum = 0.0;
+  for (const gpu::PointLight& l : lights) sum += l.position_radius.w;
+  char buf[96];
+  std::snprintf(buf, sizeof buf, " at density %g (mean r %.4g)", static_cast<double>(density),
+                lights.empty() ? 0.0 : sum / static_cast<double>(lights.size()));
+  return buf;
+}
+
+void checkLightDensityFlag(float density, float radius, bool generated) {
+  if (density == 0.0f) return;
+  if (!(density > 0.0f) || !std::isfinite(density))
+    throw UserError("--light-density: must be finite and > 0 (got " + std::to_string(density) + ")");
+  if (radius != 0.0f) throw UserError("--light-density: give --light-radius or --light-density, not both");
+  if (!generated)
+    throw UserError("--light-density: only generated lights (--lights N) take a density; light files carry their radii");
+}
+
+float densityRadius(const std::vector<LightVolume>& volumes, std::uint64_t count, float density, float jitter) {
+  if (!(density > 0.0f) || !std::isfinite(density))
+    throw UserError("light generation: density must be finite and > 0 (got " + std::to_string(density) + ")");
+  double volume = 0.0;
+  for (const LightVolume& v : volumes)
+    if (v.weight > 0.0f) {
+      const glm::dvec3 e = glm::dvec3(v.max) - glm::dvec3(v.min);
+      volume += e.x * e.y * e.z;
+    }
+  if (count == 0 || !(volume > 0.0) || !std::isfinite(volume))
+    throw UserError("light generation: a density needs at least one light and volumes that enclose space");
+  const double j = static_cast<double>(jitter);
+  const double pi = 3.14159265358979323846;
+  const double r3 = 3.0 * static_cast<double>(density) * volume /
+                    (4.0 * pi * kSurfaceCoverage * static_cast<double>(count) * (1.0 + j * j));
+  return static_cast<float>(std::cbrt(r3));
 }
 
 }  // namespace ml

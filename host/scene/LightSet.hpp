@@ -43,18 +43,49 @@ std::vector<gpu::PointLight> generateLights(const std::vector<LightVolume>& volu
 // for it. JSON: {"volumes": [{"min": [x,y,z], "max": [x,y,z], "weight": w}, ...],
 // "radius": r, "radius_jitter": j, "seed": s, "count": n}; everything but
 // "volumes" is optional and fills `defaults` (count/seed are those the scene's
-// shipped light file was generated with).
+// shipped light file was generated with). "surface_inset": d (default 0) says
+// the boxes stay d inside the surfaces that bound them (floors, walls):
+// constant-density sets grow the boxes by d so that small lights still reach
+// those surfaces (densityRadius).
 struct LightVolumeSet {
   std::vector<LightVolume> volumes;  // never empty after loading
   LightGenParams defaults;
+  float surface_inset = 0.0f;
 };
 LightVolumeSet loadLightVolumesJson(const std::string& path);
 
+// Constant-density light sets (--light-density K): the radius for which
+// `count` lights keep about K lights on each covered pixel's surface point
+// (the mean exact lower bound per covered pixel), so that it falls as
+// count^(-1/3). Chosen analytically, once, from the volumes, no frame needed:
+//  - lights are uniform in the volumes' total volume V (boxes with weight > 0;
+//    overlaps counted twice), so a point inside them lies in
+//    count / V * 4/3 pi E[r^3] spheres on average, whatever the weights
+//    (the mean over V of the per-box densities), and E[r^3] = r^3 (1 + j^2)
+//    for the jitter j's uniform factor in [1 - j, 1 + j];
+//  - visible surfaces (floors, walls, ceilings) bound the volumes (grown by
+//    the file's surface_inset, so that they do at any radius), where a
+//    sphere keeps about half its volume inside: kSurfaceCoverage.
+//   K = kSurfaceCoverage * count / V * 4/3 pi r^3 (1 + j^2), solved for r.
+// Measured on data/default at 1920x1080 (README, "Scaling to a million
+// lights"): the mean lower bound per covered pixel is 1.1..1.35 K from 1k to
+// 1M lights.
+constexpr double kSurfaceCoverage = 0.5;
+float densityRadius(const std::vector<LightVolume>& volumes, std::uint64_t count, float density, float jitter);
+
+// " at density K (mean r R)" for a generated set's label; "" when density is 0.
+std::string densityLabel(float density, const std::vector<gpu::PointLight>& lights);
+// UserError naming --light-density when it is given with --light-radius or
+// for lights that are not generated (light files carry their own radii).
+void checkLightDensityFlag(float density, float radius, bool generated);
+
 // `count` lights in the volumes of `volumes_path` with its suggested radius
 // and jitter; without a file, uniformly in the box [lo, hi] with radius 1/20
-// of its largest side. radius > 0 overrides either radius.
+// of its largest side (no jitter). radius > 0 overrides either radius;
+// density > 0 (exclusive with radius) sets it with densityRadius().
 std::vector<gpu::PointLight> generateLightsIn(const std::string& volumes_path, glm::vec3 lo, glm::vec3 hi,
-                                              std::uint32_t count, std::uint64_t seed, float radius);
+                                              std::uint32_t count, std::uint64_t seed, float radius,
+                                              float density = 0.0f);
 
 // Throws UserError naming the file on missing file, bad JSON or bad fields
 // (non-positive radius, wrong array lengths, non-finite numbers).

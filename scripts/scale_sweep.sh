@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The constant-density scale sweep (issue 17): `manylights bench` on the
+# default scene at 1920x1080 for N = 1k .. 1M generated lights at
+# --light-density K (radius ~ N^(-1/3), about K lights per visible surface
+# point), every registered technique. Two bench runs per sweep:
+#   timing.json  --no-shading, counts + timing: per-pass times of the depth and
+#                assignment passes, structure memory, the exact lower bound;
+#                hashed's one-off host build time is its "build ms" statistic;
+#   counts.json  shaded counting frames (--no-timing) of the techniques that keep
+#                lists, for light evaluations per pixel (brute force evaluates
+#                N per pixel: not rendered); skipped with --no-eval-counts.
+# Then scripts/plot_scale.py writes scale.md (table, per-light ratios 16k -> 1M)
+# and scale.png (log-log time and memory vs N, with a linear-growth guide).
+#
+#   scripts/scale_sweep.sh [--counts LIST] [--density K] [--size WxH] [--repeat R]
+#                          [--node-size S] [--out DIR] [--no-eval-counts]
+#     --counts     light counts (default 1000,4000,16000,64000,256000,1000000)
+#     --density    mean exact lower bound per covered pixel (default 8)
+#     --size       resolution (default 1920x1080)
+#     --repeat     timed renders per frame, median (default 3)
+#     --node-size  hashed node size (default 1r: at 0.5r the octree build of 1M
+#                  lights needs ~2 GiB, over its 1 GiB limit, and is refused)
+#     --out        output folder (default results/scale)
+# Env: MANYLIGHTS_BIN (default build/manylights), MANYLIGHTS_PYTHON (python3 with matplotlib).
+# On 2 CPU cores (PoCL + llvmpipe) the default sweep takes about 15 minutes.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+
+counts="1000,4000,16000,64000,256000,1000000"
+density=8
+size=1920x1080
+repeat=3
+node_size=1r
+out="results/scale"
+eval_counts=1
+while (($#)); do
+  case "$1" in
+    --counts) counts="$2"; shift 2 ;;
+    --density) density="$2"; shift 2 ;;
+    --size) size="$2"; shift 2 ;;
+    --repeat) repeat="$2"; shift 2 ;;
+    --node-size) node_size="$2"; shift 2 ;;
+    --out) out="$2"; shift 2 ;;
+    --no-eval-counts) eval_counts=0; shift ;;
+    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
+    *) echo "scale_sweep.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+bin="${MANYLIGHTS_BIN:-build/manylights}"
+python="${MANYLIGHTS_PYTHON:-}"
+if [[ -z "$python" ]]; then  # as `bench --plot` does: the PATH's python3, else the system one
+  for p in python3 /usr/bin/python3; do
+    if "$p" -c 'import matplotlib' >/dev/null 2>&1; then python="$p"; break; fi
+  done
+fi
+[[ -n "$python" ]] || { echo "scale_sweep.sh: no python3 with matplotlib (install python3-matplotlib)" >&2; exit 2; }
+[[ -x "$bin" ]] || { echo "scale_sweep.sh: $bin not found (build the manylights target)" >&2; exit 2; }
+mkdir -p "$out"
+
+common=(--lights "$counts" --light-density "$density" --size "$size" --frames 0:0:1 --node-size "$node_size"
+        --progress lines)
+echo "== load before: $(uptime)" | tee "$out/load.txt"
+"$bin" bench "${common[@]}" --no-shading --repeat "$repeat" --warmup 1 --json "$out/timing.json" \
+  --csv "$out/timing.csv" | tee "$out/timing.log"
+if ((eval_counts)); then
+  listed="tiled-forward,tiled-deferred,clustered-forward,clustered-deferred,hashed-forward,hashed-deferred"
+  "$bin" bench "${common[@]}" --techniques "$listed" --no-timing --warmup 0 --json "$out/counts.json" \
+    --csv "$out/counts.csv" | tee "$out/counts.log"
+fi
+echo "== load after: $(uptime)" | tee -a "$out/load.txt"
+args=("$out/timing.json" --out "$out")
+((eval_counts)) && args+=(--counts "$out/counts.json")
+"$python" scripts/plot_scale.py "${args[@]}" --load "$out/load.txt"
