@@ -140,7 +140,7 @@ class SeriesRenderer {
     auto assigner = makeAssigner(tech, *ctx_.cl, techniqueParams(tech, r.param_labels, "--technique-map"), &scene_.scene);
     for (std::size_t f : r.frames) {
       progress_.update(done_, s.id + " " + r.label + " frame " + std::to_string(f));
-      const FrameResult res = countedRender(*renderer, *assigner, tech.pipeline, cameraOf(s, f));
+      const FrameResult res = countedRender(*renderer, *assigner, {.pipeline = tech.pipeline}, cameraOf(s, f));
       const double raw = s.counts.at(f);
       r.ours.push_back(static_cast<double>(res.light_evaluations));
       r.thesis_raw.push_back(raw);

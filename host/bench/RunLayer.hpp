@@ -4,8 +4,8 @@
 //   RunContext ctx = RunContext::open(device);   // headless GL + a CL runtime sharing with it
 //   ctx.printDevices();                          // the two start-up lines
 //   auto a = makeAssigner(info, *ctx.cl, params, &scene);
-//   FrameResult c = countedRender(renderer, *a, pipeline, camera);        // counts + lower bound
-//   TimedFrame t = timedRenders(renderer, *a, pipeline, camera, repeat);  // per-pass medians
+//   FrameResult c = countedRender(renderer, *a, {pipeline}, camera);        // counts + lower bound
+//   TimedFrame t = timedRenders(renderer, *a, {pipeline}, camera, repeat);  // per-pass medians
 // Statistics have one definition: the median (and every quantile) of
 // summarize() in BenchTypes.hpp, interpolated between order statistics, so
 // `render` and `bench` report the same median for the same frames.
