@@ -160,11 +160,9 @@ void printCounts(const FrameResult& c) {
 }
 
 void writeHeatmap(const RenderArgs& a, const TechniqueInfo& tech, const FrameRenderer& r) {
-  const auto depth = r.targets().readDepth(tech.pipeline == Pipeline::Deferred);
-  std::vector<bool> covered(depth.size());
-  for (size_t i = 0; i < depth.size(); ++i) covered[i] = !gpu::is_sky_depth(depth[i]);
+  std::uint32_t scale_max = 0;
   writeImageAtomically("--heatmap", a.heatmap, r.width(), r.height(), 4,
-                       heatmapRgba(r.targets().readCounts(), 2, 0, covered, a.heatmap_max));
+                       frameHeatmap(r, tech.pipeline, 0, a.heatmap_max, scale_max));
 }
 
 // Warm-up, the timed frames (animated), then the counting frame and the

@@ -17,12 +17,18 @@ Rgb cubehelix(float t, float start, float rotations, float hue, float gamma) {
           std::clamp(l + amp * (1.97294f * c), 0.0f, 1.0f)};
 }
 
+std::uint32_t heatmapScaleMax(const std::vector<std::uint32_t>& counts, unsigned stride, unsigned channel,
+                              const std::vector<bool>& covered) {
+  std::uint32_t max_value = 0;
+  for (std::size_t i = 0; i < covered.size(); ++i)
+    if (covered[i]) max_value = std::max(max_value, counts[i * stride + channel]);
+  return max_value;
+}
+
 std::vector<float> heatmapRgba(const std::vector<std::uint32_t>& counts, unsigned stride, unsigned channel,
                                const std::vector<bool>& covered, std::uint32_t max_value) {
   const std::size_t px = covered.size();
-  if (max_value == 0)
-    for (std::size_t i = 0; i < px; ++i)
-      if (covered[i]) max_value = std::max(max_value, counts[i * stride + channel]);
+  if (max_value == 0) max_value = heatmapScaleMax(counts, stride, channel, covered);
   std::vector<float> out(px * 4, 0.0f);
   for (std::size_t i = 0; i < px; ++i) {
     out[4 * i + 3] = 1.0f;

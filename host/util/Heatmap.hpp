@@ -13,6 +13,10 @@ struct Rgb {
 // t in [0, 1] -> colour.
 Rgb cubehelix(float t, float start = 0.5f, float rotations = -1.5f, float hue = 1.0f, float gamma = 1.0f);
 
+// The largest value at `channel` over covered pixels (the default top of the palette).
+std::uint32_t heatmapScaleMax(const std::vector<std::uint32_t>& counts, unsigned stride, unsigned channel,
+                              const std::vector<bool>& covered);
+
 // counts: `stride` uints per pixel, the value at `channel` is mapped; `covered`
 // marks pixels with geometry. max_value 0: the image's maximum. Returns RGBA.
 std::vector<float> heatmapRgba(const std::vector<std::uint32_t>& counts, unsigned stride, unsigned channel,
