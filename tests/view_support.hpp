@@ -24,10 +24,17 @@ inline bool haveXvfb() { return runShell("command -v xvfb-run").exit_code == 0; 
 // `view` with `actions` as its script, under a fresh Xvfb server.
 inline CommandResult runViewScript(const nlohmann::json& actions, const std::string& name,
                                    const std::string& flags = "") {
-  const std::string script = tempDir() + "/" + name + ".json";
+  const std::string script = tempDir() + "/" + name + ".json", rc_file = tempDir() + "/" + name + ".rc";
   std::ofstream(script) << actions.dump(1);
-  return runShell("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(MANYLIGHTS_BINARY) + " view " +
-                  kViewFrame + " " + flags + " --script " + script);
+  std::filesystem::remove(rc_file);
+  // The viewer's own exit code goes through a file: xvfb-run replaces it with
+  // its own when cleaning up its temporary folder fails.
+  CommandResult r = runShell("xvfb-run -a -s '-screen 0 640x480x24' sh -c '" + std::string(MANYLIGHTS_BINARY) +
+                             " view " + kViewFrame + " " + flags + " --script " + script + "; echo $? >" + rc_file +
+                             "'");
+  std::ifstream rc(rc_file);
+  if (!(rc >> r.exit_code)) r.exit_code = -1000 - r.exit_code;  // the viewer never ran or never finished
+  return r;
 }
 
 // Both PNGs exist, are the same size, and differ by no more than the render

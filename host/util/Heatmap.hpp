@@ -22,4 +22,12 @@ std::uint32_t heatmapScaleMax(const std::vector<std::uint32_t>& counts, unsigned
 std::vector<float> heatmapRgba(const std::vector<std::uint32_t>& counts, unsigned stride, unsigned channel,
                                const std::vector<bool>& covered, std::uint32_t max_value = 0);
 
+// A heat map with its scale under it: the palette from 0 to `max_value` left
+// to right, and 0, max/2 and max written beneath (white digits), so a reader
+// can tell 5 from 50. `rgba` is `width` x `height`, rows bottom-up; the result
+// is `width` x (`height` + colourBarRows(width)), the bar rows below the map.
+unsigned colourBarRows(unsigned width);
+std::vector<float> withColourBar(const std::vector<float>& rgba, unsigned width, unsigned height,
+                                 std::uint32_t max_value);
+
 }  // namespace ml
