@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "host/techniques/Registry.hpp"
+#include "host/util/Heatmap.hpp"
 #include "view_support.hpp"
 
 namespace ml {
@@ -62,6 +63,48 @@ TEST(ViewScripted, EveryTechniqueEqualsRenderOfTheSameFrame) {
   const auto frame = readImageRgba(dir + "/view_" + names.back() + ".png", w, h);
   EXPECT_EQ(window.size(), frame.size());
   EXPECT_GT(test::compareImages(window, frame, 2.0 / 255.0).frac_over_tol, 0.01) << "no panel in the window capture";
+}
+
+// The heat-map and debug-view modes show what `render --heatmap` (less its
+// colour bar) and `render --NAME-view` write for the same frame.
+TEST(ViewScripted, ViewModesEqualRenderOutputs) {
+  if (!test::haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (Debian package xvfb): the viewer cannot be tested";
+  const std::string dir = test::tempDir() + "/view_modes";
+  std::filesystem::create_directories(dir);
+  const std::string heat_technique = builtInTechniques().back();
+  json script = json::array({{{"orbit", {freshYaw(), 0.0}}}, {{"record", "start"}},
+                             {{"technique", heat_technique}}, {{"view", "heatmap"}}, {{"wait", 1}},
+                             {{"screenshot", dir + "/view_heat.png"}}});
+  std::vector<std::pair<std::string, std::string>> views;  // technique, view
+  for (const TechniqueInfo& t : techniques())
+    for (const DebugViewSpec& v : t.descriptor->debug_views)
+      if (t.built_in) views.emplace_back(t.name, v.name);
+  for (const auto& [t, v] : views) {
+    script.push_back({{"technique", t}});
+    script.push_back({{"view", v}});
+    script.push_back({{"wait", 1}});
+    script.push_back({{"screenshot", dir + "/view_" + t + "_" + v + ".png"}});
+  }
+  script.push_back({{"record_save", dir + "/camera.json"}});
+  const test::CommandResult run = test::runViewScript(script, "modes");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const std::string common = std::string(test::kViewFrame) + " --camera " + dir + "/camera.json --frames 1 ";
+  const auto heat = test::runManylights("render --technique " + heat_technique + " " + common + "--heatmap " + dir +
+                                        "/render_heat.png");
+  ASSERT_EQ(heat.exit_code, 0) << heat.out << heat.err;
+  // render's heat map carries its colour bar below the map: compare the map.
+  unsigned w = 0, h = 0;
+  auto with_bar = readImageRgba(dir + "/render_heat.png", w, h);
+  with_bar.erase(with_bar.begin(), with_bar.begin() + std::ptrdiff_t(std::size_t(w) * colourBarRows(w) * 4));
+  writeImage(dir + "/render_heat_map.png", w, h - colourBarRows(w), 4, with_bar);
+  test::expectSameImage(dir + "/view_heat.png", dir + "/render_heat_map.png");
+  for (const auto& [t, v] : views) {
+    SCOPED_TRACE(t + " " + v);
+    const std::string ref = dir + "/render_" + t + "_" + v + ".png";
+    const auto r = test::runManylights("render --technique " + t + " " + common + DebugViewSpec{v, ""}.flag() + " " + ref);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    test::expectSameImage(dir + "/view_" + t + "_" + v + ".png", ref);
+  }
 }
 
 TEST(ViewScripted, RecordedPathReplaysThroughBench) {

@@ -20,7 +20,8 @@ class CameraController {
   void set(const Camera& c);
   // Turns the eye about the centre: yaw about `up`, pitch about the camera's right axis (degrees).
   void orbit(float yaw_degrees, float pitch_degrees);
-  // Moves eye and centre together along the camera's forward, right and up axes (scene units).
+  // Moves eye and centre together along the view direction, the right axis
+  // (perpendicular to it and to up) and the camera's up (scene units).
   void fly(float forward, float right, float up);
   // Turns the view direction about the eye (degrees), centre follows.
   void look(float yaw_degrees, float pitch_degrees);

@@ -68,6 +68,8 @@ int runViewer(ViewerSetup setup, const DeviceChoice& device, std::optional<Viewe
       window_actions.window_screenshot.clear();
     }
     ctx.gl->swapBuffers();
+    // Idle (nothing moved, no script): sleep until input instead of spinning a core.
+    if (!script && !rendered) glfwWaitEventsTimeout(0.1);
   }
   return 0;
 }
