@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "host/util/ImageIO.hpp"
@@ -26,14 +28,22 @@ inline CommandResult runViewScript(const nlohmann::json& actions, const std::str
                                    const std::string& flags = "") {
   const std::string script = tempDir() + "/" + name + ".json", rc_file = tempDir() + "/" + name + ".rc";
   std::ofstream(script) << actions.dump(1);
-  std::filesystem::remove(rc_file);
-  // The viewer's own exit code goes through a file: xvfb-run replaces it with
-  // its own when cleaning up its temporary folder fails.
-  CommandResult r = runShell("xvfb-run -a -s '-screen 0 640x480x24' sh -c '" + std::string(MANYLIGHTS_BINARY) +
-                             " view " + kViewFrame + " " + flags + " --script " + script + "; echo $? >" + rc_file +
-                             "'");
-  std::ifstream rc(rc_file);
-  if (!(rc >> r.exit_code)) r.exit_code = -1000 - r.exit_code;  // the viewer never ran or never finished
+  // ctest runs tests in parallel: each test process searches for a free X
+  // server number from its own start (xvfb-run -a alone races to :99), and a
+  // server that failed to start is tried once more.
+  const std::string first_server = std::to_string(100 + ::getpid() % 20000);
+  CommandResult r;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    std::filesystem::remove(rc_file);
+    // The viewer's own exit code goes through a file: xvfb-run replaces it
+    // with its own when cleaning up its temporary folder fails.
+    r = runShell("xvfb-run -a -n " + first_server + " -s '-screen 0 640x480x24' sh -c '" +
+                 std::string(MANYLIGHTS_BINARY) + " view " + kViewFrame + " " + flags + " --script " + script +
+                 "; echo $? >" + rc_file + "'");
+    std::ifstream rc(rc_file);
+    if (rc >> r.exit_code) return r;
+  }
+  r.exit_code = -1000 - r.exit_code;  // the viewer never ran (no X server) or never finished
   return r;
 }
 
