@@ -12,6 +12,7 @@
 #include "host/app/CompareReferenceCommand.hpp"
 #include "gl/GlContext.hpp"
 #include "host/app/RenderCommand.hpp"
+#include "host/app/ViewCommand.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/cl/KernelCache.hpp"
 #include "host/util/EmbeddedFiles.hpp"
@@ -54,11 +55,13 @@ struct CommandLine {
   RenderArgs render_args;
   BenchArgs bench_args;
   CompareReferenceArgs compare_args;
+  ViewArgs view_args;
   CLI::App* devices = app.add_subcommand("devices", "List OpenCL platforms and devices with their indices");
   CLI::App* techniques_cmd = app.add_subcommand("techniques", "List the registered light-assignment techniques");
   CLI::App* render = addRenderCommand(app, render_args);
   CLI::App* bench = addBenchCommand(app, bench_args);
   CLI::App* compare = addCompareReferenceCommand(app, compare_args);
+  CLI::App* view = addViewCommand(app, view_args);
 
   CommandLine() { app.require_subcommand(1); }
   // -1 when a subcommand is to run; else the exit code (help: 0, parse error: 2).
@@ -110,6 +113,7 @@ int runCli(int argc, char** argv) {
       return runBench(bench_args);
     }
     if (compare->parsed()) return runCompareReference(compare_args);
+    if (cli.view->parsed()) return runView(cli.view_args);
   } catch (const UserError& e) {
     std::fprintf(stderr, "manylights: error: %s\n", e.what());
     return 2;

@@ -92,7 +92,9 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--warmup", a.warmup, "untimed frames first")->capture_default_str();
   cmd->add_option("--out", a.out, "output image (.png 8-bit, .exr float; other extensions are refused)");
   cmd->add_option("--device", a.device, "OpenCL device: gpu, cpu or an index from `manylights devices`");
-  cmd->add_option("--heatmap", a.heatmap, "write a heat map of lights evaluated per pixel (cubehelix) to this PNG");
+  cmd->add_option("--heatmap", a.heatmap,
+                  "write a heat map of lights evaluated per pixel (cubehelix) to this PNG, its colour bar and scale "
+                  "under the image");
   cmd->add_option("--heatmap-max", a.heatmap_max, "count mapped to the top of the palette (default: frame max)");
   cmd->add_flag("--counts", a.counts, "count light evaluations and the exact lower bound (extra frame)");
   cmd->add_option("--stats-json", a.stats_json, "write times and counts as JSON (implies --counts)");
@@ -176,11 +178,11 @@ void printCounts(const FrameResult& c) {
 }
 
 void writeHeatmap(const RenderArgs& a, const TechniqueInfo& tech, const FrameRenderer& r) {
-  const auto depth = r.targets().readDepth(tech.pipeline == Pipeline::Deferred);
-  std::vector<bool> covered(depth.size());
-  for (size_t i = 0; i < depth.size(); ++i) covered[i] = !gpu::is_sky_depth(depth[i]);
-  writeImageAtomically("--heatmap", a.heatmap, r.width(), r.height(), 4,
-                       heatmapRgba(r.targets().readCounts(), 2, 0, covered, a.heatmap_max));
+  std::uint32_t scale_max = 0;
+  const auto map = frameHeatmap(r, tech.pipeline, 0, a.heatmap_max, scale_max);
+  writeImageAtomically("--heatmap", a.heatmap, r.width(), r.height() + colourBarRows(r.width()), 4,
+                       withColourBar(map, r.width(), r.height(), scale_max));
+  std::printf("heat map scale: 0..%u lights evaluated per pixel (colour bar under the image)\n", scale_max);
 }
 
 // Warm-up, the timed frames (animated), then the counting frame and the

@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "host/shared/depth_convention.h"
+#include "host/util/Heatmap.hpp"
+
 namespace ml {
 
-RunContext RunContext::open(const DeviceChoice& device) {
+RunContext RunContext::open(const DeviceChoice& device) { return open(device, createHeadlessContext()); }
+
+RunContext RunContext::open(const DeviceChoice& device, std::unique_ptr<GlContext> gl) {
   RunContext ctx;
-  ctx.gl = createHeadlessContext();
+  ctx.gl = std::move(gl);
   const GlShareHandles share = ctx.gl->shareHandles();
   ctx.cl = ClRuntime::create(device, &share);
   return ctx;
@@ -50,6 +55,16 @@ FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, Fram
                           const Camera& camera) {
   options.count_lights = true;
   return renderer.render(camera, assigner, options);
+}
+
+std::vector<float> frameHeatmap(const FrameRenderer& renderer, Pipeline pipeline, unsigned channel,
+                                std::uint32_t max_value, std::uint32_t& scale_max) {
+  const auto depth = renderer.targets().readDepth(pipeline == Pipeline::Deferred);
+  std::vector<bool> covered(depth.size());
+  for (std::size_t i = 0; i < depth.size(); ++i) covered[i] = !gpu::is_sky_depth(depth[i]);
+  const auto counts = renderer.targets().readCounts();
+  scale_max = max_value ? max_value : heatmapScaleMax(counts, 2, channel, covered);
+  return heatmapRgba(counts, 2, channel, covered, scale_max);
 }
 
 void setCounts(FrameRecord& r, const FrameResult& c) {

@@ -24,6 +24,8 @@ struct RunContext {
   std::unique_ptr<GlContext> gl;
   std::unique_ptr<ClRuntime> cl;
   static RunContext open(const DeviceChoice& device);
+  // Over a given GL context (the viewer's window): CL shares with it the same way.
+  static RunContext open(const DeviceChoice& device, std::unique_ptr<GlContext> gl);
   void printDevices() const;  // CL device and GL renderer, one line each, on stdout
 };
 
@@ -45,6 +47,12 @@ TimedFrame timedRenders(FrameRenderer& renderer, LightAssigner& assigner, FrameO
 // without shading (options.shade off) only the bound and covered pixels.
 FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, FrameOptions options,
                           const Camera& camera);
+
+// The heat map of the last counted frame (FrameRenderer's count target:
+// channel 0 lights evaluated, 1 lights in range), sky black, cubehelix up to
+// `max_value` (0: the frame's maximum); `scale_max` gets the value used.
+std::vector<float> frameHeatmap(const FrameRenderer& renderer, Pipeline pipeline, unsigned channel,
+                                std::uint32_t max_value, std::uint32_t& scale_max);
 
 // A record's counted and timed fields from those renders.
 void setCounts(FrameRecord& record, const FrameResult& counted);

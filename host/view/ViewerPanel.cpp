@@ -1,0 +1,211 @@
+#include "host/view/ViewerPanel.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cstdio>
+#include <vector>
+
+#include "host/util/Error.hpp"
+#include "host/util/Heatmap.hpp"
+#include "host/view/ViewerSession.hpp"
+
+namespace ml {
+namespace {
+
+// Runs a panel action; a refused value becomes the panel's error line.
+template <typename F>
+void attempt(PanelState& state, F&& action) {
+  try {
+    action();
+    state.error.clear();
+  } catch (const UserError& e) {
+    state.error = e.what();
+  }
+}
+
+bool inputText(const char* label, std::string& text) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "%s", text.c_str());
+  const bool done = ImGui::InputText(label, buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue);
+  text = buf;
+  return done;
+}
+
+bool isSoftwareGl(const std::string& gl) {
+  for (const char* name : {"llvmpipe", "softpipe", "SwiftShader", "software"})
+    if (gl.find(name) != std::string::npos) return true;
+  return false;
+}
+
+void drawDevices(ViewerSession& s) {
+  RunContext& ctx = s.context();
+  const std::string gl = ctx.gl->describe();
+  ImGui::TextWrapped("%s", gl.c_str());
+  ImGui::TextWrapped("OpenCL: %s", ctx.cl->info().name.c_str());
+  ImGui::Text("CL/GL sharing: %s", shareModeName(ctx.cl->shareMode()).c_str());
+  if (isSoftwareGl(gl))
+    ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.2f, 1.0f), "software GL: frame times are CPU rasteriser times");
+}
+
+void drawParam(ViewerSession& s, PanelState& state, const ParamSpec& p) {
+  const std::string value = s.params().text(p.key);
+  const std::string label = p.key + "##param";
+  if (p.type == ParamType::Switch) {
+    bool on = s.params().on(p.key);
+    if (ImGui::Checkbox(label.c_str(), &on)) attempt(state, [&] { s.setParam(p.key, on ? "on" : "off"); });
+  } else if (p.type == ParamType::Choice) {
+    if (ImGui::BeginCombo(label.c_str(), value.c_str())) {
+      for (const std::string& c : p.choices)
+        if (ImGui::Selectable(c.c_str(), c == value)) attempt(state, [&] { s.setParam(p.key, c); });
+      ImGui::EndCombo();
+    }
+  } else {  // Count and Text: typed, checked against the spec on Enter
+    auto [it, fresh] = state.edits.try_emplace(p.key, value);
+    if (inputText(label.c_str(), it->second)) attempt(state, [&] { s.setParam(p.key, it->second); });
+    (void)fresh;
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s)", p.help.c_str(), p.allowed().c_str());
+}
+
+void drawTechnique(ViewerSession& s, PanelState& state) {
+  const std::string current = s.technique().name;
+  if (ImGui::BeginCombo("technique", current.c_str())) {
+    for (const TechniqueInfo& t : techniques())
+      if (ImGui::Selectable(t.name.c_str(), t.name == current)) {
+        attempt(state, [&] { s.setTechnique(t.name); });
+        state.edits.clear();
+      }
+    ImGui::EndCombo();
+  }
+  for (const ParamSpec& p : s.technique().descriptor->params) drawParam(s, state, p);
+}
+
+void drawLights(ViewerSession& s, PanelState& state) {
+  if (state.light_count == 0) state.light_count = int(s.lightCount());
+  ImGui::InputInt("lights", &state.light_count, 64, 1024);
+  ImGui::SameLine();
+  if (ImGui::Button("regenerate"))
+    attempt(state, [&] { s.setLightCount(std::uint64_t(std::max(state.light_count, 0))); });
+  bool animate = s.animateFraction() > 0.0;
+  float fraction = float(animate ? s.animateFraction() : 0.1), speed = float(s.animateSpeed());
+  bool changed = ImGui::Checkbox("animate", &animate);
+  changed |= ImGui::SliderFloat("moving fraction", &fraction, 0.001f, 1.0f, "%.3f");
+  changed |= ImGui::SliderFloat("step (x radius)", &speed, 0.01f, 2.0f, "%.2f");
+  if (changed) attempt(state, [&] { s.setAnimation(animate ? fraction : 0.0, speed); });
+}
+
+// The heat map's palette from 0 to the scale's top, with the scale written under it.
+void drawColourBar(std::uint32_t top) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  const float width = ImGui::GetContentRegionAvail().x, height = 14.0f;
+  const int steps = 64;
+  for (int i = 0; i < steps; ++i) {
+    const Rgb c = cubehelix((float(i) + 0.5f) / steps);
+    draw->AddRectFilled(ImVec2(at.x + width * i / steps, at.y), ImVec2(at.x + width * (i + 1) / steps, at.y + height),
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
+  }
+  ImGui::Dummy(ImVec2(width, height));
+  ImGui::Text("0");
+  ImGui::SameLine(width * 0.5f);
+  ImGui::Text("%u", top / 2);
+  ImGui::SameLine(std::max(width - 40.0f, width * 0.5f + 30.0f));
+  ImGui::Text("%u", top);
+}
+
+void drawViewMode(ViewerSession& s, PanelState& state) {
+  const std::vector<ViewMode> modes = s.viewModes();
+  std::string current = s.viewMode();
+  for (const ViewMode& m : modes)
+    if (m.name == s.viewMode()) current = m.label;
+  if (ImGui::BeginCombo("view", current.c_str())) {
+    for (const ViewMode& m : modes)
+      if (ImGui::Selectable(m.label.c_str(), m.name == s.viewMode())) attempt(state, [&] { s.setViewMode(m.name); });
+    ImGui::EndCombo();
+  }
+  if (s.viewMode() != "heatmap" && s.viewMode() != "bound-heatmap") return;
+  int top = int(s.heatmapMax());
+  if (ImGui::InputInt("scale top (0: frame max)", &top)) s.setHeatmapMax(std::uint32_t(std::max(top, 0)));
+  ImGui::Text("lights per pixel");
+  drawColourBar(s.shownHeatmapMax());
+}
+
+void drawCamera(ViewerSession& s, PanelState& state) {
+  CameraController& cam = s.camera();
+  int mode = cam.mode == CameraMode::Fly ? 0 : 1;
+  ImGui::RadioButton("fly (WASD QE, right drag)", &mode, 0);
+  ImGui::RadioButton("orbit (left drag, scroll)", &mode, 1);
+  cam.mode = mode == 0 ? CameraMode::Fly : CameraMode::Orbit;
+  ImGui::SliderFloat("fly speed", &cam.speed, 0.05f, 5.0f, "%.2f");
+  bool play = s.playing();
+  if (ImGui::Checkbox("play path", &play)) s.setPlaying(play);
+  int frame = int(s.pathFrame());
+  ImGui::SameLine();
+  if (ImGui::SliderInt("##frame", &frame, 0, int(s.cameraPath().frames.size()) - 1))
+    attempt(state, [&] { s.setCameraFrame(std::size_t(frame)); });
+  if (!s.recording()) {
+    if (ImGui::Button("record path")) s.startRecording();
+  } else {
+    ImGui::Text("recording: %zu frames", s.recordedFrames());
+    inputText("path file", state.record_file);
+    if (ImGui::Button("save path"))
+      attempt(state, [&] {
+        s.saveRecording(state.record_file);
+        state.message = "wrote " + state.record_file;
+      });
+  }
+  inputText("image file", state.screenshot_file);
+  if (ImGui::Button("screenshot (.png / .exr)"))
+    attempt(state, [&] {
+      s.screenshot(state.screenshot_file);
+      state.message = "wrote " + state.screenshot_file;
+    });
+}
+
+void drawTimings(ViewerSession& s) {
+  const FrameResult& f = s.lastFrame();
+  if (ImGui::BeginTable("passes", 2)) {
+    for (const auto& [name, ms] : f.passes.entries()) {
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(name.c_str());
+      ImGui::TableNextColumn();
+      ImGui::Text("%8.3f ms", ms);
+    }
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted("sum of passes");
+    ImGui::TableNextColumn();
+    ImGui::Text("%8.3f ms", f.passes.total());
+    ImGui::EndTable();
+  }
+  const std::vector<float> history(s.frameHistoryMs().begin(), s.frameHistoryMs().end());
+  if (!history.empty())
+    ImGui::PlotLines("##history", history.data(), int(history.size()), 0, "sum of passes (ms)", 0.0f, FLT_MAX,
+                     ImVec2(0, 60));
+  if (ImGui::Button("count this frame")) s.requestCounts();
+  if (const auto& c = s.lastCounts()) {
+    ImGui::Text("light evaluations %llu", static_cast<unsigned long long>(c->light_evaluations));
+    ImGui::Text("exact lower bound %llu", static_cast<unsigned long long>(c->lower_bound));
+    ImGui::Text("ratio to bound    %.3f", c->lower_bound ? double(c->light_evaluations) / double(c->lower_bound) : 0.0);
+  }
+}
+
+}  // namespace
+
+void drawPanel(ViewerSession& s, PanelState& state) {
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(380, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("manylights");
+  drawDevices(s);
+  if (ImGui::CollapsingHeader("technique", ImGuiTreeNodeFlags_DefaultOpen)) drawTechnique(s, state);
+  if (ImGui::CollapsingHeader("lights", ImGuiTreeNodeFlags_DefaultOpen)) drawLights(s, state);
+  if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) drawViewMode(s, state);
+  if (ImGui::CollapsingHeader("camera")) drawCamera(s, state);
+  if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) drawTimings(s);
+  if (!state.error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.35f, 1.0f), "%s", state.error.c_str());
+  if (!state.message.empty()) ImGui::TextUnformatted(state.message.c_str());
+  ImGui::End();
+}
+
+}  // namespace ml
