@@ -88,8 +88,10 @@ echo "== 1/3 compare-reference (70 lights, 320x320, every ${step}th frame)"
 
 # The thesis's settings: 32x32 tiles for tiled and clustered in its final
 # comparison, no tiled depth bounds, hashed node sizes relative to the corridor
-# light radius 23 (0.5 x 23 = 11.5) with start depth 3.
-params=(--param tile=32 --param tile_depth=none --param cluster_tile=32 --param node_size=11.5 --param start_depth=3)
+# light radius 23 (0.5 x 23 = 11.5) with start depth 3, and no geometry mask
+# (the thesis's future work A; on by default here).
+params=(--param tile=32 --param tile_depth=none --param cluster_tile=32 --param node_size=11.5 --param start_depth=3
+  --param geometry_mask=off)
 echo "== 2/3 light sweep (thesis light sets, 320x320, every ${light_step}th frame)"
 "$bin" bench --suite "$scene" --allow-missing-meshes --lights thesis "${tech_args[@]}" "${params[@]}" \
   --size 320x320 --frames "3:518:$light_step" --json "$out/bench_lights.json" --csv "$out/bench_lights.csv"

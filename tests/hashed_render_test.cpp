@@ -12,6 +12,7 @@
 #include "host/app/SceneInputs.hpp"
 #include "host/assign/BruteForceAssigner.hpp"
 #include "host/hashed/HashedAssigner.hpp"
+#include "host/techniques/Registry.hpp"
 #include "support/ImageCompare.hpp"
 #include "support/BruteReference.hpp"
 #include "support/DepthPoints.hpp"
@@ -115,19 +116,50 @@ TEST(HashedRender, GeometryMaskMatchesBruteForce) {
   BruteForceAssigner brute;
   const Rendered bf = render(r, brute, Pipeline::Forward, cam);
   const Rendered bd = render(r, brute, Pipeline::Deferred, cam);
-  hashed::HashedConfig params;
-  params.geometry_mask = true;
-  params.node_size = "0.25r";
-  HashedAssigner hf("hashed-forward", params), hd("hashed-deferred", params);
-  hf.setScene(&in.scene);
-  hd.setScene(&in.scene);
-  expectMatchesBrute(render(r, hf, Pipeline::Forward, cam), bf, "forward, masked");
-  expectMatchesBrute(render(r, hd, Pipeline::Deferred, cam), bd, "deferred, masked");
+  for (const char* node : {"0.25r", "0.5r"}) {  // 0.5r: the technique's default
+    SCOPED_TRACE(node);
+    hashed::HashedConfig params;
+    params.geometry_mask = true;
+    params.node_size = node;
+    HashedAssigner hf("hashed-forward", params), hd("hashed-deferred", params);
+    hf.setScene(&in.scene);
+    hd.setScene(&in.scene);
+    expectMatchesBrute(render(r, hf, Pipeline::Forward, cam), bf, "forward, masked");
+    expectMatchesBrute(render(r, hd, Pipeline::Deferred, cam), bd, "deferred, masked");
+  }
+}
+
+// render and bench (the registry's defaults) mask the octree with the scene's
+// geometry unless told not to, and the masked default renders as brute force.
+TEST(HashedRender, DefaultsMaskWithTheSceneGeometry) {
+  test::glContext();
+  const auto& in = inputs();
+  FrameRenderer r(test::runtime(), in.scene, kW, kH);
+  r.setLights(in.lights);
+  const Camera& cam = in.cameras.frames.front();
+  const TechniqueInfo& t = findTechnique("hashed-deferred");
+  const auto masked = makeAssigner(t, test::runtime(), techniqueParams(t, {}, "--param"), &in.scene);
+  const auto plain =
+      makeAssigner(t, test::runtime(), techniqueParams(t, {{"geometry_mask", "off"}}, "--param"), &in.scene);
+  auto& h = dynamic_cast<HashedAssigner&>(*masked);
+  EXPECT_TRUE(h.config().geometry_mask);
+  EXPECT_EQ(h.config().node_size, "0.5r");
+  EXPECT_TRUE(h.config().octant_masks);
+  EXPECT_FALSE(dynamic_cast<HashedAssigner&>(*plain).config().geometry_mask);
+  BruteForceAssigner brute;
+  const Rendered b = render(r, brute, Pipeline::Deferred, cam);
+  const Rendered m = render(r, *masked, Pipeline::Deferred, cam);
+  const Rendered p = render(r, *plain, Pipeline::Deferred, cam);
+  expectMatchesBrute(m, b, "default (masked)");
+  expectMatchesBrute(p, b, "--no-geometry-mask");
+  EXPECT_EQ(m.result.missed_lights, 0u);
+  EXPECT_EQ(p.result.missed_lights, 0u);
 }
 
 // Lights moving between frames: the incrementally updated GPU tables render
-// exactly what a fresh structure renders, and match brute force.
-TEST(HashedRender, AnimatedLightsMatchAFreshBuild) {
+// exactly what a fresh structure renders, and match brute force; with and
+// without the geometry mask (render's default).
+void animatedLightsMatchAFreshBuild(bool geometry_mask) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
@@ -138,7 +170,9 @@ TEST(HashedRender, AnimatedLightsMatchAFreshBuild) {
   r.setLights(lights);
   const Camera& cam = in.cameras.frames.front();
   hashed::HashedConfig params;
+  params.geometry_mask = geometry_mask;
   HashedAssigner animated("hashed-deferred", params);
+  animated.setScene(&in.scene);
   animated.config().bounds_padding = 0.1;
   render(r, animated, Pipeline::Deferred, cam);
   int partial_uploads = 0;
@@ -174,6 +208,7 @@ TEST(HashedRender, AnimatedLightsMatchAFreshBuild) {
   EXPECT_TRUE(keys.count("build bounds ms") && keys.count("update lights moved"));
   const Rendered a = render(r, animated, Pipeline::Deferred, cam);
   HashedAssigner fresh("hashed-deferred", params);
+  fresh.setScene(&in.scene);
   const Rendered f = render(r, fresh, Pipeline::Deferred, cam);
   BruteForceAssigner brute;
   const Rendered b = render(r, brute, Pipeline::Deferred, cam);
@@ -182,6 +217,9 @@ TEST(HashedRender, AnimatedLightsMatchAFreshBuild) {
   expectMatchesBrute(a, b, "animated");
   expectMatchesBrute(f, b, "fresh");
 }
+
+TEST(HashedRender, AnimatedLightsMatchAFreshBuild) { animatedLightsMatchAFreshBuild(false); }
+TEST(HashedRender, AnimatedMaskedLightsMatchAFreshBuild) { animatedLightsMatchAFreshBuild(true); }
 
 TEST(HashedRender, NoLightsGivesAmbientOnly) {
   test::glContext();

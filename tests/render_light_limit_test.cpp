@@ -44,8 +44,9 @@ struct Frame {
   FrameResult result;
 };
 
+// With the scene: hashed shading masks its octree with the scene's geometry by default.
 Frame renderWith(FrameRenderer& r, const Camera& cam, const std::string& technique) {
-  const auto assigner = makeAssigner(technique, test::runtime());
+  const auto assigner = makeAssigner(technique, test::runtime(), &test::referenceScene().scene);
   Frame f;
   f.result = r.render(cam, *assigner, {findTechnique(technique).pipeline, true});
   f.image = r.targets().readColor();

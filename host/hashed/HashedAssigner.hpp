@@ -11,7 +11,9 @@
 //    the edited slots, offsets, list entries and the list's new tail are uploaded, unless a
 //    table was rehashed to a new size (then everything is).
 //  - The geometry mask needs the scene's triangles: setScene() before the
-//    first frame (the descriptor's factory passes the run's scene).
+//    first frame (the descriptor's factory passes the run's scene). The
+//    descriptor turns it on by default (`--no-geometry-mask` turns it off);
+//    HashedConfig, for scene-less use, leaves it off.
 //  - hashedTechnique(): the descriptor (names, parameters, factory) that the
 //    registry lists (HashedTechnique.cpp).
 #include <epoxy/gl.h>

@@ -24,7 +24,8 @@ void HashedStructure::checkLightCount(std::size_t n) {
 HashedStructure::HashedStructure(const HashedConfig& config, const Scene* scene) : cfg_(config), scene_(scene) {
   parseNodeSize(cfg_.node_size);  // fail early on a bad flag
   if (cfg_.geometry_mask && !scene_)
-    throw UserError("--geometry-mask: hashed shading was given no scene geometry to mask with");
+    throw UserError("--geometry-mask: hashed shading was given no scene geometry to mask with "
+                    "(--no-geometry-mask builds without it)");
 }
 
 HashedStructure::~HashedStructure() = default;
@@ -46,7 +47,7 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
     if (need > double(cfg_.memory_limit))
       throw UserError("--node-size " + cfg_.node_size + ": the geometry mask would need about " +
                       std::to_string(int(need / double(1 << 20))) + " MiB (limit " +
-                      std::to_string(cfg_.memory_limit >> 20) + " MiB); use a larger node size");
+                      std::to_string(cfg_.memory_limit >> 20) + " MiB); use a larger node size or --no-geometry-mask");
   }
   BuildStats st;
   const auto t0 = Clock::now();

@@ -30,7 +30,7 @@ const TechniqueDescriptor& hashedTechnique() {
         textParam("node_size", "0.5r", "minimal node size",
                   nodeSizeProblem),
         countParam("start_depth", "3", 0, 16, "octree start depth"),
-        switchParam("geometry_mask", false, "keep only nodes that contain geometry"),
+        switchParam("geometry_mask", true, "keep only nodes that contain the scene's geometry"),
         switchParam("octant_masks", true, "skip lights that miss the point's octant of its deepest cell"),
     };
     t.max_lights = hashed::kMaxHashedLights;
