@@ -155,7 +155,7 @@ bool ViewerSession::frame() {
 void ViewerSession::render() {
   const Camera& camera = controller_.camera();
   if (needsCounts()) {
-    last_ = countedRender(*renderer_, *assigner_, technique_->pipeline, camera);
+    last_ = countedRender(*renderer_, *assigner_, {.pipeline = technique_->pipeline}, camera);
     counts_ = last_;
     counts_requested_ = false;
   } else {
