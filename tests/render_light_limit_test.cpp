@@ -133,7 +133,7 @@ TEST(RenderLightLimit, ListsSizedByASmallSetGrowForALargeOne) {
   for (const auto& t : techniques()) {
     if (t.name == "forward" || t.name == "deferred") continue;  // brute force keeps no lists
     SCOPED_TRACE(t.name);
-    const auto assigner = makeAssigner(t.name, test::runtime());
+    const auto assigner = makeAssigner(t.name, test::runtime(), &in.scene);
     for (const int s : {0, 1, 0, 1}) {
       r.setLights(sets[s]);
       const FrameResult f = r.render(cam, *assigner, {t.pipeline, true});
