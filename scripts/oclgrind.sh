@@ -84,7 +84,7 @@ else
   radix_left_out="Compute/RadixSortTest.MatchesStableSort/Gpu_Keys*:Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs32Bits13"
   radix_left_out+=":Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs64:Compute/RadixShapeTest.*"
   groups=("primitives|Compute/*Gpu*-$radix_left_out:Compute/ReduceShapeTest.SegmentedMinMaxFixedSize/Gpu|"
-          "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.*/gpu-Shapes/ClusteredUnique.EveryPixelADifferentCluster/gpu|-cl-opt-disable")
+          "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.*/gpu:Shapes/VctMips.*/gpu:Shapes/VctInject.*/gpu-Shapes/ClusteredUnique.EveryPixelADifferentCluster/gpu|-cl-opt-disable")
 fi
 
 command -v oclgrind >/dev/null || { echo "oclgrind.sh: oclgrind is not installed (apt-get install oclgrind)" >&2; exit 2; }
