@@ -58,11 +58,8 @@ fi
 [[ -x "$bin" ]] || { echo "scale_sweep.sh: $bin not found (build the manylights target)" >&2; exit 2; }
 mkdir -p "$out"
 
-# Hashed without the geometry mask (the default since the sweep in results/scale/
-# was taken): the sweep measures light assignment, and the mask's scene
-# voxelization would add a per-build cost that does not depend on N.
 common=(--lights "$counts" --light-density "$density" --size "$size" --frames 0:0:1 --node-size "$node_size"
-        --param geometry_mask=off --progress lines)
+        --progress lines)
 echo "== load before: $(uptime)" | tee "$out/load.txt"
 "$bin" bench "${common[@]}" --no-shading --repeat "$repeat" --warmup 1 --json "$out/timing.json" \
   --csv "$out/timing.csv" | tee "$out/timing.log"
