@@ -37,6 +37,10 @@ void VctPipeline::update(const SceneGpu& scene, const std::vector<gpu::PointLigh
   if (volume_.anisotropic()) volume_.anisotropic()->releaseToGl(q);
   volume_.radiance().releaseToGl(q);
   volume_.accum().releaseToGl(q);
+  GlPassTimer gl_timer;
+  textures_.unpack(volume_.params(), volume_.radiance().gl(), volume_.anisotropic() ? volume_.anisotropic()->gl() : 0,
+                   &gl_timer);
+  gl_timer.collect(timings);
   ++updates_;
 }
 

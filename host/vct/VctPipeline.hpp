@@ -9,14 +9,16 @@
 // `vct-lists`) unless `brute_force` is set.
 // Hand-overs: the volume's SharedBuffers are acquired for CL after the GL
 // voxelization and released to GL after the mips (GL owns them between
-// updates, ready for sampling). Passes: `vct-voxelize` (GL), `vct-inject`,
-// `vct-mips` (CL device times), added to the caller's PassTimings.
+// updates), then unpacked into mip-mapped 3D textures for sampling
+// (gl/VoxelTextures). Passes: `vct-voxelize` (GL), `vct-inject`, `vct-mips`
+// (CL device times), `vct-textures` (GL), added to the caller's PassTimings.
 // Not thread-safe; needs the current GL context of the scene's SceneGpu.
 #include <cstddef>
 #include <memory>
 #include <vector>
 
 #include "gl/SceneGpu.hpp"
+#include "gl/VoxelTextures.hpp"
 #include "gl/VoxelizePass.hpp"
 #include "host/compute/ComputeEnv.hpp"
 #include "host/hashed/HashedStructure.hpp"
@@ -45,6 +47,7 @@ class VctPipeline {
   void update(const SceneGpu& scene, const std::vector<gpu::PointLight>& lights, PassTimings& timings);
 
   VoxelVolume& volume() { return volume_; }
+  const VoxelTextures& textures() const { return textures_; }
   std::size_t voxelizations() const { return voxelizations_; }  // tests: static geometry once
   std::size_t updates() const { return updates_; }
 
@@ -57,6 +60,7 @@ class VctPipeline {
   compute::ComputeEnv env_;
   VoxelVolume volume_;
   VoxelizePass voxelize_;
+  VoxelTextures textures_;
   VoxelInjector injector_;
   VoxelMips mips_;
   HashedListsCl lists_;
