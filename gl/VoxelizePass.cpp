@@ -1,6 +1,5 @@
 #include "gl/VoxelizePass.hpp"
 
-#include <algorithm>
 #include <bit>
 #include <string>
 
@@ -22,26 +21,8 @@ void checkVoxelGrid(const gpu::VoxelGridParams& grid) {
     throw UserError("voxel size must be positive, got " + std::to_string(grid.origin_voxel_size.w));
 }
 
-gpu::VoxelGridParams fitVoxelGrid(const Aabb& bounds, unsigned edge, unsigned levels) {
-  if (bounds.empty()) throw UserError("cannot fit a voxel grid around a scene without geometry");
-  const glm::vec3 size = bounds.max - bounds.min;
-  // A flat scene still needs a cube of positive size; the floor is relative to
-  // the scene's position so that it is representable next to the coordinates.
-  const float floor_size = 1e-4f * std::max(1.0f, glm::length(bounds.max));
-  const float side = std::max(std::max(size.x, std::max(size.y, size.z)), floor_size) * 1.01f;
-  const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);
-  gpu::VoxelGridParams grid{};
-  grid.origin_voxel_size = {centre.x - 0.5f * side, centre.y - 0.5f * side, centre.z - 0.5f * side,
-                            side / static_cast<float>(std::max(edge, 1u))};
-  grid.edge = edge;
-  grid.levels = levels;
-  checkVoxelGrid(grid);
-  return grid;
-}
-
-VoxelizePass::VoxelizePass(ClRuntime& cl, const VoxelizeOptions& options)
-    : cl_(cl), options_(options), program_({"voxelize.vert", "voxelize.geom", "voxelize.frag"}) {
-  accum_ = std::make_unique<SharedBuffer>(cl_, sizeof(gpu::VoxelAccum), "voxel-accum");
+VoxelizePass::VoxelizePass(const VoxelizeOptions& options)
+    : options_(options), program_({"voxelize.vert", "voxelize.geom", "voxelize.frag"}) {
   glCreateFramebuffers(1, &fbo_);
   glCheck("creating the voxelization framebuffer");
 }
@@ -63,7 +44,8 @@ void VoxelizePass::bindEmptyFramebuffer(unsigned edge) {
   glDisable(GL_MULTISAMPLE);
 }
 
-void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, GlPassTimer* timer) {
+void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, SharedBuffer& accum,
+                       GlPassTimer* timer) {
   checkVoxelGrid(grid);
   const std::size_t edge = grid.edge;
   const std::size_t bytes = edge * edge * edge * sizeof(gpu::VoxelAccum);
@@ -75,10 +57,9 @@ void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, 
     throw UserError("voxel grid edge " + std::to_string(edge) + " needs " + std::to_string(bytes >> 20) +
                     " MiB of voxel sums, more than this GL's shader storage block limit (" +
                     std::to_string(max_block >> 20) + " MiB)");
-  accum_->reserve(bytes);
-  grid_ = grid;
+  accum.reserve(bytes);
   GlPassScope scope(timer, "vct-voxelize");
-  glClearNamedBufferSubData(accum_->gl(), GL_R32UI, 0, static_cast<GLsizeiptr>(bytes), GL_RED_INTEGER,
+  glClearNamedBufferSubData(accum.gl(), GL_R32UI, 0, static_cast<GLsizeiptr>(bytes), GL_RED_INTEGER,
                             GL_UNSIGNED_INT, nullptr);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   glCheck("clearing the voxel accumulation buffer");
@@ -88,7 +69,7 @@ void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, 
   program_.set4("u_origin_voxel_size", o.x, o.y, o.z, o.w);
   program_.set("u_edge", grid.edge);
   program_.set("u_dilate", options_.dilate ? 1 : 0);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, accum_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, accum.gl());
   scene.draw(program_, true);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
                   GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);

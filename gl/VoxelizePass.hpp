@@ -2,10 +2,11 @@
 // Voxelization of voxel cone tracing (002's single pass): the scene's triangles,
 // projected along their dominant axis and rasterised conservatively, add their
 // albedo, normal and a count to every level-0 voxel they cross, as the integer
-// sums of host/shared/voxel_types.h (VoxelAccum), in a SharedBuffer so that the
-// OpenCL kernels (resolve, injection, mips) read the result where it lies.
+// sums of host/shared/voxel_types.h (VoxelAccum), into a SharedBuffer the caller
+// owns (vct::VoxelVolume's accum) so that the OpenCL kernels (resolve,
+// injection, mips) read the result where it lies.
 //
-// One grid, a cube fitted around the scene's bounds (fitVoxelGrid), instead of
+// One grid, a cube fitted around the scene's bounds (vct::fitVoxelGrid), instead of
 // 002's camera-centred cascade: the scenes here are rooms of bounded size
 // (Cornell box, the default scene), the grid is voxelized once for static
 // geometry and reused from every viewpoint, and the Embree reference it is
@@ -19,8 +20,6 @@
 // pixel's square against the triangle's edges, whose depth range along the
 // column gives the voxels the triangle crosses there. So a voxel is filled
 // exactly when the triangle crosses it (up to float rounding at voxel faces).
-#include <memory>
-
 #include "gl/GlPassTimer.hpp"
 #include "gl/SceneGpu.hpp"
 #include "gl/ShaderProgram.hpp"
@@ -30,12 +29,9 @@
 
 namespace ml {
 
-// A cube of `edge` voxels per axis around `bounds` (centred, 1% larger than the
-// longest side, so geometry on the bounds lies strictly inside). Throws
-// UserError for an edge that is not a power of two in 1..ML_VOXEL_MAX_EDGE,
-// levels outside 1..log2(edge)+1, or empty bounds.
-gpu::VoxelGridParams fitVoxelGrid(const Aabb& bounds, unsigned edge, unsigned levels);
-// The same checks on a grid built by hand (tests, benchmarks).
+// Throws UserError for a grid whose edge is not a power of two in
+// 1..ML_VOXEL_MAX_EDGE, whose levels lie outside 1..log2(edge)+1, or whose
+// voxel size is not positive (grids come from vct::fitVoxelGrid or by hand).
 void checkVoxelGrid(const gpu::VoxelGridParams& grid);
 
 struct VoxelizeOptions {
@@ -46,30 +42,23 @@ struct VoxelizeOptions {
 
 class VoxelizePass {
  public:
-  VoxelizePass(ClRuntime& cl, const VoxelizeOptions& options = {});
+  explicit VoxelizePass(const VoxelizeOptions& options = {});
   ~VoxelizePass();
   VoxelizePass(const VoxelizePass&) = delete;
   VoxelizePass& operator=(const VoxelizePass&) = delete;
 
-  // Clears the accumulation buffer (grown to grid.edge^3 VoxelAccums when
-  // needed) and voxelizes `scene` into it; a GL pass named `vct-voxelize`.
+  // Clears `accum` (grown to grid.edge^3 VoxelAccums when needed; GL must
+  // own it) and voxelizes `scene` into it; a GL pass named `vct-voxelize`.
   // GL owns the buffer afterwards (writes are visible to buffer reads and CL
   // acquisition).
-  void run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, GlPassTimer* timer);
-
-  SharedBuffer& accum() { return *accum_; }
-  const gpu::VoxelGridParams& grid() const { return grid_; }
-  std::size_t voxelBytes() const { return accum_->used(); }
+  void run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, SharedBuffer& accum, GlPassTimer* timer);
 
  private:
   void bindEmptyFramebuffer(unsigned edge);
-  ClRuntime& cl_;
   VoxelizeOptions options_;
   ShaderProgram program_;
-  std::unique_ptr<SharedBuffer> accum_;
   GLuint fbo_ = 0;
   unsigned fbo_edge_ = 0;
-  gpu::VoxelGridParams grid_{};
 };
 
 }  // namespace ml

@@ -18,6 +18,7 @@
 #include "gl/SceneGpu.hpp"
 #include "gl/VoxelizePass.hpp"
 #include "host/util/Error.hpp"
+#include "host/vct/VoxelGrid.hpp"
 #include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
@@ -90,10 +91,11 @@ std::vector<gpu::VoxelAccum> voxelize(const Shape& shape, const gpu::VoxelGridPa
   test::glContext();
   const Scene scene = sceneFromGrid(shape, grid, color);
   SceneGpu gpu_scene(scene);
-  VoxelizePass pass(test::runtime(), options);
-  pass.run(gpu_scene, grid, nullptr);
+  VoxelizePass pass(options);
+  SharedBuffer accum(test::runtime(), sizeof(gpu::VoxelAccum), "test accum");
+  pass.run(gpu_scene, grid, accum, nullptr);
   std::vector<gpu::VoxelAccum> out(std::size_t(grid.edge) * grid.edge * grid.edge);
-  pass.accum().download(out.data(), out.size() * sizeof(gpu::VoxelAccum));
+  accum.download(out.data(), out.size() * sizeof(gpu::VoxelAccum));
   return out;
 }
 
@@ -242,15 +244,16 @@ TEST(VctVoxelizePass, ClearsTimesAndFitsTheScene) {
   const Shape shape = axisAlignedBox(rng, 16);
   const glm::vec4 color = randomColor(rng);
   const Scene scene = sceneFromGrid(shape, randomGrid(rng, 16), color);
-  const gpu::VoxelGridParams grid = fitVoxelGrid(scene.bounds, 16, 5);
+  const gpu::VoxelGridParams grid = vct::fitVoxelGrid(scene.bounds, {16, 5, false});
   SceneGpu gpu_scene(scene);
-  VoxelizePass pass(test::runtime());
+  VoxelizePass pass;
+  SharedBuffer accum(test::runtime(), 1, "test accum");
   GlPassTimer timer;
   std::vector<gpu::VoxelAccum> first(16 * 16 * 16), second(first.size());
-  pass.run(gpu_scene, grid, &timer);
-  pass.accum().download(first.data(), first.size() * sizeof(gpu::VoxelAccum));
-  pass.run(gpu_scene, grid, &timer);
-  pass.accum().download(second.data(), second.size() * sizeof(gpu::VoxelAccum));
+  pass.run(gpu_scene, grid, accum, &timer);
+  accum.download(first.data(), first.size() * sizeof(gpu::VoxelAccum));
+  pass.run(gpu_scene, grid, accum, &timer);
+  accum.download(second.data(), second.size() * sizeof(gpu::VoxelAccum));
   PassTimings t;
   timer.collect(t);
   EXPECT_GT(t.get("vct-voxelize"), 0.0);
@@ -261,15 +264,16 @@ TEST(VctVoxelizePass, ClearsTimesAndFitsTheScene) {
   }
   EXPECT_GT(filled, 0u);
   EXPECT_EQ(differ, 0u);
-  EXPECT_EQ(pass.voxelBytes(), first.size() * sizeof(gpu::VoxelAccum));
+  const std::size_t bytes = first.size() * sizeof(gpu::VoxelAccum);
+  EXPECT_EQ(accum.used(), bytes);
   // OpenCL reads the same sums from the shared buffer.
   std::vector<gpu::VoxelAccum> from_cl(first.size());
   std::memset(from_cl.data(), 0xAB, from_cl.size() * sizeof(gpu::VoxelAccum));
   cl::CommandQueue& q = test::runtime().queue();
-  pass.accum().acquireForCl(q, ClAccess::Read);
-  q.enqueueReadBuffer(pass.accum().cl(), CL_TRUE, 0, pass.voxelBytes(), from_cl.data());
-  pass.accum().releaseToGl(q);
-  EXPECT_EQ(std::memcmp(from_cl.data(), first.data(), pass.voxelBytes()), 0);
+  accum.acquireForCl(q, ClAccess::Read);
+  q.enqueueReadBuffer(accum.cl(), CL_TRUE, 0, bytes, from_cl.data());
+  accum.releaseToGl(q);
+  EXPECT_EQ(std::memcmp(from_cl.data(), first.data(), bytes), 0);
   // The fitted cube holds the scene's bounds strictly inside.
   const glm::vec3 origin(grid.origin_voxel_size.x, grid.origin_voxel_size.y, grid.origin_voxel_size.z);
   for (int a = 0; a < 3; ++a) {
@@ -279,20 +283,28 @@ TEST(VctVoxelizePass, ClearsTimesAndFitsTheScene) {
   }
 }
 
+// Grids built by hand are checked before anything is drawn (fitted ones are
+// checked by vct::fitVoxelGrid, tests/vct_grid_test.cpp).
 TEST(VctVoxelizePass, BadGridsAreUserErrors) {
   Aabb b;
   b.extend({0, 0, 0});
   b.extend({1, 2, 3});
-  EXPECT_NO_THROW(fitVoxelGrid(b, 64, 7));
-  EXPECT_THROW(fitVoxelGrid(b, 48, 1), UserError);
-  EXPECT_THROW(fitVoxelGrid(b, 0, 1), UserError);
-  EXPECT_THROW(fitVoxelGrid(b, 1024, 1), UserError);
-  EXPECT_THROW(fitVoxelGrid(b, 64, 0), UserError);
-  EXPECT_THROW(fitVoxelGrid(b, 64, 8), UserError);
-  EXPECT_THROW(fitVoxelGrid(Aabb{}, 64, 1), UserError);
-  const gpu::VoxelGridParams g = fitVoxelGrid(b, 8, 4);
-  EXPECT_FLOAT_EQ(g.origin_voxel_size.w * 8, 3.0f * 1.01f);
-  EXPECT_FLOAT_EQ(g.origin_voxel_size.x + 4 * g.origin_voxel_size.w, 0.5f);
+  const gpu::VoxelGridParams good = vct::fitVoxelGrid(b, {64, 7, false});
+  EXPECT_NO_THROW(checkVoxelGrid(good));
+  const auto with = [&](unsigned edge, unsigned levels, float size) {
+    gpu::VoxelGridParams g = good;
+    g.edge = edge;
+    g.levels = levels;
+    g.origin_voxel_size.w = size;
+    return g;
+  };
+  EXPECT_THROW(checkVoxelGrid(with(48, 1, 0.1f)), UserError);
+  EXPECT_THROW(checkVoxelGrid(with(0, 1, 0.1f)), UserError);
+  EXPECT_THROW(checkVoxelGrid(with(1024, 1, 0.1f)), UserError);
+  EXPECT_THROW(checkVoxelGrid(with(64, 0, 0.1f)), UserError);
+  EXPECT_THROW(checkVoxelGrid(with(64, 8, 0.1f)), UserError);
+  EXPECT_THROW(checkVoxelGrid(with(64, 7, 0.0f)), UserError);
+  EXPECT_THROW(checkVoxelGrid(with(64, 7, -1.0f)), UserError);
 }
 
 // The Cornell box as loaded from glTF, in a fitted grid: the voxels the red and
@@ -302,12 +314,13 @@ TEST(VctVoxelizePass, CornellWallsCarryTheirAlbedo) {
   test::glContext();
   const Scene scene = loadGltfScene(std::string(MANYLIGHTS_TEST_DATA_DIR) + "/cornell/cornell.gltf");
   constexpr unsigned kEdge = 32;
-  const gpu::VoxelGridParams grid = fitVoxelGrid(scene.bounds, kEdge, 1);
+  const gpu::VoxelGridParams grid = vct::fitVoxelGrid(scene.bounds, {kEdge, 1, false});
   SceneGpu gpu_scene(scene);
-  VoxelizePass pass(test::runtime());
-  pass.run(gpu_scene, grid, nullptr);
+  VoxelizePass pass;
+  SharedBuffer accum(test::runtime(), 1, "test accum");
+  pass.run(gpu_scene, grid, accum, nullptr);
   std::vector<gpu::VoxelAccum> v(kEdge * kEdge * kEdge);
-  pass.accum().download(v.data(), v.size() * sizeof(gpu::VoxelAccum));
+  accum.download(v.data(), v.size() * sizeof(gpu::VoxelAccum));
   const glm::vec3 origin(grid.origin_voxel_size.x, grid.origin_voxel_size.y, grid.origin_voxel_size.z);
   const float vs = grid.origin_voxel_size.w;
   const auto cell = [&](float w, int axis) { return unsigned((w - origin[axis]) / vs); };
@@ -343,8 +356,9 @@ TEST(VctVoxelizePass, GridBeyondTheStorageBlockLimitIsAUserError) {
   std::mt19937 rng(1);
   const Scene scene = sceneFromGrid(axisAlignedBox(rng, 8), randomGrid(rng, 8), {1, 1, 1, 1});
   SceneGpu gpu_scene(scene);
-  VoxelizePass pass(test::runtime());
-  EXPECT_THROW(pass.run(gpu_scene, fitVoxelGrid(scene.bounds, edge, 1), nullptr), UserError);
+  VoxelizePass pass;
+  SharedBuffer accum(test::runtime(), 1, "test accum");
+  EXPECT_THROW(pass.run(gpu_scene, vct::fitVoxelGrid(scene.bounds, {edge, 1, false}), accum, nullptr), UserError);
   glCheck("after the refused grid");
 }
 
