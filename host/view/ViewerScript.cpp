@@ -84,7 +84,11 @@ ViewerScript ViewerScript::load(const std::string& path) {
   for (std::size_t i = 0; i < doc.size(); ++i) {
     const std::string where = "--script: " + path + ": action " + std::to_string(i);
     if (!doc[i].is_object() || doc[i].size() != 1) throw UserError(where + ": expected an object with one key");
-    const auto& [verb, value] = *doc[i].items().begin();
+    // The key and value through an iterator of doc[i] itself: items() returns a
+    // temporary proxy that its element would outlive (ASan: stack-use-after-scope).
+    const auto entry = doc[i].begin();
+    const std::string verb = entry.key();
+    const json& value = entry.value();
     const auto shape = verbs().find(verb);
     if (shape == verbs().end()) throw UserError(where + ": unknown action '" + verb + "'");
     if (!fits(shape->second, value))
