@@ -96,6 +96,11 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
                   "write a heat map of lights evaluated per pixel (cubehelix) to this PNG, its colour bar and scale "
                   "under the image");
   cmd->add_option("--heatmap-max", a.heatmap_max, "count mapped to the top of the palette (default: frame max)");
+  cmd->add_option("--ratio-map", a.ratio_map,
+                  "write lights evaluated / lights in range (the exact lower bound) per pixel to this PNG: 1x up to "
+                  "--ratio-max in viridis, grey where no light is in range, its colour bar and scale under the image");
+  cmd->add_option("--ratio-max", a.ratio_max, "ratio mapped to the top of the --ratio-map palette (above 1)")
+      ->capture_default_str();
   cmd->add_flag("--counts", a.counts, "count light evaluations and the exact lower bound (extra frame)");
   cmd->add_option("--stats-json", a.stats_json, "write times and counts as JSON (implies --counts)");
   cmd->add_flag("--no-shading", a.no_shading, kNoShadingHelp);
@@ -128,9 +133,13 @@ void checkRenderFlags(const RenderArgs& a, const TechniqueInfo& tech) {
   }
   requireImageFile("--out", a.out);
   requireImageFile("--heatmap", a.heatmap);
+  requireImageFile("--ratio-map", a.ratio_map);
+  if (!(a.ratio_max > 1.0 && a.ratio_max <= 1e6))
+    throw UserError("--ratio-max: expected a ratio above 1 (up to 1e6), got " + std::to_string(a.ratio_max));
   if (a.no_shading && !a.out.empty()) throw UserError("--out: there is no shaded image with --no-shading");
-  if (a.no_shading && !a.heatmap.empty())
-    throw UserError("--heatmap: light evaluations are not counted with --no-shading");
+  for (const auto& [flag, file] : {std::pair{"--heatmap", &a.heatmap}, std::pair{"--ratio-map", &a.ratio_map}})
+    if (a.no_shading && !file->empty())
+      throw UserError(std::string(flag) + ": light evaluations are not counted with --no-shading");
   requireOutputFile("--stats-json", a.stats_json);
   checkGiFlags(a.gi, a.out);
   std::uint64_t count = 0;
@@ -177,12 +186,17 @@ void printCounts(const FrameResult& c) {
   std::printf("fragment evaluations%14llu  (all shaded fragments, overdraw included)\n", u(c.fragment_evaluations));
 }
 
-void writeHeatmap(const RenderArgs& a, const TechniqueInfo& tech, const FrameRenderer& r) {
-  std::uint32_t scale_max = 0;
-  const auto map = frameHeatmap(r, tech.pipeline, 0, a.heatmap_max, scale_max);
-  writeImageAtomically("--heatmap", a.heatmap, r.width(), r.height() + colourBarRows(r.width()), 4,
-                       withColourBar(map, r.width(), r.height(), scale_max));
-  std::printf("heat map scale: 0..%u lights evaluated per pixel (colour bar under the image)\n", scale_max);
+// A heat map with its colour bar; prints the scale used.
+void writeHeatmap(const std::string& flag, const std::string& file, const TechniqueInfo& tech,
+                  const FrameRenderer& r, HeatmapScale scale) {
+  const FrameHeatmap map = frameHeatmap(r, tech.pipeline, scale);
+  writeImageAtomically(flag, file, r.width(), r.height() + colourBarRows(r.width()), 4,
+                       withColourBar(map.rgba, r.width(), r.height(), map.scale));
+  if (scale.kind == HeatmapKind::Ratio)
+    std::printf("ratio map scale: 1x..%gx lights evaluated / lights in range (colour bar under the image)\n",
+                map.scale.top);
+  else
+    std::printf("heat map scale: 0..%.0f lights evaluated per pixel (colour bar under the image)\n", map.scale.top);
 }
 
 // Warm-up, the timed frames (animated), then the counting frame and the
@@ -204,15 +218,18 @@ RenderRun renderFrames(const RenderArgs& a, const TechniqueInfo& tech, const Sce
   if (!a.out.empty())
     writeImageAtomically("--out", a.out, renderer.width(), renderer.height(), 4, renderer.targets().readColor());
   printTimes(run.timed);
-  run.has_counts = a.counts || !a.stats_json.empty() || !a.heatmap.empty();
+  run.has_counts = a.counts || !a.stats_json.empty() || !a.heatmap.empty() || !a.ratio_map.empty();
   if (run.has_counts) {
     run.counted = countedRender(renderer, assigner, options, camera);
-    if (!a.heatmap.empty()) writeHeatmap(a, tech, renderer);
+    if (!a.heatmap.empty())
+      writeHeatmap("--heatmap", a.heatmap, tech, renderer, {HeatmapKind::Evaluated, double(a.heatmap_max)});
+    if (!a.ratio_map.empty()) writeHeatmap("--ratio-map", a.ratio_map, tech, renderer, {HeatmapKind::Ratio, a.ratio_max});
     printCounts(run.counted);
   }
   for (const auto& [view, file] : a.views) {
     const std::string flag = DebugViewSpec{view, ""}.flag();
-    writeImageAtomically(flag, file, renderer.width(), renderer.height(), 4, assigner.debugViewRgba(view));
+    writeImageAtomically(flag, file, renderer.width(), renderer.height(), 4,
+                         frameDebugView(renderer, tech.pipeline, camera, assigner, view));
     std::printf("wrote %s\n", file.c_str());
   }
   run.stats = assigner.stats();
@@ -290,7 +307,8 @@ int runRender(const RenderArgs& a) {
   }
   if (run.has_counts) std::printf("%-20s%14zu\n", "memory bytes", run.counted.memory_bytes);
   if (!a.out.empty()) std::printf("\nwrote %s\n", a.out.c_str());
-  if (!a.heatmap.empty()) std::printf("wrote %s\n", a.heatmap.c_str());
+  for (const std::string* file : {&a.heatmap, &a.ratio_map})
+    if (!file->empty()) std::printf("wrote %s\n", file->c_str());
   if (!a.stats_json.empty()) writeStatsJson(a, tech, inputs, run, ctx, width, height);
   return 0;
 }

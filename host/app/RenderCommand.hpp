@@ -25,6 +25,8 @@ struct RenderArgs {
   std::string stats_json;
   std::string heatmap;     // lights evaluated per pixel, cubehelix
   unsigned heatmap_max = 0;
+  std::string ratio_map;   // lights evaluated / lights in range per pixel (host/util/Heatmap.hpp)
+  double ratio_max = 4.0;
   bool counts = false;
   bool no_shading = false;  // depth + assignment passes only (FrameOptions::shade)
   unsigned frame = 0;     // index into the camera path

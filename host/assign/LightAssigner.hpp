@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "host/assign/DebugViewInputs.hpp"
 #include "host/assign/ShaderContract.hpp"
 #include "host/cl/ClPassTimer.hpp"
 #include "host/shared/gpu_types.h"
@@ -73,11 +74,13 @@ class LightAssigner {
   // clusters), as name -> value; printed by `render` and written to JSON.
   virtual std::vector<std::pair<std::string, double>> stats() const { return {}; }
   // A debug view of the last frame that the technique's descriptor lists
-  // (TechniqueDescriptor::debug_views, e.g. clustered's "cluster"): RGBA
-  // floats, width*height, row 0 at the bottom, for writeImage. Only called
-  // with a view the descriptor names.
-  virtual std::vector<float> debugViewRgba(const std::string& view) {
+  // (TechniqueDescriptor::debug_views, e.g. clustered's "cluster", hashed's
+  // "octree-cell"): RGBA floats, width*height, row 0 at the bottom, for
+  // writeImage. `frame` holds that frame's depth and unprojection. Only
+  // called with a view the descriptor names.
+  virtual std::vector<float> debugViewRgba(const std::string& view, const DebugViewInputs& frame) {
     (void)view;
+    (void)frame;
     return {};
   }
 };

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "host/assign/ExactLowerBound.hpp"
 #include "host/shared/depth_convention.h"
-#include "host/util/Heatmap.hpp"
 
 namespace ml {
 
@@ -57,14 +57,33 @@ FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, Fram
   return renderer.render(camera, assigner, options);
 }
 
-std::vector<float> frameHeatmap(const FrameRenderer& renderer, Pipeline pipeline, unsigned channel,
-                                std::uint32_t max_value, std::uint32_t& scale_max) {
-  const auto depth = renderer.targets().readDepth(pipeline == Pipeline::Deferred);
+namespace {
+
+std::vector<bool> coveredPixels(const std::vector<float>& depth) {
   std::vector<bool> covered(depth.size());
   for (std::size_t i = 0; i < depth.size(); ++i) covered[i] = !gpu::is_sky_depth(depth[i]);
+  return covered;
+}
+
+}  // namespace
+
+FrameHeatmap frameHeatmap(const FrameRenderer& renderer, Pipeline pipeline, HeatmapScale scale) {
+  const std::vector<bool> covered = coveredPixels(renderer.targets().readDepth(pipeline == Pipeline::Deferred));
   const auto counts = renderer.targets().readCounts();
-  scale_max = max_value ? max_value : heatmapScaleMax(counts, 2, channel, covered);
-  return heatmapRgba(counts, 2, channel, covered, scale_max);
+  if (scale.top == 0) scale.top = heatmapScaleMax(counts, scale.kind, covered);
+  return {heatmapRgba(counts, covered, scale), scale};
+}
+
+std::vector<float> frameDebugView(const FrameRenderer& renderer, Pipeline pipeline, const Camera& camera,
+                                  LightAssigner& assigner, const std::string& view) {
+  DebugViewInputs frame;
+  frame.width = renderer.width();
+  frame.height = renderer.height();
+  frame.depth = renderer.targets().readDepth(pipeline == Pipeline::Deferred);
+  // The matrices FrameRenderer::render used for this frame.
+  const float aspect = float(frame.width) / float(frame.height);
+  frame.unproject = boundParams(camera.view(), camera.projection(aspect), frame.width, frame.height);
+  return assigner.debugViewRgba(view, frame);
 }
 
 void setCounts(FrameRecord& r, const FrameResult& c) {

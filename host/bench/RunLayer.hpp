@@ -17,6 +17,7 @@
 #include "gl/GlContext.hpp"
 #include "host/bench/BenchTypes.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/util/Heatmap.hpp"
 
 namespace ml {
 
@@ -49,10 +50,19 @@ FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, Fram
                           const Camera& camera);
 
 // The heat map of the last counted frame (FrameRenderer's count target:
-// channel 0 lights evaluated, 1 lights in range), sky black, cubehelix up to
-// `max_value` (0: the frame's maximum); `scale_max` gets the value used.
-std::vector<float> frameHeatmap(const FrameRenderer& renderer, Pipeline pipeline, unsigned channel,
-                                std::uint32_t max_value, std::uint32_t& scale_max);
+// per pixel lights evaluated and lights in range), sky black: the kind and
+// top of `scale` pick what it shows and up to where (top 0: the frame's
+// maximum); `rgba` is the map, `scale` the scale used, for withColourBar.
+struct FrameHeatmap {
+  std::vector<float> rgba;
+  HeatmapScale scale;
+};
+FrameHeatmap frameHeatmap(const FrameRenderer& renderer, Pipeline pipeline, HeatmapScale scale);
+
+// A technique's debug view of the last frame rendered with `camera`: the
+// assigner gets that frame's depth and unprojection (DebugViewInputs).
+std::vector<float> frameDebugView(const FrameRenderer& renderer, Pipeline pipeline, const Camera& camera,
+                                  LightAssigner& assigner, const std::string& view);
 
 // A record's counted and timed fields from those renders.
 void setCounts(FrameRecord& record, const FrameResult& counted);

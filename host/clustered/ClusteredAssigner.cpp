@@ -3,6 +3,7 @@
 #include "gl/GlCheck.hpp"
 #include "gl/ShaderProgram.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/util/IdColour.hpp"
 
 namespace ml {
 
@@ -67,16 +68,11 @@ std::vector<float> ClusteredAssigner::clusterViewRgba(const std::vector<std::uin
   for (std::size_t p = 0; p < cluster_map.size(); ++p) {
     rgba[p * 4 + 3] = 1.0f;
     if (cluster_map[p] == kClusterInvalid) continue;
-    // Neighbouring clusters have neighbouring indices, so the index is mixed
-    // first, by a bijection of 18 bits (odd multiply, xor-shift); the 18 bits
-    // then give 6 per channel at levels 64 + 3v, distinct in an 8-bit PNG. So
-    // up to 2^18 clusters get distinct colours, none of them black (sky).
-    std::uint32_t h = cluster_map[p] & 0x3ffffu;
-    h = (h * 0x2c9e5u) & 0x3ffffu;
-    h ^= h >> 9;
-    h = (h * 0x1b873u) & 0x3ffffu;
-    h ^= h >> 7;
-    for (int c = 0; c < 3; ++c) rgba[p * 4 + c] = float(64u + 3u * ((h >> (6 * c)) & 0x3fu)) / 255.0f;
+    // Up to 2^18 clusters get distinct colours, none of them black (sky).
+    const Rgb c = idColour(cluster_map[p]);
+    rgba[p * 4] = c.r;
+    rgba[p * 4 + 1] = c.g;
+    rgba[p * 4 + 2] = c.b;
   }
   return rgba;
 }

@@ -34,7 +34,8 @@ class ClusteredAssigner final : public LightAssigner {
   void bindForShading(const ShaderProgram& program) const override;
   std::size_t memoryBytes() const override;
   std::vector<std::pair<std::string, double>> stats() const override;
-  std::vector<float> debugViewRgba(const std::string& view) override;  // "cluster": clusterViewRgba
+  // "cluster": clusterViewRgba of the cluster map (the frame's depth is not needed).
+  std::vector<float> debugViewRgba(const std::string& view, const DebugViewInputs& frame) override;
 
   // Last frame's outputs, for views and tests (host copies, blocking).
   std::vector<std::uint32_t> readClusterMap();

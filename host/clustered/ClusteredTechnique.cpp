@@ -35,7 +35,7 @@ const TechniqueDescriptor& clusteredTechnique() {
   return d;
 }
 
-std::vector<float> ClusteredAssigner::debugViewRgba(const std::string& view) {
+std::vector<float> ClusteredAssigner::debugViewRgba(const std::string& view, const DebugViewInputs&) {
   return view == "cluster" ? clusterViewRgba(readClusterMap()) : std::vector<float>{};
 }
 

@@ -14,8 +14,8 @@
 //    first frame (the descriptor's factory passes the run's scene). The
 //    descriptor turns it on by default (`--no-geometry-mask` turns it off);
 //    HashedConfig, for scene-less use, leaves it off.
-//  - hashedTechnique(): the descriptor (names, parameters, factory) that the
-//    registry lists (HashedTechnique.cpp).
+//  - hashedTechnique(): the descriptor (names, parameters, the octree-cell
+//    debug view, factory) that the registry lists (HashedTechnique.cpp).
 #include <epoxy/gl.h>
 
 #include <memory>
@@ -40,6 +40,8 @@ class HashedAssigner final : public LightAssigner {
   void bindForShading(const ShaderProgram& program) const override;
   std::size_t memoryBytes() const override;
   std::vector<std::pair<std::string, double>> stats() const override;
+  // "octree-cell": each pixel's octree node (OctreeCellView.hpp); sky only before the first frame.
+  std::vector<float> debugViewRgba(const std::string& view, const DebugViewInputs& frame) override;
 
   void setScene(const Scene* scene) { scene_ = scene; }
   const hashed::HashedStructure* structure() const { return structure_.get(); }

@@ -1,6 +1,7 @@
-// The hashed technique's descriptor: names, parameters, light limit, factory.
+// The hashed technique's descriptor: names, parameters, debug view, light limit, factory.
 #include "host/hashed/HashedAssigner.hpp"
 #include "host/hashed/OctantMask.hpp"
+#include "host/hashed/OctreeCellView.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml {
@@ -33,6 +34,8 @@ const TechniqueDescriptor& hashedTechnique() {
         switchParam("geometry_mask", true, "keep only nodes that contain the scene's geometry"),
         switchParam("octant_masks", true, "skip lights that miss the point's octant of its deepest cell"),
     };
+    t.debug_views = {{"octree-cell", "write each pixel's octree cell (the node holding its surface point) as a "
+                                     "colour to this image (.png/.exr); empty cells grey"}};
     t.max_lights = hashed::kMaxHashedLights;
     t.make = [](const TechniqueContext& c) -> std::unique_ptr<LightAssigner> {
       hashed::HashedConfig config;
@@ -47,6 +50,13 @@ const TechniqueDescriptor& hashedTechnique() {
     return t;
   }();
   return d;
+}
+
+std::vector<float> HashedAssigner::debugViewRgba(const std::string& view, const DebugViewInputs& frame) {
+  if (view != "octree-cell") return {};
+  if (!structure_ || !structure_->built())
+    return std::vector<float>(std::size_t(frame.width) * frame.height * 4, 0.0f);
+  return hashed::octreeCellViewRgba(structure_->linkless(), frame);
 }
 
 }  // namespace ml

@@ -207,30 +207,40 @@ LinklessOctree::GpuImage LinklessOctree::packGpuImage() const {
   return im;
 }
 
-LinklessOctree::Range LinklessOctree::lookup(const glm::vec3& world) const {
+LinklessOctree::Cell LinklessOctree::cellAt(const glm::vec3& world) const {
   // Mirrors lightListFor() in gl/shaders/lookup_hashed.glsl.
   const glm::vec3 q = (world - b_.origin_f) * b_.cell_scale;
   const float n = float(1u << b_.depth);
   if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < n && q.y < n && q.z < n)) return {};
   const glm::uvec3 cell = glm::min(glm::uvec3(q), glm::uvec3((1u << b_.depth) - 1u));
+  Cell at;
+  at.kind = Cell::Kind::Empty;
+  at.depth = b_.start_depth;
+  at.coord = cell >> (b_.depth - b_.start_depth);
   for (unsigned i = 0; i < layerCount(); ++i) {
     const unsigned depth = b_.start_depth + i;
     const glm::uvec3 cur = cell >> (b_.depth - depth);
     const glm::uvec3 nxt = cell >> (b_.depth - depth - 1);
     const auto d = desc_[i].lookup(cur);
-    if (!d) return {};  // no node here: no lights
+    if (!d) return at;  // no node here: no lights
     const glm::uvec3 k = nxt & 1u;
     const unsigned bit = k.x + 2 * k.y + 4 * k.z;
     if ((d->leaf >> bit) & 1u) {
+      at.depth = depth + 1;
+      at.coord = nxt;
       if ((d->filled >> bit) & 1u) {
-        const auto r = data_[i].lookup(nxt);
-        if (r) return {r->offset, r->count, octantOf(q)};
+        if (const auto r = data_[i].lookup(nxt)) {
+          at.kind = Cell::Kind::Filled;
+          at.range = {r->offset, r->count, octantOf(q)};
+        }
       }
-      return {};
+      return at;
     }
   }
-  return {};
+  return at;
 }
+
+LinklessOctree::Range LinklessOctree::lookup(const glm::vec3& world) const { return cellAt(world).range; }
 
 std::vector<std::uint32_t> LinklessOctree::lightsAt(const glm::vec3& world) const {
   const Range r = lookup(world);

@@ -10,7 +10,7 @@
 // Contract:
 //  - lookup() is lookup_hashed.glsl's lightListFor, in the same order and the
 //    same float expression for the cell; tests hold the GLSL to it through
-//    images and counts.
+//    images and counts. cellAt() is the same walk, reporting the node it ends in.
 //  - buildFrom() hashes every layer of a canonical scene octree (layers in
 //    parallel); applyTouched() re-derives only the given node keys and edits
 //    the hashes in place (rehashing a table only when an insert cannot be
@@ -90,6 +90,18 @@ class LinklessOctree {
   };
   Range lookup(const glm::vec3& world) const;
   std::vector<std::uint32_t> lightsAt(const glm::vec3& world) const;
+  // The node lookup() ends in for `world` (the octree-cell debug view):
+  // Filled, a leaf at depth start_depth + 1 or deeper that lists lights
+  // (`range`); Empty, a leaf that lists none, or the start-depth node when
+  // it holds no lights (the tables store nothing above it); Outside the cube.
+  struct Cell {
+    enum class Kind : std::uint8_t { Outside, Empty, Filled };
+    Kind kind = Kind::Outside;
+    unsigned depth = 0;
+    glm::uvec3 coord{0u};
+    Range range{};
+  };
+  Cell cellAt(const glm::vec3& world) const;
 
   const OctreeBounds& bounds() const { return b_; }
   unsigned layerCount() const { return unsigned(desc_.size()); }

@@ -19,6 +19,28 @@ bool safePitch(const glm::vec3& dir, const glm::vec3& up) {
   return std::fabs(glm::dot(glm::normalize(dir), glm::normalize(up))) < 0.995f;
 }
 
+// The camera's axes, shared by fly, orbit and look: the view direction, the
+// right axis (perpendicular to it and to up; zero when they are parallel) and up.
+struct Basis {
+  glm::vec3 forward, right, up;
+};
+
+Basis basisOf(const Camera& c) {
+  const glm::vec3 forward = glm::normalize(c.center - c.eye), right = glm::cross(forward, c.up);
+  return {forward, glm::length(right) > 0.0f ? glm::normalize(right) : glm::vec3(0.0f), glm::normalize(c.up)};
+}
+
+// `v` turned by `yaw` about up, then by `pitch` about the right axis unless
+// that would bring it onto the up axis.
+glm::vec3 turned(const glm::vec3& v, const Basis& b, float yaw_degrees, float pitch_degrees) {
+  glm::vec3 out = rotated(v, yaw_degrees, b.up);
+  if (pitch_degrees != 0.0f && glm::length(b.right) > 0.0f) {
+    const glm::vec3 pitched = rotated(out, pitch_degrees, b.right);
+    if (safePitch(pitched, b.up)) out = pitched;
+  }
+  return out;
+}
+
 }  // namespace
 
 void CameraController::set(const Camera& c) {
@@ -27,34 +49,18 @@ void CameraController::set(const Camera& c) {
 }
 
 void CameraController::orbit(float yaw_degrees, float pitch_degrees) {
-  glm::vec3 offset = camera_.eye - camera_.center;
-  const glm::vec3 right = glm::cross(-offset, camera_.up);
-  offset = rotated(offset, yaw_degrees, camera_.up);
-  if (pitch_degrees != 0.0f && glm::length(right) > 0.0f) {
-    const glm::vec3 pitched = rotated(offset, pitch_degrees, right);
-    if (safePitch(pitched, camera_.up)) offset = pitched;
-  }
-  camera_.eye = camera_.center + offset;
+  camera_.eye = camera_.center + turned(camera_.eye - camera_.center, basisOf(camera_), yaw_degrees, pitch_degrees);
   ++version_;
 }
 
 void CameraController::look(float yaw_degrees, float pitch_degrees) {
-  glm::vec3 dir = camera_.center - camera_.eye;
-  const glm::vec3 right = glm::cross(dir, camera_.up);
-  dir = rotated(dir, yaw_degrees, camera_.up);
-  if (pitch_degrees != 0.0f && glm::length(right) > 0.0f) {
-    const glm::vec3 pitched = rotated(dir, pitch_degrees, right);
-    if (safePitch(pitched, camera_.up)) dir = pitched;
-  }
-  camera_.center = camera_.eye + dir;
+  camera_.center = camera_.eye + turned(camera_.center - camera_.eye, basisOf(camera_), yaw_degrees, pitch_degrees);
   ++version_;
 }
 
 void CameraController::fly(float forward, float right, float up) {
-  const glm::vec3 f = glm::normalize(camera_.center - camera_.eye);
-  const glm::vec3 r = glm::normalize(glm::cross(f, camera_.up));
-  const glm::vec3 u = glm::normalize(camera_.up);
-  const glm::vec3 d = forward * f + right * r + up * u;
+  const Basis b = basisOf(camera_);
+  const glm::vec3 d = forward * b.forward + right * b.right + up * b.up;
   camera_.eye += d;
   camera_.center += d;
   ++version_;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -96,23 +97,26 @@ void drawLights(ViewerSession& s, PanelState& state) {
   if (changed) attempt(state, [&] { s.setAnimation(animate ? fraction : 0.0, speed); });
 }
 
-// The heat map's palette from 0 to the scale's top, with the scale written under it.
-void drawColourBar(std::uint32_t top) {
+// The heat map's palette along its scale, the bottom, middle and top written under it.
+void drawColourBar(const HeatmapScale& scale) {
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 at = ImGui::GetCursorScreenPos();
   const float width = ImGui::GetContentRegionAvail().x, height = 14.0f;
   const int steps = 64;
   for (int i = 0; i < steps; ++i) {
-    const Rgb c = cubehelix((float(i) + 0.5f) / steps);
+    const Rgb c = heatmapColour(scale.kind, (float(i) + 0.5f) / steps);
     draw->AddRectFilled(ImVec2(at.x + width * i / steps, at.y), ImVec2(at.x + width * (i + 1) / steps, at.y + height),
                         ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
   }
   ImGui::Dummy(ImVec2(width, height));
-  ImGui::Text("0");
+  const bool ratio = scale.kind == HeatmapKind::Ratio;
+  const double bottom = ratio ? 1.0 : 0.0, mid = ratio ? (1.0 + scale.top) / 2 : std::floor(scale.top / 2);
+  const char* format = ratio ? "%.3gx" : "%.0f";
+  ImGui::Text(format, bottom);
   ImGui::SameLine(width * 0.5f);
-  ImGui::Text("%u", top / 2);
+  ImGui::Text(format, mid);
   ImGui::SameLine(std::max(width - 40.0f, width * 0.5f + 30.0f));
-  ImGui::Text("%u", top);
+  ImGui::Text(format, scale.top);
 }
 
 void drawViewMode(ViewerSession& s, PanelState& state) {
@@ -125,11 +129,23 @@ void drawViewMode(ViewerSession& s, PanelState& state) {
       if (ImGui::Selectable(m.label.c_str(), m.name == s.viewMode())) attempt(state, [&] { s.setViewMode(m.name); });
     ImGui::EndCombo();
   }
-  if (s.viewMode() != "heatmap" && s.viewMode() != "bound-heatmap") return;
-  int top = int(s.heatmapMax());
-  if (ImGui::InputInt("scale top (0: frame max)", &top)) s.setHeatmapMax(std::uint32_t(std::max(top, 0)));
-  ImGui::Text("lights per pixel");
-  drawColourBar(s.shownHeatmapMax());
+  const auto kind = s.heatmapKind();
+  if (!kind) return;
+  if (*kind == HeatmapKind::Ratio) {
+    double top = s.ratioMax();
+    if (ImGui::InputDouble("scale top (x)", &top, 0.5, 1.0, "%.2f", ImGuiInputTextFlags_EnterReturnsTrue))
+      attempt(state, [&] { s.setRatioMax(top); });
+    ImGui::Text("lights evaluated / lights in range");
+    const ImVec4 grey(kBoundZeroColour.r, kBoundZeroColour.g, kBoundZeroColour.b, 1.0f);
+    ImGui::ColorButton("##bound0", grey, ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+    ImGui::SameLine();
+    ImGui::Text("no light in range (bound 0)");
+  } else {
+    int top = int(s.heatmapMax());
+    if (ImGui::InputInt("scale top (0: frame max)", &top)) s.setHeatmapMax(std::uint32_t(std::max(top, 0)));
+    ImGui::Text(*kind == HeatmapKind::Evaluated ? "lights evaluated per pixel" : "lights in range per pixel");
+  }
+  drawColourBar(s.shownScale());
 }
 
 void drawCamera(ViewerSession& s, PanelState& state) {

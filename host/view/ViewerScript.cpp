@@ -12,7 +12,7 @@ namespace {
 
 using nlohmann::json;
 
-enum class Shape { String, Count, Bool, Object, Pair, Triple };
+enum class Shape { String, Count, Number, Bool, Object, Pair, Triple };
 
 // Every verb and the shape of its value.
 const std::map<std::string, Shape>& verbs() {
@@ -22,7 +22,7 @@ const std::map<std::string, Shape>& verbs() {
       {"camera_frame", Shape::Count}, {"orbit", Shape::Pair},        {"fly", Shape::Triple},
       {"wait", Shape::Count},         {"screenshot", Shape::String}, {"screenshot_window", Shape::String},
       {"panel", Shape::Bool},         {"counts", Shape::Bool},       {"record", Shape::String},
-      {"record_save", Shape::String}};
+      {"record_save", Shape::String}, {"ratio_max", Shape::Number},  {"play", Shape::Bool}};
   return v;
 }
 
@@ -37,6 +37,7 @@ bool fits(Shape s, const json& v) {
   switch (s) {
     case Shape::String: return v.is_string() && !v.get<std::string>().empty();
     case Shape::Count: return v.is_number_unsigned();
+    case Shape::Number: return v.is_number();
     case Shape::Bool: return v.is_boolean();
     case Shape::Object: return v.is_object() && !v.empty();
     case Shape::Pair: return numbers(v, 2);
@@ -49,6 +50,7 @@ const char* expected(Shape s) {
   switch (s) {
     case Shape::String: return "a non-empty string";
     case Shape::Count: return "a non-negative integer";
+    case Shape::Number: return "a number";
     case Shape::Bool: return "true or false";
     case Shape::Object: return "an object of KEY: \"VALUE\"";
     case Shape::Pair: return "[number, number]";
@@ -132,6 +134,8 @@ void ViewerScript::run(const ScriptAction& a, ViewerSession& s, ScriptWindowActi
     else if (a.verb == "animate") s.setAnimation(num(v, 0), num(v, 1));
     else if (a.verb == "view") s.setViewMode(v.get<std::string>());
     else if (a.verb == "heatmap_max") s.setHeatmapMax(v.get<std::uint32_t>());
+    else if (a.verb == "ratio_max") s.setRatioMax(v.get<double>());
+    else if (a.verb == "play") s.setPlaying(v.get<bool>());
     else if (a.verb == "camera_frame") s.setCameraFrame(v.get<std::size_t>());
     else if (a.verb == "orbit") s.camera().orbit(num(v, 0), num(v, 1));
     else if (a.verb == "fly") s.camera().fly(num(v, 0), num(v, 1), num(v, 2));

@@ -6,6 +6,9 @@
 //   {"technique": "tiled-forward"}      {"param": {"tile": "16"}}
 //   {"lights": 256}                     {"animate": [fraction, speed]}
 //   {"view": "heatmap"}                 {"heatmap_max": 40}
+//   {"view": "ratio-map"}               {"ratio_max": 2.5}
+//   {"view": "octree-cell"}             (a debug view of the current technique)
+//   {"play": true}                      (the scene's camera path, one frame per frame)
 //   {"camera_frame": 0}                 {"orbit": [yaw_deg, pitch_deg]}
 //   {"fly": [forward, right, up]}       {"wait": frames}
 //   {"screenshot": "a.png"}             (the rendered frame, no panel)

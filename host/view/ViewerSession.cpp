@@ -91,7 +91,8 @@ void ViewerSession::setAnimation(double fraction, double speed) {
 std::vector<ViewMode> ViewerSession::viewModes() const {
   std::vector<ViewMode> modes = {{"shaded", "shaded"},
                                  {"heatmap", "heat map: lights evaluated"},
-                                 {"bound-heatmap", "heat map: lower bound (lights in range)"}};
+                                 {"bound-heatmap", "heat map: lower bound (lights in range)"},
+                                 {"ratio-map", "evaluations / lower bound"}};
   for (const DebugViewSpec& v : technique_->descriptor->debug_views) modes.push_back({v.name, v.name + " view"});
   return modes;
 }
@@ -112,6 +113,20 @@ void ViewerSession::setViewMode(const std::string& name) {
 void ViewerSession::setHeatmapMax(std::uint32_t max_value) {
   heatmap_max_ = max_value;
   stale_ = true;
+}
+
+void ViewerSession::setRatioMax(double max_ratio) {
+  if (!(max_ratio > 1.0 && max_ratio <= 1e6))
+    throw UserError("ratio_max: expected a ratio above 1 (up to 1e6), got " + std::to_string(max_ratio));
+  ratio_max_ = max_ratio;
+  stale_ = true;
+}
+
+std::optional<HeatmapKind> ViewerSession::heatmapKind() const {
+  if (view_mode_ == "heatmap") return HeatmapKind::Evaluated;
+  if (view_mode_ == "bound-heatmap") return HeatmapKind::Bound;
+  if (view_mode_ == "ratio-map") return HeatmapKind::Ratio;
+  return std::nullopt;
 }
 
 void ViewerSession::setCameraFrame(std::size_t index) {
@@ -138,7 +153,7 @@ void ViewerSession::saveRecording(const std::string& path) {
 }
 
 bool ViewerSession::needsCounts() const {
-  return counts_requested_ || view_mode_ == "heatmap" || view_mode_ == "bound-heatmap";
+  return counts_requested_ || heatmapKind().has_value();
 }
 
 bool ViewerSession::frame() {
@@ -171,11 +186,13 @@ void ViewerSession::render() {
 std::vector<float> ViewerSession::image() {
   if (stale_ || controller_.version() != rendered_version_) render();
   if (view_mode_ == "shaded") return renderer_->targets().readColor();
-  if (view_mode_ == "heatmap" || view_mode_ == "bound-heatmap") {
-    return frameHeatmap(*renderer_, technique_->pipeline, view_mode_ == "heatmap" ? 0 : 1, heatmap_max_,
-                        shown_heatmap_max_);
+  if (const auto kind = heatmapKind()) {
+    const double top = *kind == HeatmapKind::Ratio ? ratio_max_ : double(heatmap_max_);
+    FrameHeatmap map = frameHeatmap(*renderer_, technique_->pipeline, {*kind, top});
+    shown_scale_ = map.scale;
+    return std::move(map.rgba);
   }
-  return assigner_->debugViewRgba(view_mode_);
+  return frameDebugView(*renderer_, technique_->pipeline, controller_.camera(), *assigner_, view_mode_);
 }
 
 void ViewerSession::screenshot(const std::string& path) {

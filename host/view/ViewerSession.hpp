@@ -37,11 +37,11 @@ struct ViewerSetup {
   unsigned width = 0, height = 0;
 };
 
-// A view mode: the shaded image, a heat map of per-pixel counts (channel 0:
-// lights evaluated; 1: lights in range, the exact lower bound), or a debug
-// view of the technique (DebugViewSpec name).
+// A view mode: the shaded image, a heat map of the counted frame (lights
+// evaluated, lights in range = the exact lower bound, or their ratio), or a
+// debug view of the technique (DebugViewSpec name, e.g. "cluster").
 struct ViewMode {
-  std::string name;   // "shaded", "heatmap", "bound-heatmap", or a debug view's name
+  std::string name;   // "shaded", "heatmap", "bound-heatmap", "ratio-map", or a debug view's name
   std::string label;  // for the panel
 };
 
@@ -60,7 +60,8 @@ class ViewerSession {
   void setLightCount(std::uint64_t count);
   void setAnimation(double fraction, double speed);
   void setViewMode(const std::string& name);
-  void setHeatmapMax(std::uint32_t max_value);
+  void setHeatmapMax(std::uint32_t max_value);  // the count heat maps' top; 0: the frame's maximum
+  void setRatioMax(double max_ratio);           // the ratio map's top (above 1; UserError otherwise)
   void setCameraFrame(std::size_t index);
   void setCamera(const Camera& c);
   // Camera path playback: one path frame per rendered frame while playing.
@@ -76,7 +77,10 @@ class ViewerSession {
   std::vector<ViewMode> viewModes() const;
   const std::string& viewMode() const { return view_mode_; }
   std::uint32_t heatmapMax() const { return heatmap_max_; }
-  std::uint32_t shownHeatmapMax() const { return shown_heatmap_max_; }  // the scale of the last heat map
+  double ratioMax() const { return ratio_max_; }
+  // The current view mode's heat map kind, if it is one.
+  std::optional<HeatmapKind> heatmapKind() const;
+  const HeatmapScale& shownScale() const { return shown_scale_; }  // the scale of the last heat map shown
   std::size_t lightCount() const { return lights_.size(); }
   double animateFraction() const { return animate_fraction_; }
   double animateSpeed() const { return animate_speed_; }
@@ -109,7 +113,9 @@ class ViewerSession {
   std::unique_ptr<LightAnimator> animator_;
   double animate_fraction_ = 0.0, animate_speed_ = 0.25;
   std::string view_mode_ = "shaded";
-  std::uint32_t heatmap_max_ = 0, shown_heatmap_max_ = 0;
+  std::uint32_t heatmap_max_ = 0;
+  double ratio_max_ = 4.0;
+  HeatmapScale shown_scale_;
   CameraPath cameras_;
   CameraController controller_;
   std::uint64_t rendered_version_ = ~std::uint64_t(0);
