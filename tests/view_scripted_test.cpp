@@ -1,6 +1,8 @@
 // `manylights view` under Xvfb: a scripted session shows every registered
-// technique at one camera (orbited by a fresh random angle, recorded), and each
-// screenshot equals `render` of that camera; a recorded path replayed through
+// technique at one camera (orbited by a fresh random angle, recorded) with a
+// regenerated light count, and each screenshot equals `render` of that camera
+// and count; view modes equal render's images; path playback and light
+// animation equal render's frames; a recorded path replayed through
 // `bench --camera` gives the same frames; the window capture holds the panel.
 #include <gtest/gtest.h>
 
@@ -36,7 +38,10 @@ TEST(ViewScripted, EveryTechniqueEqualsRenderOfTheSameFrame) {
   if (!test::haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (Debian package xvfb): the viewer cannot be tested";
   const std::string dir = test::tempDir() + "/view_techniques";
   std::filesystem::create_directories(dir);
-  json script = json::array({{{"orbit", {freshYaw(), 0.0}}}, {{"record", "start"}}});
+  // A fresh light count, regenerated before the first technique: every switch keeps it.
+  const unsigned lights = 24 + unsigned(std::random_device{}() % 64);
+  std::printf("lights %u\n", lights);
+  json script = json::array({{{"orbit", {freshYaw(), 0.0}}}, {{"record", "start"}}, {{"lights", lights}}});
   const auto names = builtInTechniques();
   for (const std::string& t : names) {
     script.push_back({{"technique", t}});
@@ -52,8 +57,8 @@ TEST(ViewScripted, EveryTechniqueEqualsRenderOfTheSameFrame) {
   for (const std::string& t : names) {
     SCOPED_TRACE(t);
     const std::string ref = dir + "/render_" + t + ".png";
-    const auto r = test::runManylights("render --technique " + t + " " + test::kViewFrame + " --camera " + dir +
-                                       "/camera.json --frames 1 --out " + ref);
+    const auto r = test::runManylights("render --technique " + t + " --size 160x96 --lights " + std::to_string(lights) +
+                                       " --camera " + dir + "/camera.json --frames 1 --out " + ref);
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     test::expectSameImage(dir + "/view_" + t + ".png", ref);
   }
@@ -65,8 +70,9 @@ TEST(ViewScripted, EveryTechniqueEqualsRenderOfTheSameFrame) {
   EXPECT_GT(test::compareImages(window, frame, 2.0 / 255.0).frac_over_tol, 0.01) << "no panel in the window capture";
 }
 
-// The heat-map and debug-view modes show what `render --heatmap` (less its
-// colour bar) and `render --NAME-view` write for the same frame.
+// The heat-map, ratio-map and debug-view modes show what `render --heatmap`,
+// `render --ratio-map` (less their colour bars) and `render --NAME-view`
+// write for the same frame.
 TEST(ViewScripted, ViewModesEqualRenderOutputs) {
   if (!test::haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (Debian package xvfb): the viewer cannot be tested";
   const std::string dir = test::tempDir() + "/view_modes";
@@ -74,7 +80,8 @@ TEST(ViewScripted, ViewModesEqualRenderOutputs) {
   const std::string heat_technique = builtInTechniques().back();
   json script = json::array({{{"orbit", {freshYaw(), 0.0}}}, {{"record", "start"}},
                              {{"technique", heat_technique}}, {{"view", "heatmap"}}, {{"wait", 1}},
-                             {{"screenshot", dir + "/view_heat.png"}}});
+                             {{"screenshot", dir + "/view_heat.png"}}, {{"view", "ratio-map"}},
+                             {{"ratio_max", 3.5}}, {{"wait", 1}}, {{"screenshot", dir + "/view_ratio.png"}}});
   std::vector<std::pair<std::string, std::string>> views;  // technique, view
   for (const TechniqueInfo& t : techniques())
     for (const DebugViewSpec& v : t.descriptor->debug_views)
@@ -90,14 +97,17 @@ TEST(ViewScripted, ViewModesEqualRenderOutputs) {
   ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
   const std::string common = std::string(test::kViewFrame) + " --camera " + dir + "/camera.json --frames 1 ";
   const auto heat = test::runManylights("render --technique " + heat_technique + " " + common + "--heatmap " + dir +
-                                        "/render_heat.png");
+                                        "/render_heat.png --ratio-max 3.5 --ratio-map " + dir + "/render_ratio.png");
   ASSERT_EQ(heat.exit_code, 0) << heat.out << heat.err;
-  // render's heat map carries its colour bar below the map: compare the map.
-  unsigned w = 0, h = 0;
-  auto with_bar = readImageRgba(dir + "/render_heat.png", w, h);
-  with_bar.erase(with_bar.begin(), with_bar.begin() + std::ptrdiff_t(std::size_t(w) * colourBarRows(w) * 4));
-  writeImage(dir + "/render_heat_map.png", w, h - colourBarRows(w), 4, with_bar);
-  test::expectSameImage(dir + "/view_heat.png", dir + "/render_heat_map.png");
+  // render's maps carry their colour bar below the map: compare the map.
+  for (const std::string name : {"heat", "ratio"}) {
+    SCOPED_TRACE(name);
+    unsigned w = 0, h = 0;
+    auto with_bar = readImageRgba(dir + "/render_" + name + ".png", w, h);
+    with_bar.erase(with_bar.begin(), with_bar.begin() + std::ptrdiff_t(std::size_t(w) * colourBarRows(w) * 4));
+    writeImage(dir + "/render_" + name + "_map.png", w, h - colourBarRows(w), 4, with_bar);
+    test::expectSameImage(dir + "/view_" + name + ".png", dir + "/render_" + name + "_map.png");
+  }
   for (const auto& [t, v] : views) {
     SCOPED_TRACE(t + " " + v);
     const std::string ref = dir + "/render_" + t + "_" + v + ".png";
@@ -105,6 +115,40 @@ TEST(ViewScripted, ViewModesEqualRenderOutputs) {
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     test::expectSameImage(dir + "/view_" + t + "_" + v + ".png", ref);
   }
+}
+
+// The scene's camera path plays one path frame per frame and stays put when
+// paused; animated lights take render --animate's steps and stop when
+// animation is turned off. Screenshots as EXR (floats), as render writes them.
+TEST(ViewScripted, PathPlaybackAndAnimationMatchRender) {
+  if (!test::haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (Debian package xvfb): the viewer cannot be tested";
+  const std::string dir = test::tempDir() + "/view_play";
+  std::filesystem::create_directories(dir);
+  const unsigned seed = std::random_device{}();
+  std::printf("view test seed %u\n", seed);
+  std::mt19937 rng(seed);
+  const unsigned start = rng() % 40, steps = 1 + rng() % 4;
+  const json script = json::array({{{"technique", "tiled-deferred"}}, {{"camera_frame", start}}, {{"play", true}},
+                                   {{"wait", steps}}, {{"play", false}}, {{"screenshot", dir + "/played.exr"}},
+                                   {{"wait", 2}}, {{"screenshot", dir + "/paused.exr"}},
+                                   {{"animate", {0.3, 0.5}}}, {{"wait", 3}}, {{"screenshot", dir + "/animated.exr"}},
+                                   {{"animate", {0.0, 0.5}}}, {{"wait", 2}}, {{"screenshot", dir + "/stopped.exr"}}});
+  const test::CommandResult v = test::runViewScript(script, "play");
+  ASSERT_EQ(v.exit_code, 0) << v.out << v.err;
+  const std::string frame = std::to_string(start + steps);
+  const std::string common = "render --technique tiled-deferred " + std::string(test::kViewFrame) + " --frame " + frame;
+  const auto still = test::runManylights(common + " --frames 1 --out " + dir + "/render_still.exr");
+  ASSERT_EQ(still.exit_code, 0) << still.out << still.err;
+  const auto moved = test::runManylights(common + " --warmup 0 --frames 3 --animate 0.3 --animate-speed 0.5 --out " +
+                                         dir + "/render_animated.exr");
+  ASSERT_EQ(moved.exit_code, 0) << moved.out << moved.err;
+  test::expectSameImage(dir + "/played.exr", dir + "/render_still.exr");
+  test::expectSameImage(dir + "/paused.exr", dir + "/render_still.exr");
+  test::expectSameImage(dir + "/animated.exr", dir + "/render_animated.exr");
+  test::expectSameImage(dir + "/stopped.exr", dir + "/render_animated.exr");
+  unsigned w = 0, h = 0;
+  const auto a = readImageRgba(dir + "/animated.exr", w, h), b = readImageRgba(dir + "/played.exr", w, h);
+  EXPECT_GT(test::compareImages(a, b, 2.0 / 255.0).frac_over_tol, 0.01) << "the lights did not move";
 }
 
 TEST(ViewScripted, RecordedPathReplaysThroughBench) {
