@@ -61,6 +61,14 @@ TEST(ViewScripted, EveryTechniqueEqualsRenderOfTheSameFrame) {
                                        " --camera " + dir + "/camera.json --frames 1 --out " + ref);
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     test::expectSameImage(dir + "/view_" + t + ".png", ref);
+    // And the switch shows the brute-force image of its pipeline, within the
+    // render tests' tolerance between techniques (summation order of lights).
+    unsigned w = 0, h = 0;
+    const std::string brute = t.find("forward") != std::string::npos ? "forward" : "deferred";
+    const auto diff = test::compareImages(readImageRgba(dir + "/view_" + t + ".png", w, h),
+                                          readImageRgba(dir + "/view_" + brute + ".png", w, h), 2.0 / 255.0);
+    EXPECT_LT(diff.mean_abs, 0.002) << t << " vs " << brute << " max " << diff.max_abs;
+    EXPECT_LT(diff.frac_over_tol, 0.005) << t << " vs " << brute << " max " << diff.max_abs;
   }
   // The window capture (panel included) is the window's size and not the bare frame.
   unsigned w = 0, h = 0;
