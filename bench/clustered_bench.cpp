@@ -13,27 +13,30 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <fstream>
+#include <memory>
+#include <tuple>
 
-#include "gl/FrameRenderer.hpp"
-#include "gl/GlContext.hpp"
-#include "host/app/InputChecks.hpp"
-#include "host/app/RenderCommand.hpp"
-#include "host/app/SceneInputs.hpp"
-#include "host/cl/ClRuntime.hpp"
-#include "host/clustered/ClusteredAssigner.hpp"
-#include "host/tiled/TiledAssigner.hpp"
-#include "host/util/Error.hpp"
 #include "host/bench/BenchInputs.hpp"
+#include "host/cl/ClPassTimer.hpp"
+#include "host/clustered/ClusteredAssigner.hpp"
 #include "BenchCommon.hpp"
+#include "BenchSupport.hpp"
 
 namespace {
 using namespace ml;
-using benchutil::Clock;
-using benchutil::median;
 using benchutil::timeMedian;
+using json = nlohmann::ordered_json;
+
+struct Args {
+  benchutil::BenchArgs common;
+  std::string sizes = "320x320,1280x720,1920x1080", light_counts = "1000,10000,100000";
+  std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000", leaf_sizes = "8,32";
+  std::string bounds = "pixels";
+  unsigned tile = 0, tiled_tile = 16, brute_max = 100000;
+  float light_radius = 0.0f;
+  bool key_order = false;
+};
 
 // Levels of a BVH of branching 32 over ceil(n / leaf) leaves (leaves included).
 unsigned levelsFor(std::uint32_t n, unsigned leaf) {
@@ -43,268 +46,255 @@ unsigned levelsFor(std::uint32_t n, unsigned leaf) {
   return levels;
 }
 
-int run(int argc, char** argv) {
-  CLI::App app{"Clustered shading: unique-cluster methods, BVH vs brute-force assignment, frames vs tiled"};
-  std::string json_path, sizes = "320x320,1280x720,1920x1080", light_counts = "1000,10000,100000";
-  std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000", leaf_sizes = "8,32";
-  unsigned tile = 0, tiled_tile = 16;
-  unsigned brute_max = 100000;
-  float light_radius = 0.0f, light_density = 0.0f;
-  bool key_order = false;
-  int reps = 5;
-  std::string device, bounds = "pixels";
-  app.add_option("--json", json_path, "write records as JSON");
-  app.add_option("--cluster-bounds", bounds, "cluster boxes: pixels (explicit) or frustum (implicit)")
-      ->capture_default_str();
-  app.add_option("--sizes", sizes, "resolutions of the per-pass cases")->capture_default_str();
-  app.add_option("--lights", light_counts, "light counts of the assignment cases")->capture_default_str();
-  app.add_option("--frame-sizes", frame_sizes, "resolutions of the frame comparisons ('' for none)")->capture_default_str();
-  app.add_option("--frame-lights", frame_lights, "light counts of the frame comparisons")->capture_default_str();
-  app.add_option("--cluster-tile", tile, "cluster tile size; 0: auto per resolution (32 from 720 lines up, 16 below)")
-      ->capture_default_str();
-  app.add_option("--tile", tiled_tile, "tile size of the tiled peer in frames")->capture_default_str();
-  app.add_option("--leaf-sizes", leaf_sizes, "lights per leaf of the assignment cases (8, 16, 32)")
-      ->capture_default_str();
-  app.add_option("--light-radius", light_radius,
-                 "radius of the generated lights of the assignment cases (0: the scene's default)")
-      ->capture_default_str();
-  app.add_option("--light-density", light_density, kLightDensityHelp)->check(finitePositive());
-  app.add_flag("--key-order", key_order,
-               "assignment passes over the clusters in key order instead of tile-Morton order");
-  app.add_option("--brute-max-lights", brute_max, "skip brute-force assignment above this many lights")->capture_default_str();
-  app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
-  app.add_option("--device", device, "OpenCL device");
-  CLI11_PARSE(app, argc, argv);
-  benchutil::requireWritable("--json", json_path);
-  const bool bounds_pixels = parseClusterBounds(bounds) == ClusterBounds::Pixels;
+// One resolution: the default view's depth, its cluster keys and unique clusters.
+struct ClusterView {
+  std::string size;
+  unsigned w = 0, h = 0;
+  gpu::CameraParams cam{};
+  ClusterGrid g{};
+  cl::Buffer depth;
+  std::unique_ptr<ClusterUniquer> u;
+  std::uint32_t clusters = 0;
+  bool bounds_pixels = true;  // false: sub-frustum bounds
+};
 
-  auto gl = createHeadlessContext();
-  const auto share = gl->shareHandles();
-  auto rt = ClRuntime::create(DeviceChoice::resolve(device), &share);
-  std::printf("%s\n%s\n", rt->describe().c_str(), gl->describe().c_str());
-  SceneInputArgs base;
-  base.lights = "1";
-  SceneInputs scene = loadSceneInputs(base);
-  const Camera& camera = scene.cameras.frames.front();
-  nlohmann::ordered_json records = nlohmann::ordered_json::array();
-  auto& q = rt->queue();
+// The boxes of the view's unique clusters: from their pixels, or their sub-frusta.
+void makeBoxes(cl::CommandQueue& q, const ClusterView& v, ClusterLightAssigner& a) {
+  const ClusterPixels pixels{v.depth, v.u->clusterOf()};
+  a.boxes(q, v.cam, v.g, v.u->uniqueKeys(), v.clusters, nullptr, v.bounds_pixels ? &pixels : nullptr);
+}
 
-  std::printf("\nKeys + unique clusters, %s bounds (ms, median of %d)\n", bounds.c_str(), reps);
-  std::printf("%-11s %5s %9s %10s %10s %10s %10s\n", "resolution", "tile", "clusters", "keys", "pagetable", "sort",
-              "tile-sort");
-  for (const auto& size : splitList(sizes)) {
-    unsigned w = 0, h = 0;
-    parseSize(size, "--sizes", w, h);
-    std::vector<float> depth;
-    {
-      FrameRenderer r(*rt, scene.scene, w, h);
-      r.setLights({});
-      TiledAssigner a(*rt, 16, TileDepthMode::MinMax);
-      r.render(camera, a, {Pipeline::Deferred, false});
-      depth = r.targets().readDepth(true);
-    }
-    const auto cam = camera.params(w, h);
-    const ClusterGrid g = ClusterGrid::make(cam, tile ? tile : autoClusterTile(w, h));
-    cl::Buffer dbuf(rt->context(), CL_MEM_READ_ONLY, depth.size() * 4);
-    q.enqueueWriteBuffer(dbuf, CL_TRUE, 0, depth.size() * 4, depth.data());
-    ClusterUniquer u(*rt, UniqueMethod::PageTable);
-    const double t_keys = timeMedian(reps, [&] {
-      u.keys(q, dbuf, cam, g);
+// Section 1 for one resolution: keys and the three unique methods (a row, four records).
+void timeUnique(const Args& a, ClRuntime& rt, ClusterView& v, json& records) {
+  auto& q = rt.queue();
+  const double t_keys = timeMedian(a.common.reps, [&] {
+    v.u->keys(q, v.depth, v.cam, v.g);
+    q.finish();
+  });
+  std::uint32_t counts[3] = {0, 0, 0};
+  double t_unique[3] = {0, 0, 0};
+  int mi = 0;
+  for (UniqueMethod m : {UniqueMethod::PageTable, UniqueMethod::Sort, UniqueMethod::TileSort}) {
+    v.u->setMethod(m);
+    t_unique[mi] = timeMedian(a.common.reps, [&] {
+      counts[mi] = v.u->unique(q, v.g);
       q.finish();
     });
-    std::uint32_t counts[3] = {0, 0, 0};
-    double t_unique[3] = {0, 0, 0};
-    int mi = 0;
-    for (UniqueMethod m : {UniqueMethod::PageTable, UniqueMethod::Sort, UniqueMethod::TileSort}) {
-      u.setMethod(m);
-      t_unique[mi] = timeMedian(reps, [&] {
-        counts[mi] = u.unique(q, g);
-        q.finish();
-      });
-      records.push_back({{"name", std::string("cluster_unique_") + uniqueMethodName(m)}, {"resolution", size},
-                         {"n", w * h}, {"tile", g.tile_size}, {"seconds", t_unique[mi]},
-                         {"items_per_second", w * h / t_unique[mi]}, {"clusters", counts[mi]}});
-      ++mi;
-    }
-    if (counts[0] != counts[1] || counts[1] != counts[2]) throw std::runtime_error("unique methods disagree");
-    records.push_back({{"name", "cluster_keys"}, {"resolution", size}, {"n", w * h}, {"tile", g.tile_size},
-                       {"seconds", t_keys}, {"items_per_second", w * h / t_keys}, {"slices", g.slices}});
-    std::printf("%-11s %5u %9u %10.3f %10.3f %10.3f %10.3f\n", size.c_str(), g.tile_size, counts[0], t_keys * 1e3,
-                t_unique[0] * 1e3, t_unique[1] * 1e3, t_unique[2] * 1e3);
+    records.push_back({{"name", std::string("cluster_unique_") + uniqueMethodName(m)}, {"resolution", v.size},
+                       {"n", v.w * v.h}, {"tile", v.g.tile_size}, {"seconds", t_unique[mi]},
+                       {"items_per_second", v.w * v.h / t_unique[mi]}, {"clusters", counts[mi]}});
+    ++mi;
+  }
+  if (counts[0] != counts[1] || counts[1] != counts[2]) throw std::runtime_error("unique methods disagree");
+  records.push_back({{"name", "cluster_keys"}, {"resolution", v.size}, {"n", v.w * v.h}, {"tile", v.g.tile_size},
+                     {"seconds", t_keys}, {"items_per_second", v.w * v.h / t_keys}, {"slices", v.g.slices}});
+  std::printf("%-11s %5u %9u %10.3f %10.3f %10.3f %10.3f\n", v.size.c_str(), v.g.tile_size, counts[0], t_keys * 1e3,
+              t_unique[0] * 1e3, t_unique[1] * 1e3, t_unique[2] * 1e3);
+}
 
-    u.setMethod(UniqueMethod::PageTable);
-    const std::uint32_t clusters = u.unique(q, g);
-    const ClusterPixels pixels{dbuf, u.clusterOf()};
-    const ClusterPixels* px = bounds_pixels ? &pixels : nullptr;
-    {
-      // The boxes: once per frame, whatever the assignment method.
-      ClusterLightAssigner a(*rt, ClusterAssignMethod::Bvh);
-      const double t_boxes = timeMedian(reps, [&] {
-        a.boxes(q, cam, g, u.uniqueKeys(), clusters, nullptr, px);
-        q.finish();
-      });
-      std::printf("  cluster boxes (%s): %.3f ms\n", bounds.c_str(), t_boxes * 1e3);
-      records.push_back({{"name", std::string("cluster_boxes_") + bounds}, {"resolution", size}, {"n", w * h},
-                         {"clusters", clusters}, {"seconds", t_boxes}, {"items_per_second", w * h / t_boxes}});
+// The view of `size`, its unique clusters by page table (the frames' method), and its boxes timed.
+ClusterView clusterView(benchutil::BenchSetup& b, const Args& a, const std::string& size, json& records) {
+  ClusterView v;
+  v.size = size;
+  std::tie(v.w, v.h) = benchutil::sizeOf(size, "--sizes");
+  const std::vector<float> depth = benchutil::viewDepth(b, v.w, v.h);
+  v.cam = b.camera().params(v.w, v.h);
+  v.g = ClusterGrid::make(v.cam, a.tile ? a.tile : autoClusterTile(v.w, v.h));
+  v.depth = benchutil::uploadBuffer(b.cl(), depth.data(), depth.size() * 4, 0);
+  v.u = std::make_unique<ClusterUniquer>(b.cl(), UniqueMethod::PageTable);
+  timeUnique(a, b.cl(), v, records);
+  v.u->setMethod(UniqueMethod::PageTable);
+  auto& q = b.cl().queue();
+  v.clusters = v.u->unique(q, v.g);
+  v.bounds_pixels = parseClusterBounds(a.bounds) == ClusterBounds::Pixels;
+  // The boxes: once per frame, whatever the assignment method.
+  ClusterLightAssigner boxes(b.cl(), ClusterAssignMethod::Bvh);
+  const double t_boxes = timeMedian(a.common.reps, [&] {
+    makeBoxes(q, v, boxes);
+    q.finish();
+  });
+  std::printf("  cluster boxes (%s): %.3f ms\n", a.bounds.c_str(), t_boxes * 1e3);
+  records.push_back({{"name", std::string("cluster_boxes_") + a.bounds}, {"resolution", size}, {"n", v.w * v.h},
+                     {"clusters", v.clusters}, {"seconds", t_boxes}, {"items_per_second", v.w * v.h / t_boxes}});
+  return v;
+}
+
+// One light set's device buffers for assignment; the lists grow as needed.
+struct AssignBuffers {
+  cl::Buffer lights, ranges, list_records, leaf_lights;
+  std::uint32_t n = 0;
+  std::size_t cap = 0, leaf_cap = 0;
+};
+
+struct Timed {
+  double seconds = 0, cpu_seconds = 0;
+  std::uint32_t total = 0;   // records (hit leaves)
+  std::uint64_t listed = 0;  // lights in the lists
+};
+
+// Lights -> clusters: count (BVH build included) + scan + fill (hit records
+// copied into place, leaf slots' light ids), the boxes made beforehand.
+void runAssign(ClRuntime& rt, const ClusterView& v, AssignBuffers& buf, ClusterLightAssigner& a, std::uint32_t& total,
+               ClPassTimer* timer) {
+  auto& q = rt.queue();
+  total = a.assign(q, buf.lights, buf.n, v.cam, timer);
+  if (std::size_t(total) * 8 + 16 > buf.cap) {
+    buf.cap = std::size_t(total) * 12 + 16;
+    buf.list_records = cl::Buffer(rt.context(), CL_MEM_READ_WRITE, buf.cap);
+  }
+  if (a.leafLightSlots() * 4 + 16 > buf.leaf_cap) {
+    buf.leaf_cap = a.leafLightSlots() * 4 + 16;
+    buf.leaf_lights = cl::Buffer(rt.context(), CL_MEM_READ_WRITE, buf.leaf_cap);
+  }
+  a.fill(q, buf.ranges, buf.list_records, buf.leaf_lights, timer);
+  q.finish();
+}
+
+// Median wall and CPU time of runAssign, then one more run for each pass's device time.
+Timed timeAssign(ClRuntime& rt, int reps, const ClusterView& v, AssignBuffers& buf, ClusterLightAssigner& a) {
+  Timed r;
+  makeBoxes(rt.queue(), v, a);
+  const benchutil::WallCpu t = benchutil::timeMedianWallCpu(reps, [&] { runAssign(rt, v, buf, a, r.total, nullptr); });
+  r.seconds = t.wall;
+  r.cpu_seconds = t.cpu;
+  ClPassTimer timer;
+  runAssign(rt, v, buf, a, r.total, &timer);
+  PassTimings passes;
+  timer.collect(passes);
+  std::printf("    %s leaf %u passes (device ms):", clusterAssignName(a.method()), a.leafSize());
+  for (const auto& [name, ms] : passes.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
+  r.listed = a.listedLights(rt.queue());
+  std::printf(" | hit leaves %u (%.1f lights each)\n", r.total, r.total ? double(r.listed) / double(r.total) : 0.0);
+  return r;
+}
+
+using LeafRuns = std::vector<std::pair<unsigned, Timed>>;
+
+// The rows and records of one light set: each leaf size's BVH against the
+// fastest brute force of the run (so a leaf size that suits the BVH cannot
+// slow its peer down), wall and CPU time.
+void reportAssign(const Args& a, const ClusterView& v, std::uint32_t n, const LeafRuns& bvh_runs,
+                  const LeafRuns& brute_runs, json& records) {
+  double best = 0, best_cpu = 0;
+  for (const auto& [leaf, r] : brute_runs) {
+    if (best == 0 || r.seconds < best) best = r.seconds;
+    if (best_cpu == 0 || r.cpu_seconds < best_cpu) best_cpu = r.cpu_seconds;
+  }
+  for (std::size_t i = 0; i < bvh_runs.size(); ++i) {
+    const auto& [leaf, b] = bvh_runs[i];
+    const double t_brute = i < brute_runs.size() ? brute_runs[i].second.seconds : 0.0;
+    std::printf("  %-11s %8u %5u %12.3f %12s %10s %12u %7u %10llu %10s\n", v.size.c_str(), n, leaf, b.seconds * 1e3,
+                t_brute > 0 ? std::to_string(t_brute * 1e3).c_str() : "-",
+                best > 0 ? (std::to_string(best / b.seconds) + "x").c_str() : "-", unsigned(b.listed),
+                levelsFor(n, leaf), static_cast<unsigned long long>(b.total),
+                best_cpu > 0 ? (std::to_string(best_cpu / b.cpu_seconds) + "x").c_str() : "-");
+    records.push_back({{"name", "cluster_assign_bvh"}, {"resolution", v.size}, {"n", n}, {"lights", n},
+                       {"leaf_size", leaf}, {"clusters", v.clusters}, {"seconds", b.seconds},
+                       {"cpu_seconds", b.cpu_seconds}, {"items_per_second", n / b.seconds},
+                       {"list_entries", b.listed}, {"hit_leaves", b.total}, {"bvh_levels", levelsFor(n, leaf)},
+                       {"cluster_bounds", a.bounds}});
+    if (t_brute > 0)
+      records.push_back({{"name", "cluster_assign_brute"}, {"resolution", v.size}, {"n", n}, {"lights", n},
+                         {"leaf_size", leaf}, {"clusters", v.clusters}, {"seconds", t_brute},
+                         {"cpu_seconds", brute_runs[i].second.cpu_seconds}, {"items_per_second", n / t_brute},
+                         {"list_entries", brute_runs[i].second.listed}, {"hit_leaves", brute_runs[i].second.total},
+                         {"speedup_bvh_vs_best_brute", best / b.seconds},
+                         {"cpu_speedup_bvh_vs_best_brute", best_cpu / b.cpu_seconds}});
+  }
+}
+
+// Section 2 for one resolution and light set: BVH and brute force (the same
+// leaf test over every leaf) per leaf size.
+void assignCase(benchutil::BenchSetup& b, const Args& a, const ClusterView& v, const std::string& ls, json& records) {
+  const auto lights = benchutil::generatedLights(ls, a.common.light_density, a.light_radius);
+  AssignBuffers buf;
+  buf.n = std::uint32_t(lights.size());
+  buf.lights = benchutil::uploadBuffer(b.cl(), lights.data(), buf.n * sizeof(gpu::PointLight), 32);
+  buf.ranges = cl::Buffer(b.cl().context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, v.clusters * 8));
+  LeafRuns bvh_runs, brute_runs;
+  for (const auto& lsz : splitList(a.leaf_sizes)) {
+    const unsigned leaf = unsigned(std::stoul(lsz));
+    ClusterLightAssigner bvh(b.cl(), ClusterAssignMethod::Bvh, leaf), brute(b.cl(), ClusterAssignMethod::Brute, leaf);
+    // Record slots for every leaf of every cluster (up to 2^25, 256 MB), so
+    // that neither method walks again in the fill pass: brute force, with
+    // its unsorted leaves, has many more hit leaves than the BVH and would
+    // otherwise be the one that overflows the default budget.
+    const std::size_t all_leaves = std::size_t(v.clusters) * ((buf.n + bvh.leafSize() - 1) / bvh.leafSize());
+    for (ClusterLightAssigner* c : {&bvh, &brute}) {
+      c->setRecordBudget(std::min<std::size_t>(all_leaves, 1u << 25));
+      c->setClusterOrder(!a.key_order);
     }
+    bvh_runs.emplace_back(bvh.leafSize(), timeAssign(b.cl(), a.common.reps, v, buf, bvh));
+    if (buf.n <= a.brute_max) {
+      brute_runs.emplace_back(brute.leafSize(), timeAssign(b.cl(), a.common.reps, v, buf, brute));
+      if (brute_runs.back().second.listed != bvh_runs.back().second.listed)
+        throw std::runtime_error("BVH and brute force disagree on the list size");
+    }
+  }
+  reportAssign(a, v, buf.n, bvh_runs, brute_runs, records);
+}
+
+void parseArgs(CLI::App& app, Args& a) {
+  benchutil::addBenchArgs(app, a.common);
+  app.add_option("--cluster-bounds", a.bounds, "cluster boxes: pixels (explicit) or frustum (implicit)")
+      ->capture_default_str();
+  app.add_option("--sizes", a.sizes, "resolutions of the per-pass cases")->capture_default_str();
+  app.add_option("--lights", a.light_counts, "light counts of the assignment cases")->capture_default_str();
+  app.add_option("--frame-sizes", a.frame_sizes, "resolutions of the frame comparisons ('' for none)")
+      ->capture_default_str();
+  app.add_option("--frame-lights", a.frame_lights, "light counts of the frame comparisons")->capture_default_str();
+  app.add_option("--cluster-tile", a.tile, "cluster tile size; 0: auto per resolution (32 from 720 lines up, 16 below)")
+      ->capture_default_str();
+  app.add_option("--tile", a.tiled_tile, "tile size of the tiled peer in frames")->capture_default_str();
+  app.add_option("--leaf-sizes", a.leaf_sizes, "lights per leaf of the assignment cases (8, 16, 32)")
+      ->capture_default_str();
+  app.add_option("--light-radius", a.light_radius,
+                 "radius of the generated lights of the assignment cases (0: the scene's default)")
+      ->capture_default_str();
+  app.add_flag("--key-order", a.key_order,
+               "assignment passes over the clusters in key order instead of tile-Morton order");
+  app.add_option("--brute-max-lights", a.brute_max, "skip brute-force assignment above this many lights")
+      ->capture_default_str();
+}
+
+// Section 3: clustered and tiled frames, counted.
+benchutil::FrameSweep frameSweep(const Args& a) {
+  const std::vector<std::pair<std::string, std::string>> cp = {{"cluster_tile", std::to_string(a.tile)},
+                                                                {"cluster_bounds", a.bounds}};
+  const std::vector<std::pair<std::string, std::string>> tp = {{"tile", std::to_string(a.tiled_tile)},
+                                                                {"tile_depth", "minmax"}};
+  return {splitList(a.frame_sizes), splitList(a.frame_lights), a.common.light_density,
+          {{"clustered-forward", cp}, {"clustered-deferred", cp}, {"tiled-forward", tp}, {"tiled-deferred", tp}},
+          a.common.reps, true};
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"Clustered shading: unique-cluster methods, BVH vs brute-force assignment, frames vs tiled"};
+  Args a;
+  parseArgs(app, a);
+  CLI11_PARSE(app, argc, argv);
+  benchutil::requireWritable("--json", a.common.json_path);
+  (void)parseClusterBounds(a.bounds);
+  benchutil::checkSizes(a.sizes, "--sizes");
+  benchutil::checkSizes(a.frame_sizes, "--frame-sizes");
+  benchutil::BenchSetup b = benchutil::BenchSetup::open(a.common.device, benchutil::defaultScene());
+  json records = json::array();
+
+  std::printf("\nKeys + unique clusters, %s bounds (ms, median of %d)\n", a.bounds.c_str(), a.common.reps);
+  std::printf("%-11s %5s %9s %10s %10s %10s %10s\n", "resolution", "tile", "clusters", "keys", "pagetable", "sort",
+              "tile-sort");
+  for (const auto& size : splitList(a.sizes)) {
+    const ClusterView v = clusterView(b, a, size, records);
     std::printf("  assignment %-8s %5s %12s %12s %10s %12s %7s %10s %10s\n", "lights", "leaf", "bvh ms", "brute ms",
                 "speed-up", "entries", "levels", "hit leaves", "cpu speed-up");
-    for (const auto& ls : splitList(light_counts)) {
-      SceneInputArgs args;
-      args.lights = ls;
-      args.light_radius = light_radius;
-      args.light_density = light_density;
-      const auto lights = loadSceneInputs(args).lights;
-      const auto n = std::uint32_t(lights.size());
-      cl::Buffer lbuf(rt->context(), CL_MEM_READ_ONLY, std::max<std::size_t>(32, n * sizeof(gpu::PointLight)));
-      if (n) q.enqueueWriteBuffer(lbuf, CL_TRUE, 0, n * sizeof(gpu::PointLight), lights.data());
-      cl::Buffer ranges(rt->context(), CL_MEM_READ_WRITE, std::max<std::size_t>(16, clusters * 8));
-      cl::Buffer list_records, leaf_lights;
-      std::size_t cap = 0, leaf_cap = 0;
-      // Lights -> clusters: count (BVH build included) + scan + fill (hit
-      // records copied into place, leaf slots' light ids), the boxes made beforehand.
-      auto run_assign = [&](ClusterLightAssigner& a, std::uint32_t& total, ClPassTimer* timer) {
-        total = a.assign(q, lbuf, n, cam, timer);
-        if (std::size_t(total) * 8 + 16 > cap) {
-          cap = std::size_t(total) * 12 + 16;
-          list_records = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
-        }
-        if (a.leafLightSlots() * 4 + 16 > leaf_cap) {
-          leaf_cap = a.leafLightSlots() * 4 + 16;
-          leaf_lights = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, leaf_cap);
-        }
-        a.fill(q, ranges, list_records, leaf_lights, timer);
-        q.finish();
-      };
-      struct Timed {
-        double seconds = 0, cpu_seconds = 0;
-        std::uint32_t total = 0;  // records (hit leaves)
-        std::uint64_t listed = 0;  // lights in the lists
-      };
-      auto time_assign = [&](ClusterLightAssigner& a) {
-        Timed r;
-        a.boxes(q, cam, g, u.uniqueKeys(), clusters, nullptr, px);
-        const benchutil::WallCpu t = benchutil::timeMedianWallCpu(reps, [&] { run_assign(a, r.total, nullptr); });
-        r.seconds = t.wall;
-        r.cpu_seconds = t.cpu;
-        // One more run for the device time of each pass.
-        ClPassTimer timer;
-        run_assign(a, r.total, &timer);
-        PassTimings passes;
-        timer.collect(passes);
-        std::printf("    %s leaf %u passes (device ms):", clusterAssignName(a.method()), a.leafSize());
-        for (const auto& [name, ms] : passes.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
-        r.listed = a.listedLights(q);
-        std::printf(" | hit leaves %u (%.1f lights each)\n", r.total,
-                    r.total ? double(r.listed) / double(r.total) : 0.0);
-        return r;
-      };
-      // Each leaf size: the BVH and brute force (the same leaf test over
-      // every leaf). The speed-up is against the fastest brute force of the
-      // run, so a leaf size that suits the BVH cannot slow its peer down.
-      std::vector<std::pair<unsigned, Timed>> bvh_runs, brute_runs;
-      for (const auto& lsz : splitList(leaf_sizes)) {
-        const unsigned leaf = unsigned(std::stoul(lsz));
-        ClusterLightAssigner bvh(*rt, ClusterAssignMethod::Bvh, leaf), brute(*rt, ClusterAssignMethod::Brute, leaf);
-        // Record slots for every leaf of every cluster (up to 2^25, 256 MB), so
-        // that neither method walks again in the fill pass: brute force, with
-        // its unsorted leaves, has many more hit leaves than the BVH and would
-        // otherwise be the one that overflows the default budget.
-        const std::size_t all_leaves = std::size_t(clusters) * ((n + bvh.leafSize() - 1) / bvh.leafSize());
-        for (ClusterLightAssigner* a : {&bvh, &brute}) {
-          a->setRecordBudget(std::min<std::size_t>(all_leaves, 1u << 25));
-          a->setClusterOrder(!key_order);
-        }
-        bvh_runs.emplace_back(bvh.leafSize(), time_assign(bvh));
-        if (n <= brute_max) {
-          brute_runs.emplace_back(brute.leafSize(), time_assign(brute));
-          if (brute_runs.back().second.listed != bvh_runs.back().second.listed)
-            throw std::runtime_error("BVH and brute force disagree on the list size");
-        }
-      }
-      double best_brute = 0, best_brute_cpu = 0;
-      for (const auto& [leaf, r] : brute_runs) {
-        if (best_brute == 0 || r.seconds < best_brute) best_brute = r.seconds;
-        if (best_brute_cpu == 0 || r.cpu_seconds < best_brute_cpu) best_brute_cpu = r.cpu_seconds;
-      }
-      for (std::size_t i = 0; i < bvh_runs.size(); ++i) {
-        const auto& [leaf, b] = bvh_runs[i];
-        const double t_brute = i < brute_runs.size() ? brute_runs[i].second.seconds : 0.0;
-        std::printf("  %-11s %8u %5u %12.3f %12s %10s %12u %7u %10llu %10s\n", size.c_str(), n, leaf, b.seconds * 1e3,
-                    t_brute > 0 ? std::to_string(t_brute * 1e3).c_str() : "-",
-                    best_brute > 0 ? (std::to_string(best_brute / b.seconds) + "x").c_str() : "-",
-                    unsigned(b.listed), levelsFor(n, leaf), static_cast<unsigned long long>(b.total),
-                    best_brute_cpu > 0 ? (std::to_string(best_brute_cpu / b.cpu_seconds) + "x").c_str() : "-");
-        records.push_back({{"name", "cluster_assign_bvh"}, {"resolution", size}, {"n", n}, {"lights", n},
-                           {"leaf_size", leaf}, {"clusters", clusters}, {"seconds", b.seconds},
-                           {"cpu_seconds", b.cpu_seconds},
-                           {"items_per_second", n / b.seconds}, {"list_entries", b.listed},
-                           {"hit_leaves", b.total}, {"bvh_levels", levelsFor(n, leaf)},
-                           {"cluster_bounds", bounds}});
-        if (t_brute > 0)
-          records.push_back({{"name", "cluster_assign_brute"}, {"resolution", size}, {"n", n}, {"lights", n},
-                             {"leaf_size", leaf}, {"clusters", clusters}, {"seconds", t_brute},
-                             {"cpu_seconds", brute_runs[i].second.cpu_seconds},
-                             {"items_per_second", n / t_brute}, {"list_entries", brute_runs[i].second.listed},
-                             {"hit_leaves", brute_runs[i].second.total},
-                             {"speedup_bvh_vs_best_brute", best_brute / b.seconds},
-                             {"cpu_speedup_bvh_vs_best_brute", best_brute_cpu / b.cpu_seconds}});
-      }
-    }
+    for (const auto& ls : splitList(a.light_counts)) assignCase(b, a, v, ls, records);
   }
-
-  if (!frame_sizes.empty()) {
-    std::printf("\nFrames (ms, median of %d; GL passes host-timed on software GL); evals/px and ratio to the exact lower bound\n",
-                reps);
-    for (const auto& size : splitList(frame_sizes)) {
-      unsigned w = 0, h = 0;
-      parseSize(size, "--frame-sizes", w, h);
-      FrameRenderer r(*rt, scene.scene, w, h);
-      for (const auto& ls : splitList(frame_lights)) {
-        SceneInputArgs args;
-        args.lights = ls;
-        args.light_density = light_density;
-        r.setLights(loadSceneInputs(args).lights);
-        for (auto [tech, pipe] : {std::pair{"clustered-forward", Pipeline::Forward}, std::pair{"clustered-deferred", Pipeline::Deferred},
-                                  std::pair{"tiled-forward", Pipeline::Forward}, std::pair{"tiled-deferred", Pipeline::Deferred}}) {
-          std::unique_ptr<LightAssigner> a;
-          if (std::string(tech).rfind("clustered", 0) == 0)
-            a = std::make_unique<ClusteredAssigner>(*rt, tile, UniqueMethod::PageTable, ClusterAssignMethod::Bvh,
-                                                    parseClusterBounds(bounds));
-          else
-            a = std::make_unique<TiledAssigner>(*rt, tiled_tile, TileDepthMode::MinMax);
-          const FrameResult counted = r.render(camera, *a, {pipe, true});
-          std::vector<FrameResult> frames;
-          for (int i = 0; i < reps; ++i) frames.push_back(r.render(camera, *a, {pipe, false}));
-          const double px = double(std::max<std::uint64_t>(1, counted.covered_pixels));
-          const double ratio = double(counted.light_evaluations) / double(std::max<std::uint64_t>(1, counted.lower_bound));
-          std::printf("%-11s %7s %-19s", size.c_str(), ls.c_str(), tech);
-          nlohmann::ordered_json passes;
-          double pass_sum = 0.0;
-          for (const auto& [name, ms] : frames.front().passes.entries()) {
-            (void)ms;
-            std::vector<double> v;
-            for (const auto& f : frames) v.push_back(f.passes.get(name));
-            passes[name] = median(v);
-            pass_sum += median(v);
-            std::printf(" %s=%.2f", name.c_str(), median(v));
-          }
-          std::printf(" | sum=%.2f", pass_sum);
-          std::vector<double> host;
-          for (const auto& f : frames) host.push_back(f.host_ms);
-          std::printf(" | frame=%.2f evals/px=%.2f lb/px=%.2f ratio=%.3f\n", median(host),
-                      counted.light_evaluations / px, counted.lower_bound / px, ratio);
-          records.push_back({{"name", std::string("frame_") + tech}, {"resolution", size}, {"lights", std::stoul(ls)},
-                             {"n", std::stoul(ls)}, {"seconds", median(host) * 1e-3},
-                             {"items_per_second", double(w) * h / (median(host) * 1e-3)}, {"passes", passes},
-                             {"sum_of_passes_ms", pass_sum},
-                             {"evals_per_pixel", counted.light_evaluations / px},
-                             {"lower_bound_per_pixel", counted.lower_bound / px}, {"evals_over_lower_bound", ratio}});
-        }
-      }
-    }
+  if (!a.frame_sizes.empty()) {
+    std::printf("\nFrames (ms, median of %d; GL passes host-timed on software GL); evals/px and ratio to the exact "
+                "lower bound\n", a.common.reps);
+    benchutil::runFrameSweep(b, frameSweep(a), records);
   }
-  benchutil::writeJson(json_path, records);
+  benchutil::writeJson(a.common.json_path, records);
   return 0;
 }
 

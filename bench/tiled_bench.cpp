@@ -9,176 +9,137 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <fstream>
 
-#include "gl/FrameRenderer.hpp"
-#include "gl/GlContext.hpp"
-#include "host/app/InputChecks.hpp"
-#include "host/app/RenderCommand.hpp"
-#include "host/app/SceneInputs.hpp"
+#include "host/bench/BenchInputs.hpp"
 #include "host/cl/ClPassTimer.hpp"
-#include "host/cl/ClRuntime.hpp"
 #include "host/tiled/TileCullerReference.hpp"
 #include "host/tiled/TileLightCuller.hpp"
 #include "host/tiled/TiledAssigner.hpp"
-#include "host/util/Error.hpp"
-#include "host/bench/BenchInputs.hpp"
 #include "BenchCommon.hpp"
+#include "BenchSupport.hpp"
 
 namespace {
 using namespace ml;
-using benchutil::Clock;
-using benchutil::median;
 using benchutil::timeMedian;
+
+struct Args {
+  benchutil::BenchArgs common;
+  std::string sizes = "320x320,1280x720,1920x1080", light_counts = "1000,10000,100000";
+  std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000", depth_mode = "minmax";
+  unsigned tile = 16;
+  bool no_legacy = false, passes = false;
+};
+
+// One culling case's device inputs: lights, depth, the tile grid and a growing index list.
+struct CullInputs {
+  cl::Buffer lights, depth, grid, indices;
+  std::uint32_t n = 0;
+  std::size_t cap = 0;
+  gpu::CameraParams cam;
+};
+
+// Median seconds of count + fill with `algo`; `total` gets the list size.
+double timeCuller(ClRuntime& rt, const Args& a, CullInputs& in, TileCullAlgorithm algo, std::uint32_t& total) {
+  TileLightCuller culler(rt, a.tile, parseTileDepthMode(a.depth_mode), KernelShape::Auto, algo);
+  auto& q = rt.queue();
+  ClPassTimer timer;
+  ClPassTimer* tp = a.passes ? &timer : nullptr;
+  PassTimings pt;
+  const double t = timeMedian(a.common.reps, [&] {
+    pt = PassTimings{};
+    total = culler.count(q, in.lights, in.n, in.cam, &in.depth, tp);
+    if (std::size_t(total) * 4 > in.cap) {
+      in.cap = std::max<std::size_t>(16, std::size_t(total) * 4 * 3 / 2);
+      in.indices = cl::Buffer(rt.context(), CL_MEM_READ_WRITE, in.cap);
+    }
+    culler.fill(q, in.lights, in.n, in.cam, in.grid, in.indices, tp);
+    q.finish();
+    if (tp) timer.collect(pt);
+  });
+  if (tp) {
+    std::printf("  %s passes:", algo == TileCullAlgorithm::PairAtomics ? "old" : "new");
+    for (const auto& [name, ms] : pt.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
+    std::printf("\n");
+  }
+  return t;
+}
+
+// The three cullers on one resolution's depth and one light set: a row and three records.
+void cullCase(benchutil::BenchSetup& b, const Args& a, const std::string& size, const std::vector<float>& depth,
+              const std::string& ls, nlohmann::ordered_json& records) {
+  const auto [w, h] = benchutil::sizeOf(size, "--sizes");
+  const auto lights = benchutil::generatedLights(ls, a.common.light_density);
+  CullInputs in;
+  in.n = std::uint32_t(lights.size());
+  in.cam = b.camera().params(w, h);
+  in.lights = benchutil::uploadBuffer(b.cl(), lights.data(), in.n * sizeof(gpu::PointLight));
+  in.depth = benchutil::uploadBuffer(b.cl(), depth.data(), depth.size() * 4);
+  const TileGrid g{a.tile, w, h};
+  in.grid = cl::Buffer(b.cl().context(), CL_MEM_READ_WRITE, std::size_t(g.count()) * 8);
+  std::uint32_t total = 0, legacy_total = 0;
+  const double t_kernel = timeCuller(b.cl(), a, in, TileCullAlgorithm::ChunkCounts, total);
+  const double t_legacy = a.no_legacy ? 0.0 : timeCuller(b.cl(), a, in, TileCullAlgorithm::PairAtomics, legacy_total);
+  if (!a.no_legacy && legacy_total != total) throw std::runtime_error("new and old kernels disagree on the list size");
+  std::size_t ref_total = 0;
+  const TileDepthMode mode = parseTileDepthMode(a.depth_mode);
+  const double t_ref = timeMedian(a.common.reps, [&] {
+    ref_total = cullTilesReference(lights, depth.data(), in.cam, g, mode, true).indices.size();
+  });
+  if (ref_total != total) throw std::runtime_error("kernel and C++ culler disagree on the list size");
+  std::printf("%-11s %8u %12.3f %12.3f %12.3f %9.2fx %9.2fx %12u\n", size.c_str(), in.n, t_kernel * 1e3,
+              t_legacy * 1e3, t_ref * 1e3, t_ref / t_kernel, t_legacy / t_kernel, total);
+  std::vector<std::pair<const char*, double>> timed{{"tile_cull_opencl", t_kernel}, {"tile_cull_cpp_tbb", t_ref}};
+  if (!a.no_legacy) timed.emplace_back("tile_cull_opencl_pair_atomics", t_legacy);
+  for (auto [name, t] : timed)
+    records.push_back({{"name", name}, {"resolution", size}, {"n", in.n}, {"lights", in.n}, {"tile", a.tile},
+                       {"depth_mode", a.depth_mode}, {"seconds", t}, {"items_per_second", in.n / t},
+                       {"bytes_per_second", (depth.size() * 4.0 + in.n * 32.0) / t}, {"list_entries", total},
+                       {"speedup_vs_cpp", t_ref / t_kernel}});
+}
+
+void parseArgs(CLI::App& app, Args& a) {
+  benchutil::addBenchArgs(app, a.common);
+  app.add_flag("--no-legacy", a.no_legacy, "skip the previous (per-entry atomics) kernel");
+  app.add_flag("--passes", a.passes, "print the culler's per-pass device times (last repetition)");
+  app.add_option("--sizes", a.sizes, "culling resolutions")->capture_default_str();
+  app.add_option("--lights", a.light_counts, "culling light counts")->capture_default_str();
+  app.add_option("--frame-sizes", a.frame_sizes, "resolutions of the frame breakdowns ('' for none)")
+      ->capture_default_str();
+  app.add_option("--frame-lights", a.frame_lights, "light counts of the frame breakdowns")->capture_default_str();
+  app.add_option("--tile", a.tile, "tile size")->capture_default_str();
+  app.add_option("--tile-depth", a.depth_mode, "none|minmax|mask")->capture_default_str();
+}
 
 int run(int argc, char** argv) {
   CLI::App app{"Tile light culling: OpenCL kernel vs multi-threaded C++, and tiled frame breakdowns"};
-  std::string json_path, sizes = "320x320,1280x720,1920x1080", light_counts = "1000,10000,100000";
-  std::string frame_sizes = "320x320,1280x720", frame_lights = "1000,10000", depth_mode = "minmax";
-  unsigned tile = 16;
-  int reps = 5;
-  float light_density = 0.0f;
-  std::string device;
-  bool no_legacy = false, passes = false;
-  app.add_option("--json", json_path, "write records as JSON");
-  app.add_flag("--no-legacy", no_legacy, "skip the previous (per-entry atomics) kernel");
-  app.add_flag("--passes", passes, "print the culler's per-pass device times (last repetition)");
-  app.add_option("--sizes", sizes, "culling resolutions")->capture_default_str();
-  app.add_option("--lights", light_counts, "culling light counts")->capture_default_str();
-  app.add_option("--frame-sizes", frame_sizes, "resolutions of the frame breakdowns ('' for none)")->capture_default_str();
-  app.add_option("--frame-lights", frame_lights, "light counts of the frame breakdowns")->capture_default_str();
-  app.add_option("--light-density", light_density, kLightDensityHelp)->check(finitePositive());
-  app.add_option("--tile", tile, "tile size")->capture_default_str();
-  app.add_option("--tile-depth", depth_mode, "none|minmax|mask")->capture_default_str();
-  app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
-  app.add_option("--device", device, "OpenCL device");
+  Args a;
+  parseArgs(app, a);
   CLI11_PARSE(app, argc, argv);
-  benchutil::requireWritable("--json", json_path);
-  const TileDepthMode mode = parseTileDepthMode(depth_mode);
-
-  auto gl = createHeadlessContext();
-  const auto share = gl->shareHandles();
-  auto rt = ClRuntime::create(DeviceChoice::resolve(device), &share);
-  std::printf("%s\n%s\n", rt->describe().c_str(), gl->describe().c_str());
-  SceneInputArgs base;
-  base.lights = "1";
-  SceneInputs scene = loadSceneInputs(base);
-  const Camera& camera = scene.cameras.frames.front();
+  benchutil::requireWritable("--json", a.common.json_path);
+  (void)parseTileDepthMode(a.depth_mode);
+  benchutil::checkSizes(a.sizes, "--sizes");
+  benchutil::checkSizes(a.frame_sizes, "--frame-sizes");
+  benchutil::BenchSetup b = benchutil::BenchSetup::open(a.common.device, benchutil::defaultScene());
   nlohmann::ordered_json records = nlohmann::ordered_json::array();
 
-  std::printf("\nTile light culling, tile %u, depth %s (median of %d)\n", tile, depth_mode.c_str(), reps);
+  std::printf("\nTile light culling, tile %u, depth %s (median of %d)\n", a.tile, a.depth_mode.c_str(), a.common.reps);
   std::printf("%-11s %8s %12s %12s %12s %10s %10s %12s\n", "resolution", "lights", "kernel ms", "old kernel ms",
               "C++ (TBB) ms", "vs C++", "vs old", "list entries");
-  for (const auto& size : splitList(sizes)) {
-    unsigned w = 0, h = 0;
-    parseSize(size, "--sizes", w, h);
-    // The depth buffer of the default view at this resolution.
-    std::vector<float> depth;
-    {
-      FrameRenderer r(*rt, scene.scene, w, h);
-      r.setLights({});
-      TiledAssigner a(*rt, tile, mode);
-      r.render(camera, a, {Pipeline::Deferred, false});
-      depth = r.targets().readDepth(true);
-    }
-    const auto cam = camera.params(w, h);
-    for (const auto& ls : splitList(light_counts)) {
-      SceneInputArgs args;
-      args.lights = ls;
-      args.light_density = light_density;
-      const auto lights = loadSceneInputs(args).lights;
-      const auto n = std::uint32_t(lights.size());
-      auto& q = rt->queue();
-      cl::Buffer lbuf(rt->context(), CL_MEM_READ_ONLY, std::max<std::size_t>(16, n * sizeof(gpu::PointLight)));
-      if (n) q.enqueueWriteBuffer(lbuf, CL_TRUE, 0, n * sizeof(gpu::PointLight), lights.data());
-      cl::Buffer dbuf(rt->context(), CL_MEM_READ_ONLY, depth.size() * 4);
-      q.enqueueWriteBuffer(dbuf, CL_TRUE, 0, depth.size() * 4, depth.data());
-      cl::Buffer grid(rt->context(), CL_MEM_READ_WRITE, std::size_t(TileGrid{tile, w, h}.count()) * 8);
-      cl::Buffer indices;
-      std::size_t cap = 0;
-      auto time_culler = [&](TileCullAlgorithm algo, std::uint32_t& total) {
-        TileLightCuller culler(*rt, tile, mode, KernelShape::Auto, algo);
-        ClPassTimer timer;
-        PassTimings pt;
-        const double t = timeMedian(reps, [&] {
-          pt = PassTimings{};
-          total = culler.count(q, lbuf, n, cam, &dbuf, passes ? &timer : nullptr);
-          if (std::size_t(total) * 4 > cap) {
-            cap = std::max<std::size_t>(16, std::size_t(total) * 4 * 3 / 2);
-            indices = cl::Buffer(rt->context(), CL_MEM_READ_WRITE, cap);
-          }
-          culler.fill(q, lbuf, n, cam, grid, indices, passes ? &timer : nullptr);
-          q.finish();
-          if (passes) timer.collect(pt);
-        });
-        if (passes) {
-          std::printf("  %s passes:", algo == TileCullAlgorithm::PairAtomics ? "old" : "new");
-          for (const auto& [name, ms] : pt.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
-          std::printf("\n");
-        }
-        return t;
-      };
-      std::uint32_t total = 0, legacy_total = 0;
-      const double t_kernel = time_culler(TileCullAlgorithm::ChunkCounts, total);
-      const double t_legacy = no_legacy ? 0.0 : time_culler(TileCullAlgorithm::PairAtomics, legacy_total);
-      if (!no_legacy && legacy_total != total) throw std::runtime_error("new and old kernels disagree on the list size");
-      const TileGrid g{tile, w, h};
-      std::size_t ref_total = 0;
-      const double t_ref = timeMedian(reps, [&] {
-        ref_total = cullTilesReference(lights, depth.data(), cam, g, mode, true).indices.size();
-      });
-      if (ref_total != total) throw std::runtime_error("kernel and C++ culler disagree on the list size");
-      std::printf("%-11s %8u %12.3f %12.3f %12.3f %9.2fx %9.2fx %12u\n", size.c_str(), n, t_kernel * 1e3,
-                  t_legacy * 1e3, t_ref * 1e3, t_ref / t_kernel, t_legacy / t_kernel, total);
-      std::vector<std::pair<const char*, double>> timed{{"tile_cull_opencl", t_kernel}, {"tile_cull_cpp_tbb", t_ref}};
-      if (!no_legacy) timed.emplace_back("tile_cull_opencl_pair_atomics", t_legacy);
-      for (auto [name, t] : timed)
-        records.push_back({{"name", name}, {"resolution", size}, {"n", n}, {"lights", n}, {"tile", tile},
-                           {"depth_mode", depth_mode}, {"seconds", t}, {"items_per_second", n / t},
-                           {"bytes_per_second", (depth.size() * 4.0 + n * 32.0) / t}, {"list_entries", total},
-                           {"speedup_vs_cpp", t_ref / t_kernel}});
-    }
+  for (const auto& size : splitList(a.sizes)) {
+    const auto [w, h] = benchutil::sizeOf(size, "--sizes");
+    const std::vector<float> depth = benchutil::viewDepth(b, w, h);
+    for (const auto& ls : splitList(a.light_counts)) cullCase(b, a, size, depth, ls, records);
   }
-
-  if (!frame_sizes.empty()) {
-    std::printf("\nFrame breakdown (ms, median of %d; GL passes host-timed on software GL)\n", reps);
-    for (const auto& size : splitList(frame_sizes)) {
-      unsigned w = 0, h = 0;
-      parseSize(size, "--frame-sizes", w, h);
-      FrameRenderer r(*rt, scene.scene, w, h);
-      for (const auto& ls : splitList(frame_lights)) {
-        SceneInputArgs args;
-        args.lights = ls;
-        args.light_density = light_density;
-        r.setLights(loadSceneInputs(args).lights);
-        for (auto [tech, pipe] : {std::pair{"tiled-forward", Pipeline::Forward}, std::pair{"tiled-deferred", Pipeline::Deferred}}) {
-          TiledAssigner a(*rt, tile, mode);
-          r.render(camera, a, {pipe, false});
-          std::vector<FrameResult> frames;
-          for (int i = 0; i < reps; ++i) frames.push_back(r.render(camera, a, {pipe, false}));
-          std::printf("%-11s %7s %-15s", size.c_str(), ls.c_str(), tech);
-          nlohmann::ordered_json passes;
-          for (const auto& [name, ms] : frames.front().passes.entries()) {
-            (void)ms;
-            std::vector<double> v;
-            for (const auto& f : frames) v.push_back(f.passes.get(name));
-            const double m = median(v);
-            passes[name] = m;
-            std::printf(" %s=%.2f", name.c_str(), m);
-          }
-          std::vector<double> host;
-          for (const auto& f : frames) host.push_back(f.host_ms);
-          std::printf(" | frame=%.2f\n", median(host));
-          records.push_back({{"name", std::string("frame_") + tech}, {"resolution", size}, {"lights", std::stoul(ls)},
-                             {"n", std::stoul(ls)}, {"seconds", median(host) * 1e-3},
-                             {"items_per_second", double(w) * h / (median(host) * 1e-3)}, {"passes", passes}});
-        }
-      }
-    }
+  if (!a.frame_sizes.empty()) {
+    std::printf("\nFrame breakdown (ms, median of %d; GL passes host-timed on software GL)\n", a.common.reps);
+    const std::vector<std::pair<std::string, std::string>> p = {{"tile", std::to_string(a.tile)},
+                                                                 {"tile_depth", a.depth_mode}};
+    benchutil::runFrameSweep(b, {splitList(a.frame_sizes), splitList(a.frame_lights), a.common.light_density,
+                                 {{"tiled-forward", p}, {"tiled-deferred", p}}, a.common.reps, false},
+                             records);
   }
-  benchutil::writeJson(json_path, records);
+  benchutil::writeJson(a.common.json_path, records);
   return 0;
 }
 

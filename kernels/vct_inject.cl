@@ -49,21 +49,32 @@ ML_INLINE float4 lit(const Surfel* s, float3 acc) {
                   s->albedo.z * (ML_SHADE_DIRECT * acc.z), 1.0f);
 }
 
+/* One voxel's injected radiance: summed over every light (hb null: brute
+ * force) or over the hashed list at the voxel centre, in list order. Both
+ * kernels go through here so that the two sums differ only in their lights. */
+ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, uint i, float4 origin_size, uint edge_log2,
+                              __global const PointLight* lights, uint n_lights, const HsBuffers* hb) {
+  Surfel s;
+  if (!resolve_voxel(accum, i, origin_size, edge_log2, &s)) return (float4)(0.0f);
+  float3 acc = (float3)(0.0f);
+  if (hb) {
+    HsList hl = hs_list_for(hb, s.p);
+    while (hl.offset < hl.end) {
+      uint light;
+      if (hs_next(hb, &hl, &light)) acc = add_light(acc, &s, lights + light);
+    }
+  } else {
+    for (uint l = 0; l < n_lights; ++l) acc = add_light(acc, &s, lights + l);
+  }
+  return lit(&s, acc);
+}
+
 __kernel VCT_ATTR void inject_brute(__global const VoxelAccum* accum, __global float4* out, float4 origin_size,
                                     uint edge_log2, uint n, uint chunk, __global const PointLight* lights,
                                     uint n_lights) {
   uint b, e;
   item_range(n, chunk, &b, &e);
-  for (uint i = b; i < e; ++i) {
-    Surfel s;
-    if (!resolve_voxel(accum, i, origin_size, edge_log2, &s)) {
-      out[i] = (float4)(0.0f);
-      continue;
-    }
-    float3 acc = (float3)(0.0f);
-    for (uint l = 0; l < n_lights; ++l) acc = add_light(acc, &s, lights + l);
-    out[i] = lit(&s, acc);
-  }
+  for (uint i = b; i < e; ++i) out[i] = inject_voxel(accum, i, origin_size, edge_log2, lights, n_lights, 0);
 }
 
 __kernel VCT_ATTR void inject_hashed(__global const VoxelAccum* accum, __global float4* out, float4 origin_size,
@@ -74,20 +85,7 @@ __kernel VCT_ATTR void inject_hashed(__global const VoxelAccum* accum, __global 
   const HsBuffers hb = {header, offsets, desc, data, list};
   uint b, e;
   item_range(n, chunk, &b, &e);
-  for (uint i = b; i < e; ++i) {
-    Surfel s;
-    if (!resolve_voxel(accum, i, origin_size, edge_log2, &s)) {
-      out[i] = (float4)(0.0f);
-      continue;
-    }
-    HsList hl = hs_list_for(&hb, s.p);
-    float3 acc = (float3)(0.0f);
-    while (hl.offset < hl.end) {
-      uint light;
-      if (hs_next(&hb, &hl, &light)) acc = add_light(acc, &s, lights + light);
-    }
-    out[i] = lit(&s, acc);
-  }
+  for (uint i = b; i < e; ++i) out[i] = inject_voxel(accum, i, origin_size, edge_log2, lights, 0u, &hb);
 }
 
 /* Tests: the lookup's range (offset, count) and octant for each point. */

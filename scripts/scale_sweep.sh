@@ -34,28 +34,16 @@ repeat=3
 node_size=1r
 out="results/scale"
 eval_counts=1
-while (($#)); do
-  case "$1" in
-    --counts) counts="$2"; shift 2 ;;
-    --density) density="$2"; shift 2 ;;
-    --size) size="$2"; shift 2 ;;
-    --repeat) repeat="$2"; shift 2 ;;
-    --node-size) node_size="$2"; shift 2 ;;
-    --out) out="$2"; shift 2 ;;
-    --no-eval-counts) eval_counts=0; shift ;;
-    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
-    *) echo "scale_sweep.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
-  esac
-done
+# shellcheck source=scripts/script_options.sh
+source scripts/script_options.sh
+declare -A value_opts=([--counts]=counts [--density]=density [--size]=size [--repeat]=repeat
+                       [--node-size]=node_size [--out]=out)
+declare -A flag_opts=([--no-eval-counts]="eval_counts=0")
+positional=""
+parse_options "$0" 27 "$@"
 bin="${MANYLIGHTS_BIN:-build/manylights}"
-python="${MANYLIGHTS_PYTHON:-}"
-if [[ -z "$python" ]]; then  # as `bench --plot` does: the PATH's python3, else the system one
-  for p in python3 /usr/bin/python3; do
-    if "$p" -c 'import matplotlib' >/dev/null 2>&1; then python="$p"; break; fi
-  done
-fi
-[[ -n "$python" ]] || { echo "scale_sweep.sh: no python3 with matplotlib (install python3-matplotlib)" >&2; exit 2; }
-[[ -x "$bin" ]] || { echo "scale_sweep.sh: $bin not found (build the manylights target)" >&2; exit 2; }
+find_plot_python "$0"
+[[ -x "$bin" ]] || { echo "scale_sweep.sh: error: $bin not found (build the manylights target)" >&2; exit 2; }
 mkdir -p "$out"
 
 common=(--lights "$counts" --light-density "$density" --size "$size" --frames 0:0:1 --node-size "$node_size"

@@ -36,20 +36,13 @@ sizes="320x320,640x640,960x960"
 out="results/thesis-suite"
 techniques=""
 skip_res=0
-while (($#)); do
-  case "$1" in
-    --step) step="$2"; shift 2 ;;
-    --light-step) light_step="$2"; shift 2 ;;
-    --res-step) res_step="$2"; shift 2 ;;
-    --sizes) sizes="$2"; shift 2 ;;
-    --out) out="$2"; shift 2 ;;
-    --techniques) techniques="$2"; shift 2 ;;
-    --skip-resolution) skip_res=1; shift ;;
-    -h|--help) sed -n '2,27p' "$0"; exit 0 ;;
-    -*) echo "thesis_results.sh: error: unknown option $1" >&2; exit 2 ;;
-    *) suite="$1"; shift ;;
-  esac
-done
+# shellcheck source=scripts/script_options.sh
+source scripts/script_options.sh
+declare -A value_opts=([--step]=step [--light-step]=light_step [--res-step]=res_step [--sizes]=sizes [--out]=out
+                       [--techniques]=techniques)
+declare -A flag_opts=([--skip-resolution]="skip_res=1")
+positional=suite
+parse_options "$0" 27 "$@"
 
 bin="${MANYLIGHTS_BIN:-build/manylights}"
 if [[ ! -x "$bin" ]]; then
@@ -62,16 +55,7 @@ if [[ ! -d "$scene/geometry" || ! -d "$reference" ]]; then
   echo "thesis_results.sh: error: $suite is not the thesis suite (needs scenes/spaceship-indoor/ and reference/)" >&2
   exit 2
 fi
-python="${MANYLIGHTS_PYTHON:-}"
-if [[ -z "$python" ]]; then
-  for p in python3 /usr/bin/python3; do
-    if "$p" -c 'import matplotlib' 2>/dev/null; then python="$p"; break; fi
-  done
-fi
-if [[ -z "$python" ]]; then
-  echo "thesis_results.sh: error: no python3 with matplotlib; install python3-matplotlib (or set MANYLIGHTS_PYTHON)" >&2
-  exit 2
-fi
+find_plot_python "$0"
 export MANYLIGHTS_PYTHON="$python"
 
 tech_args=()

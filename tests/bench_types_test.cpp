@@ -171,5 +171,48 @@ TEST(BenchTypes, JsonAndCsvSchema) {
   EXPECT_NE(csv.find("\"b,\"\"x\"\"\""), std::string::npos);  // quoted field
 }
 
+// JSON and CSV come from one field table: every CSV column before the pass
+// columns is a record key, in the JSON's key order, with the same value.
+TEST(BenchTypes, CsvColumnsFollowTheJsonFields) {
+  FrameRecord r = record("run,1", 2, 345, 7);
+  r.params = {{"tile", "16"}, {"tile_depth", "none"}};
+  r.light_file = "lights/a.json";
+  const auto j = recordJson(r);
+  std::istringstream in(benchCsv({r}));
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  auto cells = [](const std::string& line) {  // splits on commas outside quotes
+    std::vector<std::string> out(1);
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"') quoted = !quoted;
+      if (c == ',' && !quoted) out.emplace_back();
+      else out.back() += c;
+    }
+    return out;
+  };
+  const auto names = cells(header), values = cells(row);
+  ASSERT_EQ(names.size(), values.size());
+  std::vector<std::string> json_keys;
+  for (const auto& [k, v] : j.items())
+    if (!v.is_object() || k == "params") json_keys.push_back(k);
+  json_keys.erase(std::remove(json_keys.begin(), json_keys.end(), "shaded"), json_keys.end());
+  std::size_t i = 0;
+  for (; i < names.size() && names[i].rfind("pass:", 0) != 0; ++i) {
+    ASSERT_LT(i, json_keys.size());
+    EXPECT_EQ(names[i], json_keys[i]) << "column " << i;
+  }
+  EXPECT_EQ(i, json_keys.size()) << "every scalar field has a column";
+  EXPECT_EQ(values[0], "\"run,1\"");
+  EXPECT_EQ(values[3], "tile=16;tile_depth=none");
+  const auto col = [&](const std::string& name) {
+    return values[std::find(names.begin(), names.end(), name) - names.begin()];
+  };
+  EXPECT_EQ(col("light_evaluations"), std::to_string(j["light_evaluations"].get<std::uint64_t>()));
+  EXPECT_EQ(col("memory_bytes"), std::to_string(j["memory_bytes"].get<std::size_t>()));
+  EXPECT_EQ(std::stod(col("host_ms")), j["host_ms"].get<double>());
+}
+
 }  // namespace
 }  // namespace ml

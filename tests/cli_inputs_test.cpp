@@ -203,6 +203,44 @@ TEST(CliInputs, RenderReportsNoMachinePaths) {
   EXPECT_NE(r.out.find("(data/default/lights.json)"), std::string::npos) << r.out;
 }
 
+// render, view, bench and compare-reference take the scene, suite, device and
+// progress flags from one adder: the same names and help on every command.
+TEST(CliInputs, SharedInputFlagsOnEveryCommand) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> expected = {
+      {"render", {"--scene,--suite", "--camera", "--lights", "--light-volumes", "--seed", "--device"}},
+      {"view", {"--scene,--suite", "--camera", "--lights", "--light-volumes", "--seed", "--device"}},
+      {"bench", {"--scene,--suite", "--camera", "--light-volumes", "--seed", "--geometry", "--allow-missing-meshes",
+                 "--device", "--progress"}},
+      {"compare-reference", {"--geometry", "--allow-missing-meshes", "--device", "--progress"}},
+  };
+  std::string device_help;
+  for (const auto& [cmd, flags] : expected) {
+    const auto r = runManylights(cmd + " --help");
+    ASSERT_EQ(r.exit_code, 0) << cmd << r.err;
+    for (const auto& f : flags) EXPECT_NE(r.out.find("  " + f + " "), std::string::npos) << cmd << " " << f;
+    const auto at = r.out.find("  --device ");
+    ASSERT_NE(at, std::string::npos) << cmd;
+    const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+    if (device_help.empty()) device_help = line;
+    EXPECT_EQ(line, device_help) << cmd;
+  }
+}
+
+// `render` resolves its scene like `bench`: a folder in the project's format
+// brings its camera path and lights (data/default/ is the default scene).
+TEST(CliInputs, RenderTakesASceneFolder) {
+  const std::string folder = (fs::path(MANYLIGHTS_TEST_DATA_DIR) / "default").string();
+  const auto by_folder = runManylights("render --scene " + folder + " --size 16x16 --frames 1 --warmup 0 --counts");
+  const auto by_default = runManylights("render --size 16x16 --frames 1 --warmup 0 --counts");
+  ASSERT_EQ(by_folder.exit_code, 0) << by_folder.err;
+  ASSERT_EQ(by_default.exit_code, 0) << by_default.err;
+  auto counts = [](const std::string& out) { return out.substr(out.find("light evaluations")); };
+  EXPECT_EQ(counts(by_folder.out), counts(by_default.out));
+  EXPECT_NE(by_folder.out.find("lights: 1024 ("), std::string::npos) << by_folder.out;
+  expectRefused(runManylights("render --scene " + folder + "/no-such-folder-or.obj"),
+                {"--scene", "no-such-folder-or.obj"});
+}
+
 std::string base64(const std::string& in) {
   static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;

@@ -13,6 +13,7 @@
 
 #include "host/bench/RunLayer.hpp"
 #include "host/app/InputChecks.hpp"
+#include "host/app/InputFlags.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/bench/OutputFiles.hpp"
 #include "host/bench/BenchRunner.hpp"
@@ -274,16 +275,11 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       "Light sets (--lights, comma list): JSON files; names under the suite's lights/; 'thesis' (the thesis's set\n"
       "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).\n" +
       std::string(kLightLimitsHelp));
-  cmd->add_option("--suite,--scene", a.scene.suite,
-                  "scene: a thesis scene-suite folder (geometry/ obj/ lights/ camera/), a folder with scene.glb + "
-                  "camera.json + lights.json, or a .gltf/.glb file (default: data/default)");
-  cmd->add_option("--camera", a.scene.camera, "camera path JSON (default: the folder's camera.json / camera/camera.json)");
-  cmd->add_option("--lights,--light-sets", a.lights, "light sets, comma-separated (see below; default: the scene's)")
+  addInputFlags(*cmd, {kSceneFlag | kGenerateFlags | kSuiteFlags | kDeviceFlag | kProgressFlag, &a.scene, &a.device,
+                       &a.progress});
+  cmd->add_option("--lights,--light-sets", a.scene.lights,
+                  "light sets, comma-separated (see below; default: the scene's)")
       ->check(nonEmptyList("a comma list of light sets (leave the flag out for the scene's)"));
-  cmd->add_option("--light-volumes", a.scene.light_volumes, "boxes for generated lights (glTF scenes)");
-  cmd->add_option("--light-radius", a.scene.light_radius, "radius of generated lights")->check(finitePositive());
-  cmd->add_option("--light-density", a.scene.light_density, kLightDensityHelp)->check(finitePositive());
-  cmd->add_option("--seed", a.scene.seed, "seed of generated lights")->capture_default_str();
   cmd->add_option("--techniques", a.techniques, "comma list of: " + techniqueNames() + " (default: all)")
       ->check(nonEmptyList("a comma list of techniques (leave the flag out for all)"));
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
@@ -313,30 +309,34 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   cmd->add_option("--csv", a.csv, "write per-frame records as CSV");
   cmd->add_option("--plot", a.plot, "render thesis-style figures (PNG) into this folder (python3-matplotlib)");
   cmd->add_option("--images", a.images, "write every record's shaded image (PNG) into this folder");
-  cmd->add_option("--geometry", a.scene.geometry, "suite: geometry file under geometry/ (default deferred_attenuated.json)");
-  cmd->add_flag("--allow-missing-meshes", a.scene.allow_missing_meshes,
-                "suite: skip objects whose OBJ mesh is missing (warns) instead of failing");
   cmd->add_option("--fovy", a.fovy, "override the camera's vertical field of view, degrees (suite: 45)");
   cmd->add_option("--near", a.near_plane, "override the near plane (suite: 0.01)");
   cmd->add_option("--far", a.far_plane, "override the far plane (suite: 4000)");
-  cmd->add_option("--device", a.device, "OpenCL device: gpu, cpu or an index from `manylights devices`");
-  cmd->add_option("--progress", a.progress, "progress on stderr: auto|bar|lines|none")->capture_default_str();
   return cmd;
 }
 
-int runBench(const BenchArgs& a) {
-  const std::string where = "--lights";
-  // Everything that can be checked without rendering is checked first.
+namespace {
+
+// What runBench takes from the flags, all checked before anything loads.
+struct CheckedBenchFlags {
   std::vector<std::pair<unsigned, unsigned>> sizes;
+  std::vector<TechniqueVariant> variants;
+  FrameRange range;
+  Progress::Mode progress = Progress::Mode::Auto;
+  DeviceChoice device;
+};
+
+CheckedBenchFlags checkBenchFlags(const BenchArgs& a, const std::string& where) {
+  CheckedBenchFlags c;
   for (const auto& s : a.sizes.empty() ? std::vector<std::string>{a.size} : splitList(a.sizes)) {
     unsigned w = 0, h = 0;
     parseSize(s, a.sizes.empty() ? "--size" : "--sizes", w, h);
-    sizes.emplace_back(w, h);
+    c.sizes.emplace_back(w, h);
   }
-  if (sizes.empty()) throw UserError("--sizes: no sizes given");
-  const auto variants = benchVariants(a);
-  const FrameRange range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
-  const Progress::Mode progress_mode = Progress::parseMode(a.progress, "--progress");
+  if (c.sizes.empty()) throw UserError("--sizes: no sizes given");
+  c.variants = benchVariants(a);
+  c.range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
+  c.progress = Progress::parseMode(a.progress, "--progress");
   (void)LightAnimator({}, a.animate, 23, a.animate_speed);  // validates --animate, --animate-speed
   if (a.no_counts && a.no_timing) throw UserError("--no-counts and --no-timing together leave nothing to measure");
   if (a.no_shading && !a.images.empty()) throw UserError("--images: there is no shaded image with --no-shading");
@@ -345,22 +345,27 @@ int runBench(const BenchArgs& a) {
   if (a.fovy != 0 && !(a.fovy > 0 && a.fovy < 180)) throw UserError("--fovy: must be in (0, 180) degrees");
   if (a.near_plane < 0 || a.far_plane < 0) throw UserError("--near/--far: must be positive");
   checkBenchOutputs(a);
-  checkLightCounts(a.lights, variants, where);
-  const DeviceChoice device = DeviceChoice::resolve(a.device);
+  checkLightCounts(a.scene.lights, c.variants, where);
+  c.device = DeviceChoice::resolve(a.device);
+  return c;
+}
 
-  BenchSceneArgs sa = a.scene;
+// The scene's inputs with the lens overrides (--fovy, --near, --far) applied.
+SceneInputArgs benchSceneArgs(const BenchArgs& a) {
+  SceneInputArgs sa = a.scene;
   if (a.fovy > 0) sa.fovy = a.fovy;
   if (a.near_plane > 0) sa.near_plane = a.near_plane;
   if (a.far_plane > 0) sa.far_plane = a.far_plane;
-  const BenchScene scene = loadBenchScene(sa);
-  const Camera& c0 = scene.cameras.frames.front();
-  if (!(c0.far_plane > c0.near_plane)) throw UserError("--near/--far: far must exceed near");
+  return sa;
+}
+
+BenchPlan benchPlan(const BenchArgs& a, const CheckedBenchFlags& c, const BenchScene& scene, const std::string& where) {
   BenchPlan plan;
-  plan.variants = variants;
-  plan.light_sets = resolveLightSets(scene, a.lights, sa, where);
-  checkLightSets(plan.light_sets, variants, where);
-  plan.sizes = sizes;
-  plan.frames = selectFrames(range, scene.cameras.frames.size(), "--frames");
+  plan.variants = c.variants;
+  plan.light_sets = resolveLightSets(scene, benchSceneArgs(a), where);
+  checkLightSets(plan.light_sets, c.variants, where);
+  plan.sizes = c.sizes;
+  plan.frames = selectFrames(c.range, scene.cameras.frames.size(), "--frames");
   plan.counts = !a.no_counts;
   plan.timing = !a.no_timing;
   plan.shade = !a.no_shading;
@@ -369,13 +374,15 @@ int runBench(const BenchArgs& a) {
   plan.image_dir = a.images;
   plan.animate = a.animate;
   plan.animate_speed = a.animate_speed;
+  return plan;
+}
 
-  const RunContext ctx = RunContext::open(device);
-  for (const auto& ls : plan.light_sets) checkDeviceLightLimits(where, ls.lights.size(), ctx.cl->info());
+void printBenchHeader(const RunContext& ctx, const BenchScene& scene, const BenchPlan& plan) {
+  const Camera& c0 = scene.cameras.frames.front();
   ctx.printDevices();
   std::printf("scene: %s [%s] (%zu triangles, %zu camera frames; fovy %g, near %g, far %g)\n",
-              reportPath(scene.source).c_str(), scene.format.c_str(), scene.scene.triangleCount(), scene.cameras.frames.size(), c0.fovy_degrees,
-              c0.near_plane, c0.far_plane);
+              reportPath(scene.source).c_str(), scene.format.c_str(), scene.scene.triangleCount(),
+              scene.cameras.frames.size(), c0.fovy_degrees, c0.near_plane, c0.far_plane);
   if (!scene.missing_meshes.empty()) {
     std::string m;
     for (const auto& id : scene.missing_meshes) m += (m.empty() ? "" : ", ") + id;
@@ -384,16 +391,16 @@ int runBench(const BenchArgs& a) {
   std::printf("%zu technique variant(s) x %zu light set(s) x %zu size(s) x %zu frame(s) = %zu records\n",
               plan.variants.size(), plan.light_sets.size(), plan.sizes.size(), plan.frames.size(), planSteps(plan));
   std::fflush(stdout);
+}
 
+// Runs the plan, writing JSON/CSV: results so far go to <file>.partial after
+// every finished run (meta "complete": false), so an interrupted sweep still
+// leaves usable files that do not pass for a whole run; the named files
+// appear, atomically, only when every record is in, and the .partial files go.
+std::vector<FrameRecord> runAndWrite(const BenchArgs& a, const RunContext& ctx, const BenchScene& scene,
+                                     const BenchPlan& plan, Progress::Mode progress_mode,
+                                     const std::string& json_path) {
   nlohmann::ordered_json meta = benchMeta(a, scene, plan, ctx);
-
-  std::string json_path = a.json;
-  if (json_path.empty() && !a.plot.empty()) json_path = (fs::path(a.plot) / "bench.json").string();
-  std::vector<FrameRecord> so_far;
-  // Results so far go to <file>.partial after every finished run (meta
-  // "complete": false), so an interrupted sweep still leaves usable files
-  // that do not pass for a whole run; the named files appear, atomically,
-  // only when every record is in, and the .partial files go.
   auto save = [&](const std::vector<FrameRecord>& recs, bool complete) {
     const auto sums = summarizeRuns(recs);
     const std::string suffix = complete ? "" : ".partial";
@@ -404,6 +411,7 @@ int runBench(const BenchArgs& a) {
                           benchJson(meta, recs, sums).dump(1) + "\n");
     if (!a.csv.empty()) writeFileAtomically("--csv", a.csv + suffix, benchCsv(recs));
   };
+  std::vector<FrameRecord> so_far;
   Progress progress(planSteps(plan), progress_mode);
   const std::size_t frames_per_run = plan.frames.size();
   const auto records = runBench(*ctx.cl, scene, plan, &progress, [&](const FrameRecord& r) {
@@ -416,6 +424,26 @@ int runBench(const BenchArgs& a) {
     std::error_code ec;
     if (!p.empty()) fs::remove(p + ".partial", ec);
   }
+  return records;
+}
+
+}  // namespace
+
+int runBench(const BenchArgs& a) {
+  const std::string where = "--lights";
+  // Everything that can be checked without rendering is checked first.
+  const CheckedBenchFlags checked = checkBenchFlags(a, where);
+  const BenchScene scene = loadBenchScene(benchSceneArgs(a));
+  const Camera& c0 = scene.cameras.frames.front();
+  if (!(c0.far_plane > c0.near_plane)) throw UserError("--near/--far: far must exceed near");
+  const BenchPlan plan = benchPlan(a, checked, scene, where);
+
+  const RunContext ctx = RunContext::open(checked.device);
+  for (const auto& ls : plan.light_sets) checkDeviceLightLimits(where, ls.lights.size(), ctx.cl->info());
+  printBenchHeader(ctx, scene, plan);
+  std::string json_path = a.json;
+  if (json_path.empty() && !a.plot.empty()) json_path = (fs::path(a.plot) / "bench.json").string();
+  const auto records = runAndWrite(a, ctx, scene, plan, checked.progress, json_path);
   printSummaries(summarizeRuns(records));
   if (!json_path.empty()) std::printf("\nwrote %s\n", json_path.c_str());
   if (!a.csv.empty()) std::printf("wrote %s\n", a.csv.c_str());

@@ -16,8 +16,7 @@
 namespace ml {
 
 struct BenchArgs {
-  BenchSceneArgs scene;
-  std::string lights;      // comma list (see BenchInputs.hpp)
+  SceneInputArgs scene;    // scene.lights: a comma list of light sets (see BenchInputs.hpp)
   std::string techniques;  // comma list; empty: every registered technique
   std::string size = "320x320";
   std::string sizes;       // comma list; overrides size

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "gl/FrameRenderer.hpp"
+#include "host/app/InputFlags.hpp"
 #include "host/bench/BenchInputs.hpp"
 #include "host/bench/BenchTypes.hpp"
 #include "host/bench/OutputFiles.hpp"
@@ -203,10 +204,7 @@ CLI::App* addCompareReferenceCommand(CLI::App& app, CompareReferenceArgs& a) {
   cmd->add_option("--json", a.json, "write per-frame values and summaries as JSON");
   cmd->add_option("--csv", a.csv, "write per-frame values as CSV");
   cmd->add_option("--markdown", a.markdown, "write the two tables as Markdown");
-  cmd->add_option("--geometry", a.geometry, "suite geometry file under geometry/");
-  cmd->add_flag("--allow-missing-meshes", a.allow_missing_meshes, "skip objects whose OBJ mesh is missing");
-  cmd->add_option("--device", a.device, "OpenCL device: gpu, cpu or an index from `manylights devices`");
-  cmd->add_option("--progress", a.progress, "progress on stderr: auto|bar|lines|none")->capture_default_str();
+  addInputFlags(*cmd, {kSuiteFlags | kDeviceFlag | kProgressFlag, &a.inputs, &a.device, &a.progress});
   return cmd;
 }
 
@@ -217,11 +215,9 @@ int runCompareReference(const CompareReferenceArgs& a) {
   const ThesisReference ref = loadThesisReference(a.reference, scene_name);
   std::vector<SeriesRun> runs = planSeries(ref, sel, a);
 
-  BenchSceneArgs sa;
-  sa.suite = a.suite;
-  sa.geometry = a.geometry;
-  sa.allow_missing_meshes = a.allow_missing_meshes;
-  const BenchScene scene = loadBenchScene(sa);
+  SceneInputArgs sa = a.inputs;
+  sa.scene = a.suite;
+  const BenchScene scene = loadBenchScene(sa, "--suite");
   const std::size_t total_steps = selectSeriesFrames(runs, sel.range, a.frame_offset, scene.cameras.frames.size());
   printPlan(ref, runs, scene, a);
 

@@ -12,6 +12,8 @@
 
 #include <string>
 
+#include "host/bench/BenchInputs.hpp"
+
 namespace ml {
 
 struct CompareReferenceArgs {
@@ -24,10 +26,9 @@ struct CompareReferenceArgs {
   std::string technique_map = "ns=deferred,ts=tiled-deferred,cs=clustered-deferred";
   std::string tile_depth = "none";  // the thesis's tiled shading has no depth bounds
   std::string json, csv, markdown;
-  std::string geometry;
+  SceneInputArgs inputs;  // --geometry, --allow-missing-meshes (the scene is --suite)
   std::string device;
   std::string progress = "auto";
-  bool allow_missing_meshes = false;
   double naive_scale = 10.0;
   int frame_offset = 0;  // our camera frame = reference frame + offset
   float fovy = 0;        // 0: the reference config's (45 degrees)

@@ -31,16 +31,6 @@ CLI::Validator finitePositive() {
       "NUMBER>0");
 }
 
-bool parseLightCount(const std::string& text, std::uint64_t& count) {
-  if (text.empty()) return false;
-  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), count);
-  if (ec == std::errc::result_out_of_range) {
-    count = UINT64_MAX;
-    return text.find_first_not_of("0123456789") == std::string::npos;
-  }
-  return ec == std::errc() && p == text.data() + text.size();
-}
-
 void checkLightLimits(const std::string& flag, std::uint64_t count, const std::vector<const TechniqueInfo*>& techs,
                       const std::string& what) {
   if (count > kMaxLights) checkLightCount(flag, count, what);  // the general maximum first

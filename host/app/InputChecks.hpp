@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "host/bench/BenchInputs.hpp"  // parseLightCount
 #include "host/techniques/Registry.hpp"
 #include "host/cl/ClRuntime.hpp"
 
@@ -39,10 +40,6 @@ inline constexpr const char* kLightLimitsHelp =
 inline constexpr const char* kNoShadingHelp =
     "skip the shading pass: depth and light-assignment passes only, to measure assignment without paying for "
     "shading; counts then give the exact lower bound but no light evaluations (reports say 'shaded: false')";
-
-// "1000" -> 1000 (up to 2^64-1, so that huge counts get a limit message rather
-// than "not a file"); false when `text` is not a plain decimal count.
-bool parseLightCount(const std::string& text, std::uint64_t& count);
 
 // `count` lights against kMaxLights, the host memory estimate and the limit of
 // every technique in `techs` (hashed: 2^24-1): one line naming `flag`.

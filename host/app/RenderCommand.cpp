@@ -11,6 +11,7 @@
 #include "gl/FrameRenderer.hpp"
 #include "host/bench/RunLayer.hpp"
 #include "host/app/InputChecks.hpp"
+#include "host/app/InputFlags.hpp"
 #include "host/bench/OutputFiles.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/scene/LightAnimator.hpp"
@@ -29,19 +30,6 @@ void parseSize(const std::string& text, const std::string& flag, unsigned& w, un
   if (x == std::string::npos || !num(std::string_view(text).substr(0, x), w) ||
       !num(std::string_view(text).substr(x + 1), h) || w == 0 || h == 0 || w > 16384 || h > 16384)
     throw UserError(flag + ": expected WIDTHxHEIGHT with 1..16384 pixels each, got '" + text + "'");
-}
-
-void addSceneInputFlags(CLI::App& cmd, SceneInputArgs& a) {
-  cmd.add_option("--scene", a.scene, "glTF scene (.gltf/.glb); default: data/default/scene.glb");
-  cmd.add_option("--lights", a.lights,
-                 "light count to generate (in the scene's light volumes) or a light JSON file; "
-                 "default: data/default/lights.json");
-  cmd.add_option("--camera", a.camera, "camera or camera-path JSON; default: data/default/camera.json");
-  cmd.add_option("--light-volumes", a.light_volumes, "JSON boxes that generated lights are placed in");
-  cmd.add_option("--light-radius", a.light_radius, "radius of generated lights (default: from the volume file)")
-      ->check(finitePositive());
-  cmd.add_option("--light-density", a.light_density, kLightDensityHelp)->check(finitePositive());
-  cmd.add_option("--seed", a.seed, "seed for generated lights (default 23, the thesis's)");
 }
 
 namespace {
@@ -83,7 +71,7 @@ void addTechniqueFlags(CLI::App& cmd, std::map<std::string, std::string>& params
 
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   auto* cmd = app.add_subcommand("render", "Render one frame with one technique; print per-pass times and counts");
-  addSceneInputFlags(*cmd, a.inputs);
+  addInputFlags(*cmd, {kSceneInputFlags | kDeviceFlag, &a.inputs, &a.device});
   cmd->footer(kLightLimitsHelp);
   cmd->add_option("--technique", a.technique, "one of: " + techniqueNames())->capture_default_str();
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
@@ -91,7 +79,6 @@ CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--frames", a.frames, "timed frames (median reported)")->capture_default_str();
   cmd->add_option("--warmup", a.warmup, "untimed frames first")->capture_default_str();
   cmd->add_option("--out", a.out, "output image (.png 8-bit, .exr float; other extensions are refused)");
-  cmd->add_option("--device", a.device, "OpenCL device: gpu, cpu or an index from `manylights devices`");
   cmd->add_option("--heatmap", a.heatmap,
                   "write a heat map of lights evaluated per pixel (cubehelix) to this PNG, its colour bar and scale "
                   "under the image");

@@ -41,7 +41,6 @@ struct RenderArgs {
   std::map<std::string, std::string> views;   // debug views asked for, by view name ("cluster" -> "c.png")
 };
 
-void addSceneInputFlags(CLI::App& cmd, SceneInputArgs& a);
 // The registry's parameters as flags (--KEY VALUE; switches --KEY / --no-KEY)
 // and debug views (--NAME-view FILE), recorded in `params` / `views` only when given.
 void addTechniqueFlags(CLI::App& cmd, std::map<std::string, std::string>& params,

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "host/app/InputChecks.hpp"
+#include "host/app/InputFlags.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/techniques/Registry.hpp"
 #include "host/util/Error.hpp"
@@ -15,10 +16,9 @@ CLI::App* addViewCommand(CLI::App& app, ViewArgs& a) {
   auto* cmd = app.add_subcommand("view",
                                  "Interactive viewer: a window with a panel to fly through a scene and switch "
                                  "techniques, parameters, lights and view modes live");
-  addSceneInputFlags(*cmd, a.inputs);
+  addInputFlags(*cmd, {kSceneInputFlags | kDeviceFlag, &a.inputs, &a.device});
   cmd->add_option("--technique", a.technique, "one of: " + techniqueNames())->capture_default_str();
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT of the window and the rendered frame")->capture_default_str();
-  cmd->add_option("--device", a.device, "OpenCL device: gpu, cpu or an index from `manylights devices`");
   cmd->add_option("--script", a.script,
                   "JSON list of actions to play (technique, param, lights, view, camera_frame, orbit, fly, wait, "
                   "screenshot, record, ...), then exit; see README \"Viewer\"");

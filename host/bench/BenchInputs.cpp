@@ -14,12 +14,6 @@ namespace ml {
 namespace fs = std::filesystem;
 namespace {
 
-bool parseCount(const std::string& s, std::uint32_t& out) {
-  if (s.empty()) return false;
-  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-  return ec == std::errc() && p == s.data() + s.size();
-}
-
 std::string stem(const std::string& path) { return fs::path(path).stem().string(); }
 
 bool isGltf(const fs::path& p) {
@@ -27,7 +21,57 @@ bool isGltf(const fs::path& p) {
   return ext == ".gltf" || ext == ".glb";
 }
 
+// A scene without a camera path: look at its bounds from outside.
+CameraPath cameraOutside(const Scene& scene) {
+  Camera c;
+  const glm::vec3 center = 0.5f * (scene.bounds.min + scene.bounds.max);
+  const float size = glm::length(scene.bounds.max - scene.bounds.min);
+  c.center = center;
+  c.eye = center + glm::vec3(0.6f, 0.4f, 0.8f) * size;
+  c.near_plane = size * 1e-3f;
+  c.far_plane = size * 4.0f;
+  CameraPath path;
+  path.frames = {c};
+  return path;
+}
+
+// `count` lights generated in the scene's light volumes: --light-volumes, else
+// the scene folder's light_volumes.json, else the scene's bounds.
+std::vector<gpu::PointLight> generateSceneLights(const BenchScene& scene, std::uint32_t count,
+                                                 const SceneInputArgs& args) {
+  std::string vol = args.light_volumes;
+  if (vol.empty() && !scene.dir.empty() && fs::is_regular_file(fs::path(scene.dir) / "light_volumes.json"))
+    vol = (fs::path(scene.dir) / "light_volumes.json").string();
+  return generateLightsIn(vol, scene.scene.bounds.min, scene.scene.bounds.max, count, args.seed, args.light_radius,
+                          args.light_density);
+}
+
+// A light-set item that names a file: as given, or (suite) under its lights/.
+std::string lightFileOf(const BenchScene& scene, const std::string& item, const std::string& flag) {
+  const bool suite = scene.format == "ntiled-suite";
+  std::string file = item;
+  if (!fs::is_regular_file(file) && suite) {
+    const fs::path dir = fs::path(scene.dir) / "lights";
+    for (const fs::path& cand : {dir / item, dir / (item + ".json")})
+      if (fs::is_regular_file(cand)) file = cand.string();
+  }
+  if (!fs::is_regular_file(file))
+    throw UserError(flag + ": light set '" + item + "' is not a file" +
+                    (suite ? " (nor a name under " + scene.dir + "/lights)" : ""));
+  return file;
+}
+
 }  // namespace
+
+bool parseLightCount(const std::string& text, std::uint64_t& count) {
+  if (text.empty()) return false;
+  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), count);
+  if (ec == std::errc::result_out_of_range) {
+    count = UINT64_MAX;
+    return text.find_first_not_of("0123456789") == std::string::npos;
+  }
+  return ec == std::errc() && p == text.data() + text.size();
+}
 
 std::vector<std::string> splitList(const std::string& text) {
   std::vector<std::string> out;
@@ -44,9 +88,9 @@ std::vector<std::string> splitList(const std::string& text) {
   return out;
 }
 
-BenchScene loadBenchScene(const BenchSceneArgs& args) {
+BenchScene loadBenchScene(const SceneInputArgs& args, const std::string& flag, bool fit_camera) {
   BenchScene out;
-  const std::string input = args.suite.empty() ? dataPath("default") : args.suite;
+  const std::string input = args.scene.empty() ? dataPath("default") : args.scene;
   const fs::path p(input);
   std::error_code ec;
   if (fs::is_directory(p, ec) && isNtiledSuiteDir(input)) {
@@ -70,7 +114,7 @@ BenchScene loadBenchScene(const BenchSceneArgs& args) {
     for (const char* n : {"scene.glb", "scene.gltf"})
       if (fs::is_regular_file(p / n)) scene_file = p / n;
     if (scene_file.empty())
-      throw UserError("--suite: '" + input +
+      throw UserError(flag + ": '" + input +
                       "' is neither a scene-suite folder (geometry/, obj/, lights/, camera/camera.json) nor a "
                       "folder with scene.glb or scene.gltf");
     out.format = "gltf";
@@ -79,21 +123,20 @@ BenchScene loadBenchScene(const BenchSceneArgs& args) {
     if (out.name.empty()) out.name = p.lexically_normal().parent_path().filename().string();
     out.scene = loadGltfScene(scene_file.string());
     out.dir = input;
-    const std::string cam = args.camera.empty() ? (p / "camera.json").string() : args.camera;
-    if (!fs::is_regular_file(cam))
+    if (args.camera.empty() && !fs::is_regular_file(p / "camera.json"))
       throw UserError("--camera: no camera path given and '" + (p / "camera.json").string() + "' does not exist");
-    out.cameras = loadCameraJson(cam);
+    out.cameras = loadCameraJson(args.camera.empty() ? (p / "camera.json").string() : args.camera);
     if (fs::is_regular_file(p / "lights.json")) out.default_lights = (p / "lights.json").string();
   } else if (isGltf(p)) {
     out.format = "gltf";
     out.source = input;
     out.name = stem(input);
     out.scene = loadGltfScene(input);  // names the file when it is missing or broken
-    if (args.camera.empty())
+    if (args.camera.empty() && !fit_camera)
       throw UserError("--camera: a glTF scene file needs a camera path (--camera FILE.json)");
-    out.cameras = loadCameraJson(args.camera);
+    out.cameras = args.camera.empty() ? cameraOutside(out.scene) : loadCameraJson(args.camera);
   } else {
-    throw UserError("--suite: '" + input + "' does not exist or is not a scene folder or .gltf/.glb file");
+    throw UserError(flag + ": '" + input + "' does not exist or is not a scene folder or .gltf/.glb file");
   }
   for (Camera& c : out.cameras.frames) {
     if (args.fovy) c.fovy_degrees = *args.fovy;
@@ -104,9 +147,9 @@ BenchScene loadBenchScene(const BenchSceneArgs& args) {
   return out;
 }
 
-std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::string& list,
-                                            const BenchSceneArgs& args, const std::string& flag) {
-  std::vector<std::string> items = splitList(list);
+std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const SceneInputArgs& args,
+                                            const std::string& flag) {
+  std::vector<std::string> items = splitList(args.lights);
   if (items.empty()) {
     if (scene.default_lights.empty())
       throw UserError(flag + ": no light set given and the scene has no default light file");
@@ -116,8 +159,8 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::
   // A density applies to generated sets only: some item must be one.
   bool generates = false;
   for (const std::string& item : items) {
-    std::uint32_t n = 0;
-    generates |= !suite && parseCount(item, n);
+    std::uint64_t n = 0;
+    generates |= !suite && parseLightCount(item, n);
   }
   checkLightDensityFlag(args.light_density, args.light_radius, generates);
   std::vector<LightSetInput> out;
@@ -131,13 +174,13 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::
     out.push_back(std::move(s));
   };
   for (const std::string& item : items) {
-    std::uint32_t count = 0;
+    std::uint64_t count = 0;
     if (item == "thesis" || item == "all") {
       if (!suite) throw UserError(flag + ": '" + item + "' needs a scene-suite folder (--suite)");
       const auto files = item == "all" ? scene.suite_light_files : thesisLightFiles(scene.suite_light_files);
       if (files.empty()) throw UserError(flag + ": the suite has no light files under " + scene.dir + "/lights");
       for (const auto& f : files) addFile(f);
-    } else if (parseCount(item, count)) {
+    } else if (parseLightCount(item, count)) {
       if (suite) {
         std::string match;
         for (const auto& f : thesisLightFiles(scene.suite_light_files))
@@ -150,25 +193,42 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::
       }
       if (count == 0) throw UserError(flag + ": a generated light set needs at least one light");
       checkLightCount(flag, count, "generated");  // before any memory is spent on them
-      std::string vol = args.light_volumes;
-      if (vol.empty() && !scene.dir.empty() && fs::is_regular_file(fs::path(scene.dir) / "light_volumes.json"))
-        vol = (fs::path(scene.dir) / "light_volumes.json").string();
       LightSetInput s;
-      s.lights = generateLightsIn(vol, scene.scene.bounds.min, scene.scene.bounds.max, count, args.seed,
-                                  args.light_radius, args.light_density);
+      s.lights = generateSceneLights(scene, static_cast<std::uint32_t>(count), args);
       s.label = item + " generated" + densityLabel(args.light_density, s.lights);
       out.push_back(std::move(s));
     } else {
-      std::string file = item;
-      if (!fs::is_regular_file(file) && suite) {
-        for (const fs::path& cand : {fs::path(scene.dir) / "lights" / item, fs::path(scene.dir) / "lights" / (item + ".json")})
-          if (fs::is_regular_file(cand)) file = cand.string();
-      }
-      if (!fs::is_regular_file(file)) throw UserError(flag + ": light set '" + item + "' is not a file" +
-                                                      (suite ? " (nor a name under " + scene.dir + "/lights)" : ""));
-      addFile(file);
+      addFile(lightFileOf(scene, item, flag));
     }
   }
+  return out;
+}
+
+SceneInputs loadSceneInputs(const SceneInputArgs& args) {
+  std::uint64_t count = 0;
+  const bool generated = parseLightCount(args.lights, count);
+  if (args.light_radius != 0.0f && !generated)
+    throw UserError("--light-radius: only generated lights (--lights N) take a radius; light files carry their own");
+  checkLightDensityFlag(args.light_density, args.light_radius, generated);
+  if (generated) checkLightCount("--lights", count, "generated");  // before any memory is spent on them
+  if (!generated && !args.lights.empty() && args.lights[0] == '-')
+    throw UserError("--lights: expected a light count or a JSON file, got '" + args.lights + "'");
+  BenchScene scene = loadBenchScene(args, "--scene", true);
+  SceneInputs out;
+  if (generated) {
+    out.lights = generateSceneLights(scene, static_cast<std::uint32_t>(count), args);
+    out.lights_label = std::to_string(count) + " generated (seed " + std::to_string(args.seed) +
+                       densityLabel(args.light_density, out.lights) + ")";
+  } else {
+    // Without --lights: the scene folder's lights.json, else data/default's (a glTF file has none).
+    const std::string file = !args.lights.empty()             ? args.lights
+                             : !scene.default_lights.empty() ? scene.default_lights
+                                                             : dataPath("default/lights.json");
+    out.lights = loadLightsJson(file);
+    out.lights_label = std::to_string(out.lights.size()) + " (" + (args.lights.empty() ? reportPath(file) : file) + ")";
+  }
+  out.scene = std::move(scene.scene);
+  out.cameras = std::move(scene.cameras);
   return out;
 }
 

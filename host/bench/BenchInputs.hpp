@@ -1,6 +1,8 @@
 #pragma once
-// What a benchmark renders: one scene with its camera path, and the light sets
-// to sweep. The scene is either
+// What a run renders: one scene with its camera path, and its lights. Both
+// `render`/`view` (one light set: loadSceneInputs) and `bench`/
+// `compare-reference` (light-set lists: loadBenchScene + resolveLightSets)
+// resolve their flags here, the same way. The scene is either
 //   - a scene-suite folder of the thesis's program (geometry/, obj/, lights/,
 //     camera/; see host/suite/NtiledSuite.hpp), or
 //   - a folder in the project's own format (scene.glb|scene.gltf, camera.json,
@@ -23,10 +25,12 @@
 
 namespace ml {
 
-struct BenchSceneArgs {
-  std::string suite;          // folder or .gltf/.glb; empty: the project's data/default/
-  std::string camera;         // camera path JSON (glTF scenes); empty: the folder's camera.json
-  std::string light_volumes;  // boxes for generated lights (glTF scenes)
+// The scene and light flags of every command (host/app/InputFlags.hpp).
+struct SceneInputArgs {
+  std::string scene;          // folder or .gltf/.glb; empty: the project's data/default/
+  std::string lights;         // render/view: a count or a JSON file; bench: a light-set list; empty: the scene's
+  std::string camera;         // camera or path JSON; empty: the folder's camera.json
+  std::string light_volumes;  // boxes for generated lights; empty: the folder's light_volumes.json or the bounds
   float light_radius = 0;     // generated lights; 0: the volume file's or 1/20 of the scene size
   float light_density = 0;    // generated lights; > 0: radius from densityRadius() (LightSet.hpp)
   std::uint64_t seed = kThesisSeed;
@@ -35,6 +39,10 @@ struct BenchSceneArgs {
   std::optional<float> fovy, near_plane, far_plane;  // override the path's lens
   std::size_t resample = 0;   // > 0: resample the camera path to this many frames
 };
+
+// "1000" -> 1000 (up to 2^64-1, so that huge counts get a limit message rather
+// than "not a file"); false when `text` is not a plain decimal count.
+bool parseLightCount(const std::string& text, std::uint64_t& count);
 
 struct BenchScene {
   std::string source;  // what was loaded, for reports
@@ -48,7 +56,9 @@ struct BenchScene {
   std::string dir;                             // the folder, when the input is one
 };
 
-BenchScene loadBenchScene(const BenchSceneArgs& args);
+// UserError naming `flag` for an input that is no scene. fit_camera: a glTF
+// file without --camera is viewed from outside its bounds (else refused).
+BenchScene loadBenchScene(const SceneInputArgs& args, const std::string& flag = "--scene", bool fit_camera = false);
 
 struct LightSetInput {
   std::string label;  // "70#1x_1y_1z", "lights", "500 generated"
@@ -56,10 +66,20 @@ struct LightSetInput {
   std::vector<gpu::PointLight> lights;
 };
 
-// Resolves a comma-separated light-set list (see above); empty `list` means
-// the scene's default light file. UserError naming `flag` on bad items.
-std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const std::string& list,
-                                            const BenchSceneArgs& args, const std::string& flag);
+// Resolves args.lights as a comma-separated light-set list (see above); empty
+// means the scene's default light file. UserError naming `flag` on bad items.
+std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const SceneInputArgs& args,
+                                            const std::string& flag);
+
+// One scene and one light set (render, view): args.lights is a count or a
+// JSON file; empty: the scene folder's lights.json, else data/default's.
+struct SceneInputs {
+  Scene scene;
+  std::vector<gpu::PointLight> lights;
+  CameraPath cameras;
+  std::string lights_label;  // "1024 (data/default/lights.json)" for reports
+};
+SceneInputs loadSceneInputs(const SceneInputArgs& args);
 
 // Splits "a,b,,c" into {"a","b","c"} (empty items dropped, spaces trimmed).
 std::vector<std::string> splitList(const std::string& text);

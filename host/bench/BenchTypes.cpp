@@ -31,6 +31,14 @@ std::string csvField(const std::string& s) {
   return q + "\"";
 }
 
+// Appends the pass names of `passes` not yet in `names`, in order.
+void addPassNames(const PassTimings& passes, std::vector<std::string>& names) {
+  for (const auto& [name, ms] : passes.entries()) {
+    (void)ms;
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+}
+
 std::string num(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -204,10 +212,7 @@ std::vector<RunSummary> summarizeRuns(const std::vector<FrameRecord>& records) {
         s.timed = true;
         total.push_back(r->passes_total_ms);
         host.push_back(r->host_ms);
-        for (const auto& [name, ms] : r->passes.entries()) {
-          (void)ms;
-          if (std::find(pass_names.begin(), pass_names.end(), name) == pass_names.end()) pass_names.push_back(name);
-        }
+        addPassNames(r->passes, pass_names);
       }
       mem.push_back(static_cast<double>(r->memory_bytes));
     }
@@ -227,47 +232,99 @@ std::vector<RunSummary> summarizeRuns(const std::vector<FrameRecord>& records) {
   return out;
 }
 
+namespace {
+
+// The record's fields, listed once: JSON writes every field in this order,
+// CSV the fields with a column, in the same order (a value's CSV text is
+// derived from its JSON value), then one "pass:<name>_ms" column per pass.
+template <class R>
+struct Field {
+  const char* name;
+  bool csv;  // has a CSV column (objects other than params do not)
+  nlohmann::ordered_json (*get)(const R&);
+};
+using Json = nlohmann::ordered_json;
+
 // What identifies a run, shared by its frame records and its summary.
-template <class RunFields>
-nlohmann::ordered_json runJson(const RunFields& r) {
-  nlohmann::ordered_json j;
-  j["run"] = r.run;
-  j["technique"] = r.technique;
-  j["pipeline"] = r.pipeline;
-  j["params"] = paramsJson(r.params);
-  j["lights"] = r.lights;
-  j["light_file"] = r.light_file;
-  j["light_count"] = r.light_count;
-  j["width"] = r.width;
-  j["height"] = r.height;
+template <class R>
+std::vector<Field<R>> runFields() {
+  return {
+      {"run", true, [](const R& r) { return Json(r.run); }},
+      {"technique", true, [](const R& r) { return Json(r.technique); }},
+      {"pipeline", true, [](const R& r) { return Json(r.pipeline); }},
+      {"params", true, [](const R& r) { return paramsJson(r.params); }},
+      {"lights", true, [](const R& r) { return Json(r.lights); }},
+      {"light_file", true, [](const R& r) { return Json(r.light_file); }},
+      {"light_count", true, [](const R& r) { return Json(r.light_count); }},
+      {"width", true, [](const R& r) { return Json(r.width); }},
+      {"height", true, [](const R& r) { return Json(r.height); }},
+  };
+}
+
+// Counts are null without counting, evaluations also without shading, times without timing.
+Json counted(const FrameRecord& r, std::uint64_t v) { return r.counted ? Json(v) : Json(); }
+Json evaluated(const FrameRecord& r, std::uint64_t v) { return r.shaded ? counted(r, v) : Json(); }
+Json timedMs(const FrameRecord& r, double v) { return r.timed ? Json(v) : Json(); }
+
+const std::vector<Field<FrameRecord>>& recordFields() {
+  static const std::vector<Field<FrameRecord>> fields = [] {
+    std::vector<Field<FrameRecord>> f = runFields<FrameRecord>();
+    const std::vector<Field<FrameRecord>> rest = {
+        {"frame", true, [](const FrameRecord& r) { return Json(r.frame); }},
+        {"shaded", false, [](const FrameRecord& r) { return Json(r.shaded); }},
+        {"light_evaluations", true, [](const FrameRecord& r) { return evaluated(r, r.light_evaluations); }},
+        {"lower_bound", true, [](const FrameRecord& r) { return counted(r, r.lower_bound); }},
+        {"covered_pixels", true, [](const FrameRecord& r) { return counted(r, r.covered_pixels); }},
+        {"fragment_evaluations", true, [](const FrameRecord& r) { return evaluated(r, r.fragment_evaluations); }},
+        {"passes", false,
+         [](const FrameRecord& r) {
+           Json passes = Json::object();
+           if (r.timed)
+             for (const auto& [name, ms] : r.passes.entries()) passes[name] = ms;
+           return passes;
+         }},
+        {"passes_total_ms", true, [](const FrameRecord& r) { return timedMs(r, r.passes_total_ms); }},
+        {"host_ms", true, [](const FrameRecord& r) { return timedMs(r, r.host_ms); }},
+        {"memory_bytes", true, [](const FrameRecord& r) { return Json(r.memory_bytes); }},
+        {"technique_stats", false,
+         [](const FrameRecord& r) {
+           Json st = Json::object();
+           for (const auto& [k, v] : r.technique_stats) st[k] = v;
+           return st;
+         }},
+    };
+    f.insert(f.end(), rest.begin(), rest.end());
+    return f;
+  }();
+  return fields;
+}
+
+template <class R>
+Json fieldsJson(const std::vector<Field<R>>& fields, const R& r) {
+  Json j;
+  for (const auto& f : fields) j[f.name] = f.get(r);
   return j;
 }
 
-nlohmann::ordered_json recordJson(const FrameRecord& r) {
-  nlohmann::ordered_json j = runJson(r);
-  j["frame"] = r.frame;
-  auto count = [&](std::uint64_t v) { return r.counted ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };
-  auto evals = [&](std::uint64_t v) { return r.shaded ? count(v) : nlohmann::ordered_json(); };
-  j["shaded"] = r.shaded;
-  j["light_evaluations"] = evals(r.light_evaluations);
-  j["lower_bound"] = count(r.lower_bound);
-  j["covered_pixels"] = count(r.covered_pixels);
-  j["fragment_evaluations"] = evals(r.fragment_evaluations);
-  nlohmann::ordered_json passes = nlohmann::ordered_json::object();
-  if (r.timed)
-    for (const auto& [name, ms] : r.passes.entries()) passes[name] = ms;
-  j["passes"] = passes;
-  j["passes_total_ms"] = r.timed ? nlohmann::ordered_json(r.passes_total_ms) : nlohmann::ordered_json();
-  j["host_ms"] = r.timed ? nlohmann::ordered_json(r.host_ms) : nlohmann::ordered_json();
-  j["memory_bytes"] = r.memory_bytes;
-  nlohmann::ordered_json st = nlohmann::ordered_json::object();
-  for (const auto& [k, v] : r.technique_stats) st[k] = v;
-  j["technique_stats"] = st;
-  return j;
+// A CSV cell from a field's JSON value: null empty, params "k=v;k=v", numbers as written by num().
+std::string csvCell(const Json& v) {
+  if (v.is_null()) return "";
+  if (v.is_string()) return csvField(v.get<std::string>());
+  if (v.is_object()) {
+    std::vector<std::pair<std::string, std::string>> params;
+    for (const auto& [k, x] : v.items()) params.emplace_back(k, x.get<std::string>());
+    return csvField(paramsText(params));
+  }
+  if (v.is_number_float()) return num(v.get<double>());
+  return v.dump();
 }
+
+}  // namespace
+
+nlohmann::ordered_json recordJson(const FrameRecord& r) { return fieldsJson(recordFields(), r); }
 
 nlohmann::ordered_json summaryJson(const RunSummary& s) {
-  nlohmann::ordered_json j = runJson(s);
+  nlohmann::ordered_json j = fieldsJson(runFields<RunSummary>(), s);
   j["frames"] = s.frames;
   auto opt = [](bool have, const Summary& v) { return have ? toJson(v) : nlohmann::ordered_json(); };
   j["shaded"] = s.shaded;
@@ -305,34 +362,28 @@ std::string paramsText(const std::vector<std::pair<std::string, std::string>>& p
 
 std::string benchCsv(const std::vector<FrameRecord>& records) {
   std::vector<std::string> pass_names;
-  for (const auto& r : records)
-    for (const auto& [name, ms] : r.passes.entries()) {
-      (void)ms;
-      if (std::find(pass_names.begin(), pass_names.end(), name) == pass_names.end()) pass_names.push_back(name);
-    }
-  std::string out =
-      "run,technique,pipeline,params,lights,light_file,light_count,width,height,frame,light_evaluations,lower_bound,"
-      "covered_pixels,fragment_evaluations,memory_bytes,passes_total_ms,host_ms";
+  for (const auto& r : records) addPassNames(r.passes, pass_names);
   // Appending field by field: `"," + std::string` chains trip GCC 12's
   // -Wrestrict false positive (GCC bug 105329) under -O3.
+  std::string out;
+  for (const auto& f : recordFields())
+    if (f.csv) {
+      if (!out.empty()) out += ',';
+      out += f.name;
+    }
   for (const auto& n : pass_names) {
     out += ',';
     out += csvField("pass:" + n + "_ms");
   }
   out += '\n';
   for (const auto& r : records) {
-    auto count = [&](std::uint64_t v) { return r.counted ? std::to_string(v) : std::string(); };
-    auto evals = [&](std::uint64_t v) { return r.shaded ? count(v) : std::string(); };
-    const std::vector<std::string> fields = {
-        csvField(r.run), csvField(r.technique), r.pipeline, csvField(paramsText(r.params)), csvField(r.lights),
-        csvField(r.light_file), std::to_string(r.light_count), std::to_string(r.width), std::to_string(r.height),
-        std::to_string(r.frame), evals(r.light_evaluations), count(r.lower_bound), count(r.covered_pixels),
-        evals(r.fragment_evaluations), std::to_string(r.memory_bytes), r.timed ? num(r.passes_total_ms) : std::string(),
-        r.timed ? num(r.host_ms) : std::string()};
-    for (std::size_t i = 0; i < fields.size(); ++i) {
-      if (i) out += ',';
-      out += fields[i];
-    }
+    bool first = true;
+    for (const auto& f : recordFields())
+      if (f.csv) {
+        if (!first) out += ',';
+        first = false;
+        out += csvCell(f.get(r));
+      }
     for (const auto& n : pass_names) {
       out += ',';
       if (r.timed) out += num(r.passes.get(n));

@@ -13,7 +13,8 @@
 //    "memory_bytes": {...}, "passes": {name: {...}}}]}
 // Counts are null in records of runs without counting (--no-counts), times are
 // null without timing (--no-timing). CSV: one row per record, the same scalar
-// fields, params as "k=v;k=v", then one "pass:<name>_ms" column per pass name.
+// fields in the same order (one field table, BenchTypes.cpp; not "shaded"),
+// params as "k=v;k=v", then one "pass:<name>_ms" column per pass name.
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
