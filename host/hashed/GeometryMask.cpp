@@ -219,8 +219,14 @@ bool GeometryMask::geometryBox(const glm::uvec3& c, Box& box) const {
 }
 
 const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c) const {
+  const Box* cell_box;
+  return octantBoxes(c, cell_box);
+}
+
+const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c, const Box*& cell_box) const {
   std::size_t at;
   if (everywhere_ || !indexOf(c, at)) return nullptr;
+  cell_box = &cell_boxes_[at];
   return &cell_octants_[at];
 }
 
@@ -297,7 +303,10 @@ void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> 
   cell_octants_.clear();
   for (const auto& [k, g] : boxes) {
     cell_keys_.push_back(k);
-    cell_boxes_.push_back(g.box);
+    Box box = g.box;  // holds the octant boxes (floats rounded outwards; a clip's fallback)
+    for (unsigned o = 0; o < 8; ++o)
+      if (!g.oct.empty(o)) unite(box, {glm::dvec3(g.oct.lo[o]), glm::dvec3(g.oct.hi[o])});
+    cell_boxes_.push_back(box);
     cell_octants_.push_back(g.oct);
   }
   if (depth_ <= kDenseIndexMaxDepth) {

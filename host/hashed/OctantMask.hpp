@@ -97,13 +97,14 @@ class LightOctants {
   // `bits` less the octants whose geometry box (widened by eps) the sphere
   // misses, or that hold no geometry.
   std::uint8_t onGeometry(std::uint8_t bits, const GeometryMask::OctantBoxes& boxes) const {
-    for (unsigned k = 0; k < 8; ++k) {
-      if (!(bits >> k & 1u)) continue;
-      if (boxes.empty(k) || !(boxGap2(boxes.lo[k], boxes.hi[k]) < r2_)) bits &= std::uint8_t(~(1u << k));
-    }
-    return bits;
+    // All 8 without branches (an empty box's lo > hi only grows its gap).
+    unsigned reached = 0;
+    for (unsigned k = 0; k < 8; ++k)
+      reached |= unsigned(!boxes.empty(k) && boxGap2(boxes.lo[k], boxes.hi[k]) < r2_) << k;
+    return std::uint8_t(bits & reached);
   }
   double r2() const { return r2_; }
+  const glm::dvec3& centre() const { return c_; }  // cells
 
  private:
   // Squared distance from the centre to the box [lo - eps, hi + eps].
