@@ -145,8 +145,8 @@ TEST(HashedMask, SurfacePointsLieInTheirOctantBox) {
 
 // Octant bits reduced by the geometry (LightOctants::onGeometry): a subset of
 // the plain bits, bit k kept exactly when octant k's box (widened by eps) is
-// within the radius, and every light containing a surface point keeps the
-// bit of that point's octant.
+// within the radius (also through the cell box's shortcuts), and every light
+// containing a surface point keeps the bit of that point's octant.
 TEST(HashedMask, GeometryOctantBitsKeepEveryLightOfASurfacePoint) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
@@ -164,10 +164,14 @@ TEST(HashedMask, GeometryOctantBitsKeepEveryLightOfASurfacePoint) {
     for (int z = box.lo.z; z <= box.hi.z; ++z)
       for (int y = box.lo.y; y <= box.hi.y; ++y)
         for (int x = box.lo.x; x <= box.hi.x; ++x) {
-          const auto* oct = mask.octantBoxes(glm::uvec3(x, y, z));
+          const GeometryMask::Box* cell_box = nullptr;
+          const auto* oct = mask.octantBoxes(glm::uvec3(x, y, z), cell_box);
           if (!oct) continue;
           const std::uint8_t m = o.mask({x, y, z}), r = o.onGeometry(m, *oct);
           ASSERT_EQ(r & ~m, 0) << "reduced bits are a subset";
+          // The cell box's shortcuts give the same bits.
+          ASSERT_EQ(o.onGeometry(m, *oct, *cell_box), r) << "cell " << x << "," << y << "," << z;
+          ASSERT_EQ(o.onGeometry(0xFF, *oct, *cell_box), o.onGeometry(0xFF, *oct));
           for (unsigned k = 0; k < 8; ++k) {
             if (!(m >> k & 1u)) continue;
             double d2 = 0.0;

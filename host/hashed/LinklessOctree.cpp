@@ -51,7 +51,8 @@ void LinklessOctree::entriesOf(unsigned t, const glm::uvec3& c, const std::uint3
     return;
   }
   const glm::ivec3 cell(c);
-  const GeometryMask::OctantBoxes* boxes = geometry_ ? geometry_->octantBoxes(c) : nullptr;
+  const GeometryMask::Box* cell_box = nullptr;
+  const GeometryMask::OctantBoxes* boxes = geometry_ ? geometry_->octantBoxes(c, cell_box) : nullptr;
   const std::uint32_t *old = reuse ? reuse->first : nullptr, *last = reuse ? reuse->last : nullptr;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t l = set[i];
@@ -61,7 +62,7 @@ void LinklessOctree::entriesOf(unsigned t, const glm::uvec3& c, const std::uint3
       continue;
     }
     const std::uint8_t m = tables ? tables->mask(l, cell) : LightOctants(lights[l], b_).mask(cell);
-    out[i] = packEntry(l, boxes && m ? LightOctants(lights[l], b_).onGeometry(m, *boxes) : m);
+    out[i] = packEntry(l, boxes && m ? LightOctants(lights[l], b_).onGeometry(m, *boxes, *cell_box) : m);
   }
 }
 

@@ -86,28 +86,6 @@ void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLig
   auto unlisted = [&](std::size_t cx, std::size_t cy, std::size_t cz) {
     return (ca[cx] + ca[cy]) + ca[cz] >= r2[0] || (cb[cx] + cb[cy]) + cb[cz] >= r2[1];
   };
-  // With geometry, version v's mask less the octant boxes its sphere misses
-  // (LightOctants::onGeometry()), untested where the sphere misses or holds
-  // the whole cell geometry box (which holds the octant boxes: widened by
-  // eps alike, the sums bound theirs exactly).
-  const double slack = b.eps_cells;
-  auto reduce = [&](int v, std::uint8_t m, const GeometryMask::OctantBoxes& boxes,
-                    const GeometryMask::Box& cell_box) -> std::uint8_t {
-    if (!m) return m;
-    const glm::dvec3& c = octants[v].centre();
-    double near = 0.0, far = 0.0;
-    for (int a = 0; a < 3; ++a) {
-      const double lo = cell_box.lo[a] - slack, hi = cell_box.hi[a] + slack;
-      const double dn = std::max(std::max(lo - c[a], c[a] - hi), 0.0), df = std::max(c[a] - lo, hi - c[a]);
-      near += dn * dn;
-      far += df * df;
-    }
-    if (near >= r2[v]) return 0;
-    if (far >= r2[v]) return octants[v].onGeometry(m, boxes);
-    std::uint8_t filled = 0;
-    for (unsigned k = 0; k < 8; ++k) filled |= std::uint8_t((boxes.empty(k) ? 0u : 1u) << k);
-    return std::uint8_t(m & filled);
-  };
   for (int z = 0; z < n.z; ++z)
     for (int y = 0; y < n.y; ++y) {
       const std::size_t iy = std::size_t(off.y + 2 * y), iz = std::size_t(off.z + 2 * z);
@@ -136,8 +114,8 @@ void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLig
         std::uint8_t ma = octantBits(ga + ix, ga + iy, ga + iz, r2[0]);
         std::uint8_t mb = octantBits(gb + ix, gb + iy, gb + iz, r2[1]);
         if (boxes) {
-          ma = reduce(0, ma, *boxes, *cell_box);
-          mb = reduce(1, mb, *boxes, *cell_box);
+          ma = octants[0].onGeometry(ma, *boxes, *cell_box);
+          mb = octants[1].onGeometry(mb, *boxes, *cell_box);
         }
         if (ma != mb) out.push_back({nodeKey(b.depth, cell), light, mb});
       }

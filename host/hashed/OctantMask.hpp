@@ -103,8 +103,27 @@ class LightOctants {
       reached |= unsigned(!boxes.empty(k) && boxGap2(boxes.lo[k], boxes.hi[k]) < r2_) << k;
     return std::uint8_t(bits & reached);
   }
+  // The same, given the cell's geometry box (which holds the octant boxes):
+  // a sphere that misses it misses them all, one that holds it (widened by
+  // eps alike, so the sums bound the octant boxes' exactly) reaches every
+  // non-empty one; only the other cells test the 8 boxes.
+  std::uint8_t onGeometry(std::uint8_t bits, const GeometryMask::OctantBoxes& boxes,
+                          const GeometryMask::Box& cell_box) const {
+    if (!bits) return bits;
+    double near = 0.0, far = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = cell_box.lo[a] - eps_, hi = cell_box.hi[a] + eps_;
+      const double dn = std::max(std::max(lo - c_[a], c_[a] - hi), 0.0), df = std::max(c_[a] - lo, hi - c_[a]);
+      near += dn * dn;
+      far += df * df;
+    }
+    if (near >= r2_) return 0;
+    if (far >= r2_) return onGeometry(bits, boxes);
+    unsigned filled = 0;
+    for (unsigned k = 0; k < 8; ++k) filled |= unsigned(!boxes.empty(k)) << k;
+    return std::uint8_t(bits & filled);
+  }
   double r2() const { return r2_; }
-  const glm::dvec3& centre() const { return c_; }  // cells
 
  private:
   // Squared distance from the centre to the box [lo - eps, hi + eps].
