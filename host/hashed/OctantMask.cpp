@@ -10,7 +10,6 @@
 namespace ml::hashed {
 namespace {
 constexpr double kFarTerm = 1e300;  // outside a version's box: never within its radius
-
 }  // namespace
 
 OctantTables::OctantTables(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b)
