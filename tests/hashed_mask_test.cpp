@@ -1,17 +1,25 @@
 // GeometryMask with many triangles: the builder merges its per-thread
 // (cell, box) buffers while voxelising; the result must equal the union of
 // masks of the same triangles taken in batches too small to merge, cell by
-// cell (occupancy at every depth, and geometry boxes).
+// cell (occupancy at every depth, and geometry boxes). Surface points lie in
+// their octant's box, and octant masks reduced by those boxes keep every
+// light that contains a surface point; updates derive the same reduced masks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
+#include "hashed_support.hpp"
 #include "host/hashed/GeometryMask.hpp"
+#include "host/hashed/OctantMask.hpp"
 #include "host/hashed/OctreeBounds.hpp"
+#include "host/hashed/SceneOctree.hpp"
 #include "support/TestDevice.hpp"
 
 namespace ml::hashed {
 namespace {
+
+using namespace test_support;
 
 Scene tinyTriangles(std::mt19937_64& rng, std::size_t count, double side) {
   Scene s;
@@ -76,16 +84,10 @@ TEST(HashedMask, MergingBuffersMatchesBatchedUnion) {
   EXPECT_EQ(whole.cellCount(), occupied);
 }
 
-// Every point on a triangle lies in its cell's geometry box and in the box
-// of the octant that holds it (what keeps octant-tight light sets conservative).
-TEST(HashedMask, SurfacePointsLieInTheirOctantBox) {
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed " + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  const double side = 8.0;
-  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
+// 300 random triangles of up to ~3 cells in an 8-cell cube (cells of 1).
+Scene randomTriangles(std::mt19937_64& rng, double side) {
   Scene s;
-  std::uniform_real_distribution<double> pos(0.2, side - 0.2), d(-1.5, 1.5), u01(0.0, 1.0);
+  std::uniform_real_distribution<double> pos(0.2, side - 0.2), d(-1.5, 1.5);
   for (int t = 0; t < 300; ++t) {
     const glm::dvec3 c(pos(rng), pos(rng), pos(rng));
     for (int k = 0; k < 3; ++k) {
@@ -94,14 +96,31 @@ TEST(HashedMask, SurfacePointsLieInTheirOctantBox) {
       s.indices.push_back(std::uint32_t(s.vertices.size() - 1));
     }
   }
+  return s;
+}
+
+glm::dvec3 randomSurfacePoint(std::mt19937_64& rng, const Scene& s) {
+  const std::size_t t = rng() % (s.indices.size() / 3);
+  double u = uni(rng, 0, 1), v = uni(rng, 0, 1);
+  if (u + v > 1) u = 1 - u, v = 1 - v;
+  const glm::dvec3 a(s.vertices[s.indices[3 * t]].position), p1(s.vertices[s.indices[3 * t + 1]].position),
+      p2(s.vertices[s.indices[3 * t + 2]].position);
+  return a + u * (p1 - a) + v * (p2 - a);
+}
+
+// Every point on a triangle lies in its cell's geometry box and in the box
+// of the octant that holds it (what keeps octant-tight light sets conservative).
+TEST(HashedMask, SurfacePointsLieInTheirOctantBox) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const double side = 8.0;
+  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
+  const Scene s = randomTriangles(rng, side);
   const GeometryMask mask(s, b, 0.01);
   std::size_t empty_octants = 0, cells = 0;
   for (int i = 0; i < 20000; ++i) {
-    const std::size_t t = rng() % 300;
-    double u = u01(rng), v = u01(rng);
-    if (u + v > 1) u = 1 - u, v = 1 - v;
-    const glm::dvec3 a(s.vertices[3 * t].position), p1(s.vertices[3 * t + 1].position), p2(s.vertices[3 * t + 2].position);
-    const glm::dvec3 p = b.toCells(a + u * (p1 - a) + v * (p2 - a));
+    const glm::dvec3 p = b.toCells(randomSurfacePoint(rng, s));
     const glm::uvec3 cell(glm::floor(p));
     GeometryMask::Box box;
     ASSERT_TRUE(mask.geometryBox(cell, box));
@@ -122,6 +141,120 @@ TEST(HashedMask, SurfacePointsLieInTheirOctantBox) {
     }
   }
   EXPECT_GT(empty_octants, 0u) << "octants refine some cells (of " << cells << ")";
+}
+
+// Octant bits reduced by the geometry (LightOctants::onGeometry): a subset of
+// the plain bits, bit k kept exactly when octant k's box (widened by eps) is
+// within the radius (also through the cell box's shortcuts), and every light
+// containing a surface point keeps the bit of that point's octant.
+TEST(HashedMask, GeometryOctantBitsKeepEveryLightOfASurfacePoint) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const double side = 8.0;
+  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
+  const Scene s = randomTriangles(rng, side);
+  const GeometryMask mask(s, b, 0.01);
+  const auto lights = randomLights(rng, 200, side, 0.2, 2.5, false);
+  std::size_t plain = 0, kept = 0;
+  for (const auto& l : lights) {
+    const LightOctants o(l, b);
+    const glm::dvec3 c = b.toCells(glm::dvec3(l.position_radius.x, l.position_radius.y, l.position_radius.z));
+    const CellBox box = lightCellBox(l, b);
+    for (int z = box.lo.z; z <= box.hi.z; ++z)
+      for (int y = box.lo.y; y <= box.hi.y; ++y)
+        for (int x = box.lo.x; x <= box.hi.x; ++x) {
+          const GeometryMask::Box* cell_box = nullptr;
+          const auto* oct = mask.octantBoxes(glm::uvec3(x, y, z), cell_box);
+          if (!oct) continue;
+          const std::uint8_t m = o.mask({x, y, z}), r = o.onGeometry(m, *oct);
+          ASSERT_EQ(r & ~m, 0) << "reduced bits are a subset";
+          // The cell box's shortcuts give the same bits.
+          ASSERT_EQ(o.onGeometry(m, *oct, *cell_box), r) << "cell " << x << "," << y << "," << z;
+          ASSERT_EQ(o.onGeometry(0xFF, *oct, *cell_box), o.onGeometry(0xFF, *oct));
+          for (unsigned k = 0; k < 8; ++k) {
+            if (!(m >> k & 1u)) continue;
+            double d2 = 0.0;
+            for (int a = 0; a < 3; ++a) {
+              const double lo = double(oct->lo[k][a]) - b.eps_cells, hi = double(oct->hi[k][a]) + b.eps_cells;
+              const double g = c[a] < lo ? lo - c[a] : (c[a] > hi ? c[a] - hi : 0.0);
+              d2 += g * g;
+            }
+            const bool reach = !oct->empty(k) && d2 < o.r2();
+            ASSERT_EQ(bool(r >> k & 1u), reach) << "cell " << x << "," << y << "," << z << " octant " << k;
+            plain += 1;
+            kept += reach;
+          }
+        }
+  }
+  EXPECT_LT(kept, plain) << "the geometry clears some bits";
+  EXPECT_GT(kept, 0u);
+  for (int i = 0; i < 20000; ++i) {
+    const glm::dvec3 p = randomSurfacePoint(rng, s);
+    const glm::vec3 q = glm::vec3(b.toCells(p));
+    const glm::uvec3 cell(glm::floor(q));
+    const auto* oct = mask.octantBoxes(cell);
+    ASSERT_NE(oct, nullptr);
+    for (const auto& l : lights) {
+      const glm::dvec3 d = p - glm::dvec3(l.position_radius.x, l.position_radius.y, l.position_radius.z);
+      if (!(glm::dot(d, d) < double(l.position_radius.w) * l.position_radius.w)) continue;
+      const LightOctants o(l, b);
+      const std::uint8_t r = o.onGeometry(o.mask(glm::ivec3(cell)), *oct);
+      ASSERT_TRUE(r >> octantOf(q) & 1u) << "a light containing the surface point lost its octant";
+    }
+  }
+}
+
+// An update's octant changes with geometry (appendOctantChanges) are exactly
+// the cells where the two versions' reduced masks differ, as a build derives
+// each of them (its shortcuts for cells inside or outside a sphere included).
+TEST(HashedMask, GeometryOctantChangesEqualTheReducedMasksDifference) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const double side = 8.0;
+  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
+  const Scene s = randomTriangles(rng, side);
+  const GeometryMask mask(s, b, 0.01);
+  auto reduced = [&](const gpu::PointLight* l, const glm::ivec3& cell) -> std::uint8_t {
+    if (!l) return 0;
+    const LightOctants o(*l, b);
+    const auto* oct = mask.octantBoxes(glm::uvec3(cell));
+    return oct ? o.onGeometry(o.mask(cell), *oct) : o.mask(cell);
+  };
+  std::size_t changes = 0;
+  for (int i = 0; i < 300; ++i) {
+    auto pair = randomLights(rng, 2, side, 0.2, 3.0, false);
+    // Mostly small moves of one light; sometimes unrelated versions, or one missing.
+    if (i % 3 != 0) {
+      pair[1] = pair[0];
+      pair[1].position_radius.x += float(uni(rng, -0.4, 0.4));
+      pair[1].position_radius.y += float(uni(rng, -0.4, 0.4));
+      pair[1].position_radius.z += float(uni(rng, -0.4, 0.4));
+      pair[1].position_radius.w *= float(uni(rng, 0.8, 1.2));
+    }
+    const gpu::PointLight* va = i % 17 == 5 ? nullptr : &pair[0];
+    const gpu::PointLight* vb = i % 19 == 7 ? nullptr : &pair[1];
+    std::vector<OctantChange> got;
+    appendOctantChanges(va, vb, 7, b, false, &mask, got);
+    std::vector<std::pair<std::uint64_t, std::uint8_t>> want, have;
+    const std::int32_t n = std::int32_t(b.cellsPerAxis());
+    for (int z = 0; z < n; ++z)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const std::uint8_t ma = reduced(va, {x, y, z}), mb = reduced(vb, {x, y, z});
+          if (ma != mb) want.push_back({nodeKey(b.depth, glm::uvec3(x, y, z)), mb});
+        }
+    for (const auto& c : got) {
+      ASSERT_EQ(c.light, 7u);
+      have.push_back({c.key, c.mask});
+    }
+    std::sort(want.begin(), want.end());
+    std::sort(have.begin(), have.end());
+    ASSERT_EQ(have, want) << "move " << i;
+    changes += have.size();
+  }
+  EXPECT_GT(changes, 0u);
 }
 
 }  // namespace

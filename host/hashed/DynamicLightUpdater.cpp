@@ -173,7 +173,7 @@ std::vector<OctantRewrite> DynamicLightUpdater::findRewrites(const HashedStructu
   // Where the cell test says the light is listed (geometry-tight sets list
   // fewer cells): see there.
   const bool both = !s.lightGeometry();
-  for (const auto i : moved) appendOctantChanges(&s.lights_[i], &lights[i], i, s.bounds_, both, changes);
+  for (const auto i : moved) appendOctantChanges(&s.lights_[i], &lights[i], i, s.bounds_, both, s.mask(), changes);
   return s.linkless_->findOctantRewrites(changes);
 }
 

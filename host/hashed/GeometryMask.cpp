@@ -219,9 +219,57 @@ bool GeometryMask::geometryBox(const glm::uvec3& c, Box& box) const {
 }
 
 const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c) const {
+  const Box* cell_box;
+  return octantBoxes(c, cell_box);
+}
+
+const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c, const Box*& cell_box) const {
   std::size_t at;
   if (everywhere_ || !indexOf(c, at)) return nullptr;
+  cell_box = &cell_boxes_[at];
   return &cell_octants_[at];
+}
+
+// One triangle's (cell, geometry) pairs: every cell whose box widened by
+// `margin` the triangle touches, with the bounds of the triangle's part in the
+// widened cell and in each widened octant, each widened by the margin again
+// (so points off the surface by rounding stay inside). `v` in cells; `n`
+// cells per axis.
+template <class CellGeometry>
+void voxelizeTriangle(const glm::dvec3 v[3], double margin, double n,
+                      std::vector<std::pair<std::uint64_t, CellGeometry>>& out) {
+  const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2])), thi = glm::max(v[0], glm::max(v[1], v[2]));
+  const glm::dvec3 lo = tlo - margin, hi = thi + margin;
+  if (hi.x < 0 || hi.y < 0 || hi.z < 0 || lo.x >= n || lo.y >= n || lo.z >= n) return;
+  const glm::ivec3 clo(glm::clamp(glm::floor(lo), glm::dvec3(0.0), glm::dvec3(n - 1)));
+  const glm::ivec3 chi(glm::clamp(glm::floor(hi), glm::dvec3(0.0), glm::dvec3(n - 1)));
+  // The triangle's part in the box centred at `centre` with half size h.
+  auto partIn = [&](const glm::dvec3& centre, double h, GeometryMask::Box& box) {
+    if (!boundsOverlap(tlo, thi, centre, h)) return false;
+    if (!triangleBoxOverlap(v[0] - centre, v[1] - centre, v[2] - centre, h)) return false;
+    if (!clippedBounds(v, tlo, thi, centre - h, centre + h, box))
+      box = {glm::max(lo, centre - h), glm::min(hi, centre + h)};
+    return true;
+  };
+  for (int z = clo.z; z <= chi.z; ++z)
+    for (int y = clo.y; y <= chi.y; ++y)
+      for (int x = clo.x; x <= chi.x; ++x) {
+        const glm::dvec3 centre(x + 0.5, y + 0.5, z + 0.5);
+        CellGeometry g;
+        if (!partIn(centre, 0.5 + margin, g.box)) continue;
+        g.box.lo -= margin;
+        g.box.hi += margin;
+        for (unsigned k = 0; k < 8; ++k) {
+          const glm::dvec3 oc = centre + glm::dvec3((k & 1) ? 0.25 : -0.25, (k & 2) ? 0.25 : -0.25, (k & 4) ? 0.25 : -0.25);
+          GeometryMask::Box ob;
+          if (!partIn(oc, 0.25 + margin, ob)) continue;
+          for (int a = 0; a < 3; ++a) {
+            g.oct.lo[k][a] = floatDown(ob.lo[a] - margin);
+            g.oct.hi[k][a] = floatUp(ob.hi[a] + margin);
+          }
+        }
+        addCell(out, packCoord(glm::uvec3(x, y, z)), g);
+      }
 }
 
 GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double margin_cells) : depth_(b.depth) {
@@ -236,48 +284,15 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
   const std::size_t tris = scene.indices.size() / 3;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris, 256), [&](const auto& range) {
     Local& loc = local.local();
-    auto& out = loc.pairs;
     for (std::size_t t = range.begin(); t != range.end(); ++t) {
       glm::dvec3 v[3];
       for (int k = 0; k < 3; ++k) v[k] = b.toCells(glm::dvec3(scene.vertices[scene.indices[3 * t + k]].position));
-      const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2])), thi = glm::max(v[0], glm::max(v[1], v[2]));
-      const glm::dvec3 lo = tlo - margin, hi = thi + margin;
-      if (hi.x < 0 || hi.y < 0 || hi.z < 0 || lo.x >= n || lo.y >= n || lo.z >= n) continue;
-      const glm::ivec3 clo(glm::clamp(glm::floor(lo), glm::dvec3(0.0), glm::dvec3(n - 1)));
-      const glm::ivec3 chi(glm::clamp(glm::floor(hi), glm::dvec3(0.0), glm::dvec3(n - 1)));
-      for (int z = clo.z; z <= chi.z; ++z)
-        for (int y = clo.y; y <= chi.y; ++y)
-          for (int x = clo.x; x <= chi.x; ++x) {
-            const glm::dvec3 centre(x + 0.5, y + 0.5, z + 0.5);
-            if (!boundsOverlap(tlo, thi, centre, 0.5 + margin)) continue;
-            if (!triangleBoxOverlap(v[0] - centre, v[1] - centre, v[2] - centre, 0.5 + margin)) continue;
-            // The part of the triangle in the widened cell, widened again so
-            // points off the surface by rounding stay inside.
-            CellGeometry g;
-            if (!clippedBounds(v, tlo, thi, centre - (0.5 + margin), centre + (0.5 + margin), g.box))
-              g.box = {glm::max(lo, centre - (0.5 + margin)), glm::min(hi, centre + (0.5 + margin))};
-            g.box.lo -= margin;
-            g.box.hi += margin;
-            // The same per octant (each widened by the margin).
-            for (unsigned k = 0; k < 8; ++k) {
-              const glm::dvec3 oc = centre + glm::dvec3((k & 1) ? 0.25 : -0.25, (k & 2) ? 0.25 : -0.25, (k & 4) ? 0.25 : -0.25);
-              const double h = 0.25 + margin;
-              if (!boundsOverlap(tlo, thi, oc, h)) continue;
-              if (!triangleBoxOverlap(v[0] - oc, v[1] - oc, v[2] - oc, h)) continue;
-              Box ob;
-              if (!clippedBounds(v, tlo, thi, oc - h, oc + h, ob)) ob = {glm::max(lo, oc - h), glm::min(hi, oc + h)};
-              for (int a = 0; a < 3; ++a) {
-                g.oct.lo[k][a] = floatDown(ob.lo[a] - margin);
-                g.oct.hi[k][a] = floatUp(ob.hi[a] + margin);
-              }
-            }
-            addCell(out, packCoord(glm::uvec3(x, y, z)), g);
-          }
+      voxelizeTriangle(v, margin, n, loc.pairs);
       // Many small triangles share cells: merging keeps the buffer near the
       // distinct cells' size instead of the (triangle, cell) pairs'.
-      if (out.size() >= loc.merge_at) {
-        mergeByCell(out);
-        loc.merge_at = std::max(kMergeBatch, 2 * out.size());
+      if (loc.pairs.size() >= loc.merge_at) {
+        mergeByCell(loc.pairs);
+        loc.merge_at = std::max(kMergeBatch, 2 * loc.pairs.size());
       }
     }
   });
@@ -297,7 +312,10 @@ void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> 
   cell_octants_.clear();
   for (const auto& [k, g] : boxes) {
     cell_keys_.push_back(k);
-    cell_boxes_.push_back(g.box);
+    Box box = g.box;  // holds the octant boxes (floats rounded outwards; a clip's fallback)
+    for (unsigned o = 0; o < 8; ++o)
+      if (!g.oct.empty(o)) unite(box, {glm::dvec3(g.oct.lo[o]), glm::dvec3(g.oct.hi[o])});
+    cell_boxes_.push_back(box);
     cell_octants_.push_back(g.oct);
   }
   if (depth_ <= kDenseIndexMaxDepth) {

@@ -18,6 +18,8 @@
 //    octant's box cannot reach one. Geometry finer than the cell (a floor
 //    meeting a wall, a slanted panel) so keeps lights off cells whose whole
 //    box they would reach.
+//  - geometryBox(c) holds every octant box of c (exactly: it is united with
+//    them), so a sphere that misses or holds it misses or holds them all.
 #include <glm/glm.hpp>
 
 #include <array>
@@ -54,6 +56,8 @@ class GeometryMask {
   };
   // Null when the cell holds no geometry (or for everywhere(): no octant data).
   const OctantBoxes* octantBoxes(const glm::uvec3& cell) const;
+  // octantBoxes() with the cell's geometryBox(), which holds them.
+  const OctantBoxes* octantBoxes(const glm::uvec3& cell, const Box*& cell_box) const;
   // False when the cell holds no geometry.
   bool geometryBox(const glm::uvec3& cell, Box& box) const;
   std::size_t cellCount() const { return cell_count_; }

@@ -82,7 +82,7 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   st.normalize_ms = msSince(t);
 
   t = Clock::now();
-  linkless_ = std::make_unique<LinklessOctree>(bounds_, cfg_);
+  linkless_ = std::make_unique<LinklessOctree>(bounds_, cfg_, mask_.get());
   linkless_->buildFrom(*tree_, lights);
   st.hash_ms = msSince(t);
 

@@ -32,8 +32,8 @@ std::uint64_t tableSeed(std::uint64_t seed, unsigned layer, bool data) {
 
 }  // namespace
 
-LinklessOctree::LinklessOctree(const OctreeBounds& bounds, const HashedConfig& config)
-    : b_(bounds), cfg_(config), rng_{config.seed ^ 0xD1B54A32D192ED03ull} {
+LinklessOctree::LinklessOctree(const OctreeBounds& bounds, const HashedConfig& config, const GeometryMask* geometry)
+    : b_(bounds), cfg_(config), geometry_(geometry), rng_{config.seed ^ 0xD1B54A32D192ED03ull} {
   const unsigned layers = b_.depth - b_.start_depth;
   desc_.resize(layers);
   data_.resize(layers);
@@ -51,6 +51,8 @@ void LinklessOctree::entriesOf(unsigned t, const glm::uvec3& c, const std::uint3
     return;
   }
   const glm::ivec3 cell(c);
+  const GeometryMask::Box* cell_box = nullptr;
+  const GeometryMask::OctantBoxes* boxes = geometry_ ? geometry_->octantBoxes(c, cell_box) : nullptr;
   const std::uint32_t *old = reuse ? reuse->first : nullptr, *last = reuse ? reuse->last : nullptr;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t l = set[i];
@@ -59,7 +61,8 @@ void LinklessOctree::entriesOf(unsigned t, const glm::uvec3& c, const std::uint3
       out[i] = *old;  // its mask is up to date (applyOctantRewrites())
       continue;
     }
-    out[i] = packEntry(l, tables ? tables->mask(l, cell) : LightOctants(lights[l], b_).mask(cell));
+    const std::uint8_t m = tables ? tables->mask(l, cell) : LightOctants(lights[l], b_).mask(cell);
+    out[i] = packEntry(l, boxes && m ? LightOctants(lights[l], b_).onGeometry(m, *boxes, *cell_box) : m);
   }
 }
 

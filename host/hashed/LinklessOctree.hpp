@@ -61,7 +61,9 @@ struct SyncStats {
 
 class LinklessOctree {
  public:
-  LinklessOctree(const OctreeBounds& bounds, const HashedConfig& config);
+  // `geometry` (may be null; must outlive this) reduces the octant masks
+  // (OctantMask.hpp).
+  LinklessOctree(const OctreeBounds& bounds, const HashedConfig& config, const GeometryMask* geometry = nullptr);
 
   void buildFrom(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights);
   // Octant masks in an update, before applyTouched(): find (read-only, e.g.
@@ -169,6 +171,7 @@ class LinklessOctree {
 
   OctreeBounds b_;
   HashedConfig cfg_;
+  const GeometryMask* geometry_;
   std::vector<DescHash> desc_;
   std::vector<DataHash> data_;
   std::vector<TableEdits> edits_;  // per table: desc 2i, data 2i + 1

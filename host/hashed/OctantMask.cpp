@@ -40,7 +40,7 @@ OctantTables::OctantTables(const std::vector<gpu::PointLight>& lights, const Oct
 
 void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLight* new_version,
                          std::uint32_t light, const OctreeBounds& b, bool listed_in_both,
-                         std::vector<OctantChange>& out) {
+                         const GeometryMask* geometry, std::vector<OctantChange>& out) {
   const CellBox ba = old_version ? lightCellBox(*old_version, b) : CellBox{};
   const CellBox bb = new_version ? lightCellBox(*new_version, b) : CellBox{};
   if (ba.empty() && bb.empty()) return;
@@ -56,9 +56,10 @@ void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLig
   const std::size_t cterms = listed_in_both ? std::size_t(n.x + n.y + n.z) : 0;
   std::vector<double> g(2 * terms + 2 * cterms);
   double r2[2];
+  LightOctants octants[2];
   for (int v = 0; v < 2; ++v) {
     const gpu::PointLight* version = v == 0 ? old_version : new_version;
-    const LightOctants o = version ? LightOctants(*version, b) : LightOctants();
+    const LightOctants& o = octants[v] = version ? LightOctants(*version, b) : LightOctants();
     r2[v] = o.r2();
     for (int a = 0; a < 3; ++a) o.axisTerms(a, hull.lo[a], n[a], &g[std::size_t(v) * terms + std::size_t(off[a])]);
     if (!listed_in_both) continue;
@@ -99,11 +100,23 @@ void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLig
       for (int x = 0; x < n.x; ++x) {
         if (listed_in_both && unlisted(std::size_t(x), cy, cz)) continue;
         const std::size_t ix = std::size_t(2 * x);
-        if ((std::max(ga[ix], ga[ix + 1]) + fya) + fza < r2[0] && (std::max(gb[ix], gb[ix + 1]) + fyb) + fzb < r2[1])
-          continue;  // all 8 octants in both versions
-        const std::uint8_t ma = octantBits(ga + ix, ga + iy, ga + iz, r2[0]);
-        const std::uint8_t mb = octantBits(gb + ix, gb + iy, gb + iz, r2[1]);
-        if (ma != mb) out.push_back({nodeKey(b.depth, glm::uvec3(hull.lo + glm::ivec3(x, y, z))), light, mb});
+        // All 8 octants in both versions: equal masks, unless geometry
+        // reduces them (each version's sphere meets the octant boxes
+        // differently) in a cell that has octant boxes.
+        const bool all8 = (std::max(ga[ix], ga[ix + 1]) + fya) + fza < r2[0] &&
+                          (std::max(gb[ix], gb[ix + 1]) + fyb) + fzb < r2[1];
+        if (all8 && !geometry) continue;
+        const glm::uvec3 cell(hull.lo + glm::ivec3(x, y, z));
+        const GeometryMask::Box* cell_box = nullptr;
+        const GeometryMask::OctantBoxes* boxes = geometry ? geometry->octantBoxes(cell, cell_box) : nullptr;
+        if (all8 && !boxes) continue;
+        std::uint8_t ma = octantBits(ga + ix, ga + iy, ga + iz, r2[0]);
+        std::uint8_t mb = octantBits(gb + ix, gb + iy, gb + iz, r2[1]);
+        if (boxes) {
+          ma = octants[0].onGeometry(ma, *boxes, *cell_box);
+          mb = octants[1].onGeometry(mb, *boxes, *cell_box);
+        }
+        if (ma != mb) out.push_back({nodeKey(b.depth, cell), light, mb});
       }
     }
 }

@@ -18,6 +18,13 @@
 //    coordinate q (exact: doubling a float is exact), octant k = x + 2y + 4z;
 //    the overlap test widens each octant by the bounds' eps like the cell
 //    test, so float rounding of q never drops a light that contains the point.
+//  - With a geometry mask, bit k is also cleared where the sphere misses
+//    octant k's geometry box (GeometryMask::octantBoxes(), widened by eps):
+//    a surface point in octant k lies in that box, so no shaded point there
+//    is lost, and lights that reach the octant but not its surfaces (a floor
+//    octant under a light above the floor's thin slab) are skipped. Cells
+//    without octant boxes keep the plain bits. Builds and updates apply the
+//    same test (LightOctants::onGeometry()).
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -25,6 +32,7 @@
 #include <glm/glm.hpp>
 
 #include "host/hashed/EightSums.hpp"
+#include "host/hashed/GeometryMask.hpp"
 #include "host/hashed/OctreeBounds.hpp"
 
 namespace ml::hashed {
@@ -86,9 +94,47 @@ class LightOctants {
   void cellTerms(int axis, int lo, int n, double* out) const {
     for (int k = 0; k < n; ++k) *out++ = axisGap2(c_[axis], lo + k, lo + k, eps_);
   }
+  // `bits` less the octants whose geometry box (widened by eps) the sphere
+  // misses, or that hold no geometry.
+  std::uint8_t onGeometry(std::uint8_t bits, const GeometryMask::OctantBoxes& boxes) const {
+    // All 8 without branches (an empty box's lo > hi only grows its gap).
+    unsigned reached = 0;
+    for (unsigned k = 0; k < 8; ++k)
+      reached |= unsigned(!boxes.empty(k) && boxGap2(boxes.lo[k], boxes.hi[k]) < r2_) << k;
+    return std::uint8_t(bits & reached);
+  }
+  // The same, given the cell's geometry box (which holds the octant boxes):
+  // a sphere that misses it misses them all, one that holds it (widened by
+  // eps alike, so the sums bound the octant boxes' exactly) reaches every
+  // non-empty one; only the other cells test the 8 boxes.
+  std::uint8_t onGeometry(std::uint8_t bits, const GeometryMask::OctantBoxes& boxes,
+                          const GeometryMask::Box& cell_box) const {
+    if (!bits) return bits;
+    double near = 0.0, far = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = cell_box.lo[a] - eps_, hi = cell_box.hi[a] + eps_;
+      const double dn = std::max(std::max(lo - c_[a], c_[a] - hi), 0.0), df = std::max(c_[a] - lo, hi - c_[a]);
+      near += dn * dn;
+      far += df * df;
+    }
+    if (near >= r2_) return 0;
+    if (far >= r2_) return onGeometry(bits, boxes);
+    unsigned filled = 0;
+    for (unsigned k = 0; k < 8; ++k) filled |= unsigned(!boxes.empty(k)) << k;
+    return std::uint8_t(bits & filled);
+  }
   double r2() const { return r2_; }
 
  private:
+  // Squared distance from the centre to the box [lo - eps, hi + eps].
+  double boxGap2(const glm::vec3& lo, const glm::vec3& hi) const {
+    double d2 = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double v = std::max(std::max((double(lo[a]) - eps_) - c_[a], c_[a] - (double(hi[a]) + eps_)), 0.0);
+      d2 += v * v;
+    }
+    return d2;
+  }
   glm::dvec3 c_{0.0};  // centre, cells
   double r2_ = -1.0, eps_ = 0.0;
 };
@@ -130,13 +176,14 @@ struct OctantRewrite {
 };
 
 // Appends the deepest cells whose mask for `light` differs between its old
-// and new versions (null: the light did not exist / no longer exists). With
+// and new versions (null: the light did not exist / no longer exists), both
+// masks reduced by `geometry` (null: none) as the build reduces them. With
 // `listed_in_both`, only cells that both versions pass the cell test for:
 // where an exact update without geometry-tight sets adds or removes the
 // light (the cell test says where it is listed), the cell is a touched key
 // and its entries are derived afresh anyway.
 void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLight* new_version,
                          std::uint32_t light, const OctreeBounds& bounds, bool listed_in_both,
-                         std::vector<OctantChange>& out);
+                         const GeometryMask* geometry, std::vector<OctantChange>& out);
 
 }  // namespace ml::hashed
