@@ -8,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "gl/FrameRenderer.hpp"
 #include "host/assign/BruteForceAssigner.hpp"
@@ -15,6 +18,8 @@
 #include "host/scene/LightSet.hpp"
 #include "host/vct/VctGiPass.hpp"
 #include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR
+#include "support/RunCommand.hpp"
+#include "support/TempDir.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
@@ -100,6 +105,29 @@ TEST(VctCornell, Sweep) {
   vctError(s);
   s.gi_scale = 0.25;
   vctError(s);
+}
+
+// The command (this build's binary, a separate process): the frame, the
+// indirect image, its ambient occlusion and the reference are written, and the
+// stats JSON has the vct passes, voxel_bytes and gi_rel_rmse under the bound.
+TEST(VctCornell, RenderCommandReportsTheErrorAndThePasses) {
+  test::TempDir tmp;
+  const std::string dir = std::string(MANYLIGHTS_TEST_DATA_DIR) + "/cornell/";
+  const std::string out = tmp.file("f.png"), stats = tmp.file("f.json");
+  const auto r = test::runManylights("render --scene " + dir + "cornell.gltf --lights " + dir + "lights.json --camera " +
+                                     dir + "camera.json --technique tiled-forward --size 160x90 --frames 1 --warmup 0 "
+                                     "--gi vct --anisotropic --gi-reference --gi-samples 64 --out " + out +
+                                     " --stats-json " + stats);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"f_gi_vct.exr", "f_gi_vct.png", "f_gi_vct_ao.png", "f_gi_reference.exr", "f.png"})
+    EXPECT_TRUE(std::filesystem::exists(tmp.file(f))) << f;
+  const auto j = nlohmann::json::parse(std::ifstream(stats));
+  for (const char* pass : {"vct-voxelize", "vct-inject", "vct-mips", "vct-trace", "vct-upsample"})
+    EXPECT_TRUE(j.at("passes").contains(pass)) << pass;
+  EXPECT_EQ(j.at("voxel_bytes").get<std::size_t>(), voxelBytes({64, 4, true}));
+  EXPECT_GT(j.at("gi_rel_rmse").get<double>(), 0.0);
+  EXPECT_LT(j.at("gi_rel_rmse").get<double>(), kCornellBound);
+  EXPECT_EQ(j.at("gi_vct").at("cones").get<int>(), 9);
 }
 
 }  // namespace
