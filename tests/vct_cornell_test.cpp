@@ -83,30 +83,6 @@ TEST(VctCornell, IndirectImageIsNearTheReferenceAndBrokenTracesAreNot) {
   EXPECT_GT(vctError(s).rel_rmse, kCornellBound) << "a broken mip filter passes the bound";
 }
 
-TEST(VctCornell, Sweep) {
-  for (unsigned voxels : {32u, 64u, 128u})
-    for (bool aniso : {false, true}) {
-      VctGiSettings s;
-      s.grid = {voxels, 4, aniso};
-      vctError(s);
-    }
-  for (unsigned cones : {1u, 5u, 9u, 16u, 32u}) {
-    VctGiSettings s;
-    s.grid.anisotropic = true;
-    s.cones = cones;
-    vctError(s);
-    s.aperture_deg = 60;
-    vctError(s);
-  }
-  VctGiSettings s;
-  s.grid.anisotropic = true;
-  vctError(s, Pipeline::Forward);
-  s.gi_scale = 1;
-  vctError(s);
-  s.gi_scale = 0.25;
-  vctError(s);
-}
-
 // The command (this build's binary, a separate process): the frame, the
 // indirect image, its ambient occlusion and the reference are written, and the
 // stats JSON has the vct passes, voxel_bytes and gi_rel_rmse under the bound.
