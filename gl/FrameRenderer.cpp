@@ -1,11 +1,10 @@
 #include "gl/FrameRenderer.hpp"
 
-#include <glm/gtc/type_ptr.hpp>
-
 #include <chrono>
 #include <stdexcept>
 
 #include "gl/GlCheck.hpp"
+#include "gl/ViewUniforms.hpp"
 #include "host/cl/ClRuntime.hpp"
 
 namespace ml {
@@ -59,13 +58,7 @@ const ShaderProgram& FrameRenderer::program(const std::string& kind, const Light
 }
 
 void FrameRenderer::setFrameUniforms(const ShaderProgram& p, const glm::mat4& view, const glm::mat4& proj) const {
-  const glm::mat4 inv_view = glm::inverse(view);
-  const glm::mat4 inv_proj = glm::inverse(proj);
-  p.set("u_view", glm::value_ptr(view));
-  p.set("u_proj", glm::value_ptr(proj));
-  p.set("u_inv_view", glm::value_ptr(inv_view));
-  p.set("u_inv_proj", glm::value_ptr(inv_proj));
-  p.set2("u_viewport", static_cast<float>(width_), static_cast<float>(height_));
+  setViewUniforms(p, view, proj, width_, height_);
   p.set("u_light_count", light_count_);
 }
 

@@ -1,11 +1,10 @@
 #include "host/vct/VctGiPass.hpp"
 
-#include <glm/gtc/type_ptr.hpp>
-
 #include <algorithm>
 #include <cmath>
 
 #include "gl/GlCheck.hpp"
+#include "gl/ViewUniforms.hpp"
 #include "host/shared/shading_model.h"
 #include "host/util/Error.hpp"
 
@@ -89,22 +88,10 @@ void VctGiPass::addIndirect(const GiFrameInputs& in) {
   glCheck("cone tracing");
 }
 
-namespace {
-void setCameraUniforms(const ShaderProgram& p, const GiFrameInputs& in) {
-  const glm::mat4 inv_view = glm::inverse(in.view);
-  const glm::mat4 inv_proj = glm::inverse(in.proj);
-  p.set("u_view", glm::value_ptr(in.view));
-  p.set("u_proj", glm::value_ptr(in.proj));
-  p.set("u_inv_view", glm::value_ptr(inv_view));
-  p.set("u_inv_proj", glm::value_ptr(inv_proj));
-  p.set2("u_viewport", float(in.width), float(in.height));
-}
-}  // namespace
-
 void VctGiPass::trace(const GiFrameInputs& in) {
   GlPassScope scope(in.timer, "vct-trace");
   trace_.use();
-  setCameraUniforms(trace_, in);
+  setViewUniforms(trace_, in.view, in.proj, in.width, in.height);
   const bool aniso = pipeline_.volume().anisotropic() != nullptr;
   bindConeTracing(trace_, {pipeline_.volume().params(), &pipeline_.textures(), aniso, cones_, s_.aperture_deg,
                            s_.broken});
@@ -123,7 +110,7 @@ void VctGiPass::trace(const GiFrameInputs& in) {
 void VctGiPass::upsample(const GiFrameInputs& in) {
   GlPassScope scope(in.timer, "vct-upsample");
   upsample_.use();
-  setCameraUniforms(upsample_, in);
+  setViewUniforms(upsample_, in.view, in.proj, in.width, in.height);
   upsample_.setU2("u_lo_size", lo_w_, lo_h_);
   upsample_.set("u_radiance_scale", 1.0f / ML_SHADE_DIRECT);
   upsample_.set("u_specular_weight", s_.specular ? kSpecularWeight : 0.0f);
