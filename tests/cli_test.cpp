@@ -80,6 +80,7 @@ TEST(Cli, BadVctFlags) {
   expectUserError(runManylights(vct + "--vct-shadows ray"), "--vct-shadows");
   expectUserError(runManylights(vct + "--gi-reference --gi-shadows ray"), "--gi-shadows");
   expectUserError(runManylights("render --size 16x16 --gi reference --gi-reference"), "--gi-reference");
+  expectUserError(runManylights(vct + "--no-shading"), "--gi");
 }
 
 TEST(Cli, BadDevice) {

@@ -129,6 +129,8 @@ void checkRenderFlags(const RenderArgs& a, const TechniqueInfo& tech) {
   requireImageFile("--out", a.out);
   requireImageFile("--heatmap", a.heatmap);
   if (a.no_shading && !a.out.empty()) throw UserError("--out: there is no shaded image with --no-shading");
+  if (a.no_shading && a.gi.mode == "vct")
+    throw UserError("--gi: vct adds to the shaded image; there is none with --no-shading");
   if (a.no_shading && !a.heatmap.empty())
     throw UserError("--heatmap: light evaluations are not counted with --no-shading");
   requireOutputFile("--stats-json", a.stats_json);
