@@ -10,6 +10,9 @@
 //    thick, a block in the middle) at --inject-edge: through the hashed
 //    structure's lists against brute force over all lights; the mean list
 //    length per filled voxel says why.
+//  - With --frame, instead: cone tracing inside the frame (VctFrameSweep.hpp),
+//    per pass at --edges x isotropic/anisotropic x --cones, and the error
+//    against the Embree reference, on the Cornell box and the default scene.
 // Prints tables and, with --json, one record per case.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -27,10 +30,12 @@
 #include "host/hashed/HashedStructure.hpp"
 #include "host/scene/LightSet.hpp"
 #include "host/util/ThesisSeed.hpp"
+#include "host/vct/ConeTracing.hpp"
 #include "host/vct/VoxelGrid.hpp"
 #include "host/vct/VoxelInjector.hpp"
 #include "host/vct/VoxelMips.hpp"
 #include "BenchCommon.hpp"
+#include "VctFrameSweep.hpp"
 
 namespace {
 using namespace ml;
@@ -169,6 +174,10 @@ int run(int argc, char** argv) {
   unsigned levels = 4, inject_edge = 64;
   double radius = 0.1;
   int reps = 5;
+  bool frame = false;
+  std::string cones = "5,9,16";
+  app.add_flag("--frame", frame, "cone tracing in the frame instead: per pass and error vs the reference");
+  app.add_option("--cones", cones, "--frame: diffuse cone counts")->capture_default_str();
   app.add_option("--json", json_path, "write records as JSON");
   app.add_option("--edges", edges, "mip grid edges (powers of two)")->capture_default_str();
   app.add_option("--levels", levels, "mip levels")->capture_default_str();
@@ -183,6 +192,17 @@ int run(int argc, char** argv) {
   if (!(radius > 0)) throw UserError("--radius: must be positive");
   const std::vector<unsigned> edge_list = parseCounts(edges, "--edges"), light_list = parseCounts(light_counts, "--lights");
   for (unsigned e : edge_list) vct::checkVoxelGrid({e, levels, false});
+  if (frame) {
+    benchvct::FrameSweepOptions o;
+    o.voxels = edge_list;
+    o.cones = parseCounts(cones, "--cones");
+    for (unsigned c : o.cones) vct::checkConeSettings(c, 45.0f);
+    o.levels = levels;
+    o.reps = reps;
+    o.device = device;
+    benchutil::writeJson(json_path, benchvct::frameSweep(o));
+    return 0;
+  }
   vct::checkVoxelGrid({inject_edge, 1, false});
   auto rt = ClRuntime::create(DeviceChoice::resolve(device));
   std::printf("%s\n", rt->describe().c_str());

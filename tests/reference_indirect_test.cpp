@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -297,6 +298,21 @@ TEST(ReferenceIndirect, RenderCommandWritesTheImagesAndChecksItsFlags) {
     EXPECT_NE(r.err.find(bad[bad.size() - 2]), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+}
+
+TEST(ReferenceIndirect, RelativeRmseOverCommonlyCoveredPixels) {
+  // Pixel 0: both covered, off by (0.1, -0.2, 0) against (1, 2, 0); pixel 1:
+  // covered in the image only (a silhouette: counted, not compared); pixel 2:
+  // sky in both.
+  const std::vector<float> ref = {1, 2, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0};
+  const std::vector<float> img = {1.1f, 1.8f, 0, 1, 9, 9, 9, 1, 0, 0, 0, 0};
+  const IndirectError e = indirectRelRmse(img, ref);
+  EXPECT_EQ(e.pixels, 1u);
+  EXPECT_EQ(e.mismatched, 1u);
+  EXPECT_NEAR(e.rel_rmse, std::sqrt((0.01 + 0.04) / 5.0), 1e-6);
+  EXPECT_EQ(indirectRelRmse(ref, ref).rel_rmse, 0.0);
+  EXPECT_EQ(indirectRelRmse(img, std::vector<float>(12, 0.0f)).rel_rmse, -1.0);  // nothing covered
+  EXPECT_THROW(indirectRelRmse(img, std::vector<float>(8, 1.0f)), std::invalid_argument);
 }
 
 }  // namespace
