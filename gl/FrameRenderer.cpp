@@ -85,13 +85,12 @@ void FrameRenderer::shadeOnlyFirstEqualFragment() {
   glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
 }
 
-void FrameRenderer::exportDepth(bool deferred, PassTimings& passes) {
+void FrameRenderer::exportDepth() {
   // The depth image reaches the kernels as a buffer: a pack-buffer read is a
   // GPU-side copy on real GPUs and a plain memcpy into the shared (mapped)
-  // storage on llvmpipe.
+  // storage on llvmpipe. Deferred's depth is the G-buffer's, forward's the pre-pass's.
   GlPassScope scope(&gl_timer_, "depth-export");
-  (void)passes;
-  readDepthInto(deferred);
+  readDepthInto(pipeline_ == Pipeline::Deferred);
 }
 
 void FrameRenderer::readDepthInto(bool deferred) {
@@ -110,14 +109,33 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
   checkDepthRange(camera, "camera");
   const auto t0 = std::chrono::steady_clock::now();
   FrameResult result;
+  result.shaded = options.shade;
+  pipeline_ = options.pipeline;
+  const bool deferred = options.pipeline == Pipeline::Deferred;
+  GiPass* gi = options.shade ? options.gi : nullptr;
   const float aspect = static_cast<float>(width_) / static_cast<float>(height_);
   const glm::mat4 view = camera.view();
   const glm::mat4 proj = camera.projection(aspect);
-  const bool deferred = options.pipeline == Pipeline::Deferred;
-  const bool needs_depth = assigner.needsDepth();
-  const bool count = options.count_lights;
-  result.shaded = options.shade;
 
+  // 0. The GI pass's own update (its GL passes set their own state, so it goes first).
+  if (gi) gi->update({*scene_, host_lights_, lights_changed_, result.passes});
+  beginFrame(options.count_lights);
+  // 1. Depth: G-buffer (deferred, or forward with GI) and the pre-pass (forward, if needed).
+  depthPasses(deferred, options, view, proj, assigner);
+  if (assigner.needsDepth()) exportDepth();
+  // 2. Light assignment on the CL device.
+  assignLights(camera, view, proj, assigner, result);
+  // 3. Shading, then 4. the indirect light added to it.
+  if (options.shade) shade(deferred, options.count_lights, view, proj, assigner);
+  if (gi)
+    gi->addIndirect({view, proj, width_, height_, targets_->albedoTexture(), targets_->normalTexture(),
+                     targets_->gbufferDepthTexture(), targets_->outputColorTexture(), &gl_timer_});
+  finishFrame(t0, assigner, result);
+  if (options.count_lights) countLights(deferred, view, proj, result);
+  return result;
+}
+
+void FrameRenderer::beginFrame(bool count) {
   glViewport(0, 0, static_cast<GLsizei>(width_), static_cast<GLsizei>(height_));
   // Reversed-Z (host/shared/depth_convention.h): [0, 1] clip depth, cleared
   // to kSkyDepth, nearer wins with GL_GREATER.
@@ -130,24 +148,19 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
     glNamedBufferSubData(stats_ssbo_, 0, 16, zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, stats_ssbo_);
   }
-  const GLfloat clear_color[4] = {0, 0, 0, 1};
-  const GLfloat clear_depth = gpu::kSkyDepth;
+  glCheck("starting a frame");
+}
 
-  // 1. Depth: G-buffer (deferred) or pre-pass (forward, only if the technique needs depth).
-  if (deferred) {
-    GlPassScope s(&gl_timer_, "gbuffer");
-    glBindFramebuffer(GL_FRAMEBUFFER, targets_->gbufferFbo());
-    glDepthMask(GL_TRUE);
-    glDepthFunc(GL_GREATER);
-    glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_COLOR, 0, clear_color);
-    glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_COLOR, 1, clear_color);
-    glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_DEPTH, 0, &clear_depth);
-    const ShaderProgram& p = program("gbuffer", assigner, false);
-    p.use();
-    setFrameUniforms(p, view, proj);
-    scene_->draw(p, true);
-  } else if (needs_depth || (count && !options.shade)) {
+// The G-buffer in deferred, and in forward when a GI pass needs it (forward
+// shading writes no G-buffer); forward's depth pre-pass when the technique
+// needs depth, or when counting without shading needs the bound's depth.
+void FrameRenderer::depthPasses(bool deferred, const FrameOptions& options, const glm::mat4& view,
+                                const glm::mat4& proj, LightAssigner& assigner) {
+  const bool gi = options.shade && options.gi;
+  if (deferred || gi) gbufferPass(deferred ? "gbuffer" : "gi-gbuffer", view, proj, assigner);
+  if (!deferred && (assigner.needsDepth() || (options.count_lights && !options.shade))) {
     GlPassScope s(&gl_timer_, "depth-prepass");
+    const GLfloat clear_depth = gpu::kSkyDepth;
     glBindFramebuffer(GL_FRAMEBUFFER, targets_->outputFbo());
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_GREATER);
@@ -160,9 +173,29 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
   glCheck("depth pass");
-  if (needs_depth) exportDepth(deferred, result.passes);
+}
 
-  // 2. Light assignment on the CL device.
+void FrameRenderer::gbufferPass(const char* name, const glm::mat4& view, const glm::mat4& proj,
+                                LightAssigner& assigner) {
+  GlPassScope s(&gl_timer_, name);
+  const GLfloat clear_color[4] = {0, 0, 0, 1};
+  const GLfloat clear_depth = gpu::kSkyDepth;
+  glBindFramebuffer(GL_FRAMEBUFFER, targets_->gbufferFbo());
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_GREATER);
+  glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_COLOR, 0, clear_color);
+  glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_COLOR, 1, clear_color);
+  glClearNamedFramebufferfv(targets_->gbufferFbo(), GL_DEPTH, 0, &clear_depth);
+  const ShaderProgram& p = program("gbuffer", assigner, false);
+  p.use();
+  setFrameUniforms(p, view, proj);
+  scene_->draw(p, true);
+  glCheck("G-buffer pass");
+}
+
+void FrameRenderer::assignLights(const Camera& camera, const glm::mat4& view, const glm::mat4& proj,
+                                 LightAssigner& assigner, FrameResult& result) {
+  const bool needs_depth = assigner.needsDepth();
   FrameInputs in{cl_,
                  camera,
                  camera.params(width_, height_),
@@ -178,22 +211,21 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
                  cl_timer_,
                  result.passes,
                  &gl_timer_};
-  {
-    // Shared-buffer hand-overs (share-acquire/-release/-copy) land in this frame's passes.
-    struct ShareSink {
-      ClRuntime& rt;
-      ~ShareSink() { rt.setShareTimings(nullptr); }
-    } sink{cl_};
-    cl_.setShareTimings(&result.passes);
-    assigner.assign(in);
-  }
+  // Shared-buffer hand-overs (share-acquire/-release/-copy) land in this frame's passes.
+  struct ShareSink {
+    ClRuntime& rt;
+    ~ShareSink() { rt.setShareTimings(nullptr); }
+  } sink{cl_};
+  cl_.setShareTimings(&result.passes);
+  assigner.assign(in);
   lights_changed_ = false;
+}
 
-  if (options.shade) shade(deferred, count, view, proj, assigner);
+void FrameRenderer::finishFrame(std::chrono::steady_clock::time_point t0, const LightAssigner& assigner,
+                                FrameResult& result) {
   glFinish();
   cl_.queue().finish();
   result.host_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-
   // Device-side pass times, in pipeline order.
   PassTimings gl_cl;
   gl_timer_.collect(gl_cl);
@@ -201,9 +233,6 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
   gl_cl.merge(result.passes);
   result.passes = gl_cl;
   result.memory_bytes = assigner.memoryBytes();
-
-  if (count) countLights(deferred, view, proj, result);
-  return result;
 }
 
 // 3. Shading: forward (re-drawing the scene, against the pre-pass depth when

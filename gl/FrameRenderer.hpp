@@ -5,12 +5,18 @@
 //   deferred: G-buffer -> [depth export] -> assign (CL) -> full-screen shading
 // The bracketed steps run only when the assigner needsDepth(). Lights live in a
 // SharedBuffer that both the kernels and the shaders read.
+// With FrameOptions::gi (gl/GiPass.hpp) the frame also runs, whatever the
+// technique: gi->update() first, a G-buffer pass in forward (`gi-gbuffer`: the
+// GI pass reads albedo, normal and depth, which only deferred has), and
+// gi->addIndirect() after shading, which adds the indirect light in place.
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "gl/GiPass.hpp"
 #include "gl/GlPassTimer.hpp"
 #include "gl/RenderTargets.hpp"
 #include "gl/SceneGpu.hpp"
@@ -36,6 +42,9 @@ struct FrameOptions {
   // bound and covered pixels (a depth pre-pass runs for it if the technique
   // has none) but no light evaluations.
   bool shade = true;
+  // Global illumination added to the shaded image (not owned; none: direct
+  // light only). Skipped without shading.
+  GiPass* gi = nullptr;
 };
 
 struct FrameResult {
@@ -69,7 +78,14 @@ class FrameRenderer {
 
  private:
   const ShaderProgram& program(const std::string& kind, const LightAssigner& a, bool count);
-  void exportDepth(bool deferred, PassTimings& passes);
+  void beginFrame(bool count);
+  void depthPasses(bool deferred, const FrameOptions& options, const glm::mat4& view, const glm::mat4& proj,
+                   LightAssigner& assigner);
+  void gbufferPass(const char* name, const glm::mat4& view, const glm::mat4& proj, LightAssigner& assigner);
+  void assignLights(const Camera& camera, const glm::mat4& view, const glm::mat4& proj, LightAssigner& assigner,
+                    FrameResult& result);
+  void finishFrame(std::chrono::steady_clock::time_point t0, const LightAssigner& assigner, FrameResult& result);
+  void exportDepth();
   void shadeOnlyFirstEqualFragment();
   void readDepthInto(bool deferred);
   void shade(bool deferred, bool count, const glm::mat4& view, const glm::mat4& proj, LightAssigner& assigner);
@@ -85,6 +101,7 @@ class FrameRenderer {
   GLuint stats_ssbo_ = 0;
   GLuint empty_vao_ = 0;
   std::uint32_t light_count_ = 0;
+  Pipeline pipeline_ = Pipeline::Forward;  // of the frame being rendered
   std::vector<gpu::PointLight> host_lights_;
   bool lights_changed_ = true;
   std::unique_ptr<ExactLowerBound> bound_;  // created by the first counted frame

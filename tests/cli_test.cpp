@@ -65,6 +65,23 @@ TEST(Cli, BadSizes) {
   expectUserError(runManylights("render --size big"), "--size");
 }
 
+TEST(Cli, BadVctFlags) {
+  const std::string vct = "render --size 16x16 --gi vct ";
+  expectUserError(runManylights(vct + "--voxels 63"), "--voxels");
+  expectUserError(runManylights(vct + "--voxels 1024"), "--voxels");
+  expectUserError(runManylights(vct + "--voxels 16 --levels 6"), "--levels");
+  expectUserError(runManylights(vct + "--cone-aperture 0"), "--cone-aperture");
+  expectUserError(runManylights(vct + "--cone-aperture 180"), "--cone-aperture");
+  expectUserError(runManylights(vct + "--cones 0"), "--cones");
+  expectUserError(runManylights(vct + "--cones 33"), "--cones");
+  expectUserError(runManylights(vct + "--gi-scale 0"), "--gi-scale");
+  expectUserError(runManylights(vct + "--gi-scale 1.5"), "--gi-scale");
+  expectUserError(runManylights(vct + "--vct-shadows voxel"), "--vct-shadows");
+  expectUserError(runManylights(vct + "--vct-shadows ray"), "--vct-shadows");
+  expectUserError(runManylights(vct + "--gi-reference --gi-shadows ray"), "--gi-shadows");
+  expectUserError(runManylights("render --size 16x16 --gi reference --gi-reference"), "--gi-reference");
+}
+
 TEST(Cli, BadDevice) {
   expectUserError(runManylights("render --size 16x16 --device 99"), "--device");
   expectUserError(runManylights("render --size 16x16 --device fastest"), "--device");

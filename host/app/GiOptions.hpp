@@ -1,27 +1,41 @@
 #pragma once
-// `render --gi none|reference`: global illumination outputs next to the frame.
+// `render --gi none|reference|vct`: global illumination next to the frame.
 // reference: the ray-traced one-bounce diffuse indirect image
 // (host/reference/IndirectReference.hpp) of the rendered camera frame, written
 // as <out stem>_gi_reference.exr (linear float RGBA) and
 // <out stem>_gi_reference.png (tone-mapped: c / (c + mean luminance of the
 // covered pixels), so the image is legible whatever the lights' intensity),
-// its trace time printed and in the stats JSON. `vct` joins later.
+// its trace time printed and in the stats JSON.
+// vct: voxel cone tracing (host/vct/VctGiPass.hpp) adds the indirect light to
+// every frame (the frame is direct + indirect), whatever the technique; the
+// indirect image alone is written as <out stem>_gi_vct.exr/.png (the same
+// tone-map) and its ambient occlusion as <out stem>_gi_vct_ao.png. With
+// --gi-reference the Embree reference of the same transport (no visibility in
+// the bounce light: --gi-shadows none) is traced in the same run and the
+// relative RMSE of the indirect image against it reported (gi_rel_rmse).
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "gl/GiPass.hpp"
 #include "host/app/SceneInputs.hpp"
+#include "host/cl/ClRuntime.hpp"
+#include "host/reference/IndirectReference.hpp"
 #include "host/util/ThesisSeed.hpp"
+#include "host/vct/VctGiPass.hpp"
 
 namespace ml {
 
 struct GiArgs {
-  std::string mode = "none";       // none | reference
+  std::string mode = "none";       // none | reference | vct
   unsigned samples = 64;           // hemisphere samples per pixel
   std::string shadows = "none";    // none | ray: visibility of lights from the secondary hits
   std::uint64_t seed = kThesisSeed;
+  vct::VctGiSettings vct;          // --voxels --levels --anisotropic --cones --cone-aperture --gi-scale ...
+  bool with_reference = false;     // --gi-reference (with --gi vct)
 };
 inline constexpr unsigned kMaxGiSamples = 1u << 16;
 
@@ -30,13 +44,21 @@ void addGiFlags(CLI::App& cmd, GiArgs& a);
 // --out; the GI files are derived from it (none without it).
 void checkGiFlags(const GiArgs& a, const std::string& out);
 
+// The frame's GI pass: VCT for --gi vct, else none.
+std::unique_ptr<GiPass> makeGiPass(const GiArgs& a, ClRuntime& cl, const Scene& scene);
+
 struct GiResult {
   bool ran = false;
-  double ms = 0;
+  double ms = 0;                // reference trace time
+  bool has_reference = false;
+  IndirectError error;          // vct vs the reference (with --gi-reference)
+  std::size_t voxel_bytes = 0;  // vct
   std::vector<std::string> files;
 };
+// After the frames: the reference trace (--gi reference, or vct with
+// --gi-reference), the vct pass's images, the error, the files.
 GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera, unsigned width, unsigned height,
-               const std::string& out);
+               const std::string& out, const GiPass* pass);
 
 // "dir/x.png" -> "dir/x_gi_reference.exr" for kind "reference", ext ".exr".
 std::string giOutputPath(const std::string& out, const std::string& kind, const std::string& ext);

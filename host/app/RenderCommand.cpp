@@ -202,9 +202,9 @@ void writeHeatmap(const std::string& flag, const std::string& file, const Techni
 // Warm-up, the timed frames (animated), then the counting frame and the
 // images that need it.
 RenderRun renderFrames(const RenderArgs& a, const TechniqueInfo& tech, const SceneInputs& inputs,
-                       FrameRenderer& renderer, LightAssigner& assigner) {
+                       FrameRenderer& renderer, LightAssigner& assigner, GiPass* gi) {
   const Camera& camera = inputs.cameras.frames[a.frame];
-  const FrameOptions options{tech.pipeline, false, !a.no_shading};
+  const FrameOptions options{tech.pipeline, false, !a.no_shading, gi};
   for (unsigned i = 0; i < a.warmup; ++i) renderer.render(camera, assigner, options);
   LightAnimator animator(inputs.lights, a.animate, 23, a.animate_speed);
   RenderRun run;
@@ -236,6 +236,26 @@ RenderRun renderFrames(const RenderArgs& a, const TechniqueInfo& tech, const Sce
   return run;
 }
 
+void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j) {
+  if (a.mode == "vct") {
+    const vct::VctGiSettings& v = a.vct;
+    j["gi_vct"] = {{"voxels", v.grid.voxels},  {"levels", v.grid.levels}, {"anisotropic", v.grid.anisotropic},
+                   {"cones", v.cones},         {"cone_aperture", v.aperture_deg}, {"gi_scale", v.gi_scale},
+                   {"specular", v.specular},   {"vct_shadows", v.shadows}};
+    j["voxel_bytes"] = gi.voxel_bytes;
+    j["gi_transport"] = "one bounce, diffuse; no visibility in the injected direct light";
+  }
+  if (!gi.has_reference) return;
+  j["gi_samples"] = a.samples;
+  j["gi_shadows"] = a.shadows;
+  j["gi_reference_ms"] = gi.ms;
+  if (a.mode == "vct") {
+    j["gi_reference_transport"] = "one bounce, diffuse; no visibility in the bounce light (--gi-shadows none)";
+    j["gi_rel_rmse"] = gi.error.rel_rmse;
+    j["gi_rel_rmse_pixels"] = gi.error.pixels;
+  }
+}
+
 void writeStatsJson(const RenderArgs& a, const TechniqueInfo& tech, const SceneInputs& inputs, const RenderRun& run,
                     const RunContext& ctx, unsigned width, unsigned height) {
   nlohmann::ordered_json j;
@@ -264,11 +284,7 @@ void writeStatsJson(const RenderArgs& a, const TechniqueInfo& tech, const SceneI
   for (const auto& [k, v] : run.stats) st[k] = v;
   j["technique_stats"] = st;
   j["gi"] = a.gi.mode;
-  if (run.gi.ran) {
-    j["gi_samples"] = a.gi.samples;
-    j["gi_shadows"] = a.gi.shadows;
-    j["gi_reference_ms"] = run.gi.ms;
-  }
+  writeGiStats(a.gi, run.gi, j);
   j["device"] = ctx.cl->info().name;
   j["gl"] = ctx.gl->describe();
   writeFileAtomically("--stats-json", a.stats_json, j.dump(2) + "\n");
@@ -299,8 +315,9 @@ int runRender(const RenderArgs& a) {
   FrameRenderer renderer(*ctx.cl, inputs.scene, width, height);
   renderer.setLights(inputs.lights);
   auto assigner = makeAssigner(tech, *ctx.cl, params, &inputs.scene);
-  RenderRun run = renderFrames(a, tech, inputs, renderer, *assigner);
-  run.gi = runGi(a.gi, inputs, inputs.cameras.frames[a.frame], width, height, a.out);
+  const std::unique_ptr<GiPass> gi = makeGiPass(a.gi, *ctx.cl, inputs.scene);
+  RenderRun run = renderFrames(a, tech, inputs, renderer, *assigner, gi.get());
+  run.gi = runGi(a.gi, inputs, inputs.cameras.frames[a.frame], width, height, a.out, gi.get());
   if (!run.stats.empty()) {
     std::printf("\n");
     for (const auto& [k, v] : run.stats) std::printf("%-20s%14.6g\n", k.c_str(), v);

@@ -54,6 +54,7 @@ TimedFrame timedRenders(FrameRenderer& renderer, LightAssigner& assigner, FrameO
 FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, FrameOptions options,
                           const Camera& camera) {
   options.count_lights = true;
+  options.gi = nullptr;
   return renderer.render(camera, assigner, options);
 }
 

@@ -45,7 +45,8 @@ TimedFrame medianOf(const std::vector<FrameResult>& frames);
 TimedFrame timedRenders(FrameRenderer& renderer, LightAssigner& assigner, FrameOptions options, const Camera& camera,
                         unsigned repeat, const std::function<void()>& before = {});
 // One render that counts light evaluations and the exact lower bound (untimed);
-// without shading (options.shade off) only the bound and covered pixels.
+// without shading (options.shade off) only the bound and covered pixels. No GI
+// pass runs in it (options.gi is ignored): counts do not depend on it.
 FrameResult countedRender(FrameRenderer& renderer, LightAssigner& assigner, FrameOptions options,
                           const Camera& camera);
 

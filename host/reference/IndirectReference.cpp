@@ -242,4 +242,24 @@ IndirectImage traceIndirectReference(const Scene& scene, const std::vector<gpu::
   return img;
 }
 
+IndirectError indirectRelRmse(const std::vector<float>& image, const std::vector<float>& reference) {
+  if (image.size() != reference.size() || image.size() % 4 != 0)
+    throw std::invalid_argument("indirectRelRmse: images of different sizes");
+  IndirectError e;
+  double err = 0, norm = 0;
+  for (std::size_t i = 0; i < image.size(); i += 4) {
+    const bool a = image[i + 3] > 0, r = reference[i + 3] > 0;
+    if (a != r) ++e.mismatched;
+    if (!a || !r) continue;
+    ++e.pixels;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = double(image[i + c]) - double(reference[i + c]);
+      err += d * d;
+      norm += double(reference[i + c]) * double(reference[i + c]);
+    }
+  }
+  if (norm > 0) e.rel_rmse = std::sqrt(err / norm);
+  return e;
+}
+
 }  // namespace ml

@@ -44,4 +44,17 @@ IndirectImage traceIndirectReference(const Scene& scene, const std::vector<gpu::
                                      const Camera& camera, unsigned width, unsigned height,
                                      const IndirectOptions& options);
 
+// Relative RMSE of an indirect image against a reference image of the same
+// format and size (RGBA, alpha > 0 where covered), over the pixels covered in
+// both, RGB: sqrt(sum (a - r)^2 / sum r^2). Covered pixels of one image that the
+// other does not cover (silhouettes) count in `mismatched`. -1 when the
+// reference is black over the common pixels; throws std::invalid_argument on
+// sizes that differ.
+struct IndirectError {
+  double rel_rmse = -1;
+  std::size_t pixels = 0;      // covered in both
+  std::size_t mismatched = 0;  // covered in one only
+};
+IndirectError indirectRelRmse(const std::vector<float>& image, const std::vector<float>& reference);
+
 }  // namespace ml

@@ -1,0 +1,79 @@
+// Cone tracing through the voxel volume's mip-mapped 3D textures
+// (gl/VoxelTextures: premultiplied radiance rgb, opacity a; the 6 direction
+// textures when anisotropic). Uniforms: host/vct/ConeTracing.hpp.
+// A cone marches front to back from `origin`: at distance t its diameter is
+// max(voxel, 2 t tan(aperture / 2)) and it samples the level whose voxel is
+// that wide (trilinear within and between levels); each step is half a
+// diameter, so the sample's opacity (that of a voxel of the level's edge) is
+// corrected to the step's length, 1 - (1 - a)^(step / edge), before
+//   c += (1 - A) c_step,  A += (1 - A) a_step.
+// It stops at opacity 0.99 or where it leaves the grid (outside is empty).
+layout(binding = 4) uniform sampler3D u_voxels;
+layout(binding = 5) uniform sampler3D u_voxel_dirs[6];  // +X -X +Y -Y +Z -Z (direction of travel)
+uniform vec4 u_grid_origin_size;  // corner xyz, level-0 voxel edge w
+uniform float u_grid_edge;        // level-0 voxels per axis
+uniform float u_grid_max_lod;     // levels - 1
+uniform int u_anisotropic;
+uniform float u_cone_tan;         // tan(aperture / 2) of the diffuse cones
+uniform int u_cone_count;
+uniform vec4 u_cones[32];         // tangent-frame direction (z the normal), weight (sum pi)
+
+const float kConeStep = 0.5;        // step, in cone diameters
+const float kNormalOffset = 1.0;    // start, in level-0 voxels along the normal (leaves the surface's voxel)
+const float kConeOpaque = 0.99;
+const float kPi = 3.14159265358979;
+
+vec4 sampleVoxels(vec3 uvw, float lod, vec3 d) {
+  if (u_anisotropic == 0) return textureLod(u_voxels, uvw, lod);
+  // Crassin's anisotropic voxels: the three faces the cone travels through,
+  // weighted by the squared direction components (which sum to 1).
+  vec3 w = d * d;
+  vec4 x = d.x >= 0.0 ? textureLod(u_voxel_dirs[0], uvw, lod) : textureLod(u_voxel_dirs[1], uvw, lod);
+  vec4 y = d.y >= 0.0 ? textureLod(u_voxel_dirs[2], uvw, lod) : textureLod(u_voxel_dirs[3], uvw, lod);
+  vec4 z = d.z >= 0.0 ? textureLod(u_voxel_dirs[4], uvw, lod) : textureLod(u_voxel_dirs[5], uvw, lod);
+  return w.x * x + w.y * y + w.z * z;
+}
+
+// Premultiplied radiance along the cone (rgb) and its opacity (a).
+vec4 traceCone(vec3 origin, vec3 d, float tan_half) {
+  float vs = u_grid_origin_size.w;
+  float extent = vs * u_grid_edge;
+  vec3 acc = vec3(0.0);
+  float a = 0.0;
+  float t = vs;
+  for (int i = 0; i < 512 && a < kConeOpaque; ++i) {
+    float diam = max(vs, 2.0 * t * tan_half);
+    float lod = min(log2(diam / vs), u_grid_max_lod);
+    vec3 uvw = (origin + t * d - u_grid_origin_size.xyz) / extent;
+    if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
+    vec4 s = sampleVoxels(uvw, lod, d);
+    float step = kConeStep * diam;
+    float a_step = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), step / (vs * exp2(lod)));
+    vec3 c_step = s.a > 1e-6 ? s.rgb * (a_step / s.a) : vec3(0.0);
+    acc += (1.0 - a) * c_step;
+    a += (1.0 - a) * a_step;
+    t += step;
+  }
+  return vec4(acc, a);
+}
+
+mat3 tangentFrame(vec3 n) {
+  vec3 t = normalize(abs(n.x) < 0.5 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
+  return mat3(t, cross(n, t), n);
+}
+
+// rgb: irradiance / pi (the mean incoming radiance, cosine-weighted) at P
+// with normal N; a: ambient occlusion, 1 - the cones' weighted opacity / pi
+// (1: nothing in the way).
+vec4 traceDiffuse(vec3 P, vec3 N) {
+  mat3 frame = tangentFrame(N);
+  vec3 origin = P + N * (kNormalOffset * u_grid_origin_size.w);
+  vec3 e = vec3(0.0);
+  float occlusion = 0.0;
+  for (int i = 0; i < u_cone_count; ++i) {
+    vec4 r = traceCone(origin, normalize(frame * u_cones[i].xyz), u_cone_tan);
+    e += u_cones[i].w * r.rgb;
+    occlusion += u_cones[i].w * r.a;
+  }
+  return vec4(e / kPi, 1.0 - occlusion / kPi);
+}

@@ -1,0 +1,165 @@
+#include "host/vct/VctGiPass.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gl/GlCheck.hpp"
+#include "host/shared/shading_model.h"
+#include "host/util/Error.hpp"
+
+namespace ml::vct {
+namespace {
+
+constexpr unsigned kGroup = 8;  // local size of vct_trace.comp and vct_upsample.comp per axis
+
+GLuint makeImage(GLenum format, unsigned w, unsigned h) {
+  GLuint t = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &t);
+  glTextureStorage2D(t, 1, format, static_cast<GLsizei>(w), static_cast<GLsizei>(h));
+  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glCheck("creating a cone-tracing image");
+  return t;
+}
+
+VctPipelineOptions pipelineOptions(const VctGiSettings& s) {
+  VctPipelineOptions o;
+  o.grid = s.grid;
+  o.brute_force = s.brute_inject;
+  return o;
+}
+
+ShaderDefines traceDefines(const VctGiSettings& s) {
+  if (s.specular) return {{"VCT_SPECULAR", "1"}};
+  return {};
+}
+
+GLuint groups(unsigned n) { return (n + kGroup - 1) / kGroup; }
+
+}  // namespace
+
+void checkVctGiSettings(const VctGiSettings& s) {
+  checkVoxelGrid(s.grid);
+  checkConeSettings(s.cones, s.aperture_deg);
+  if (!(s.gi_scale > 0.0f && s.gi_scale <= 1.0f))
+    throw UserError("--gi-scale: expected a fraction of the resolution in (0, 1], got " + std::to_string(s.gi_scale));
+  if (s.shadows == "voxel")
+    throw UserError("--vct-shadows: voxel (visibility through the opacity volume) is not available yet; use none");
+  if (s.shadows != "none") throw UserError("--vct-shadows: expected none, got '" + s.shadows + "'");
+}
+
+VctGiPass::VctGiPass(ClRuntime& rt, const VctGiSettings& s, const Aabb& scene_bounds)
+    : s_((checkVctGiSettings(s), s)),
+      pipeline_(rt, pipelineOptions(s), scene_bounds),
+      cones_(diffuseCones(s.cones)),
+      trace_({"vct_trace.comp"}, traceDefines(s)),
+      upsample_({"vct_upsample.comp"}) {}
+
+VctGiPass::~VctGiPass() { freeImages(); }
+
+void VctGiPass::freeImages() {
+  const GLuint all[] = {lo_irradiance_, lo_geometry_, lo_specular_, indirect_, ao_};
+  glDeleteTextures(5, all);
+  lo_irradiance_ = lo_geometry_ = lo_specular_ = indirect_ = ao_ = 0;
+}
+
+void VctGiPass::allocate(unsigned width, unsigned height) {
+  if (width == width_ && height == height_) return;
+  freeImages();
+  width_ = width;
+  height_ = height;
+  lo_w_ = std::max(1u, static_cast<unsigned>(std::lround(double(width) * s_.gi_scale)));
+  lo_h_ = std::max(1u, static_cast<unsigned>(std::lround(double(height) * s_.gi_scale)));
+  lo_irradiance_ = makeImage(GL_RGBA16F, lo_w_, lo_h_);
+  lo_geometry_ = makeImage(GL_RGBA32F, lo_w_, lo_h_);
+  lo_specular_ = makeImage(GL_RGBA16F, lo_w_, lo_h_);
+  indirect_ = makeImage(GL_RGBA32F, width, height);
+  ao_ = makeImage(GL_R32F, width, height);
+}
+
+void VctGiPass::update(const GiSceneInputs& in) { pipeline_.update(in.scene, in.lights, in.passes); }
+
+void VctGiPass::addIndirect(const GiFrameInputs& in) {
+  allocate(in.width, in.height);
+  trace(in);
+  upsample(in);
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  glCheck("cone tracing");
+}
+
+namespace {
+void setCameraUniforms(const ShaderProgram& p, const GiFrameInputs& in) {
+  const glm::mat4 inv_view = glm::inverse(in.view);
+  const glm::mat4 inv_proj = glm::inverse(in.proj);
+  p.set("u_view", glm::value_ptr(in.view));
+  p.set("u_proj", glm::value_ptr(in.proj));
+  p.set("u_inv_view", glm::value_ptr(inv_view));
+  p.set("u_inv_proj", glm::value_ptr(inv_proj));
+  p.set2("u_viewport", float(in.width), float(in.height));
+}
+}  // namespace
+
+void VctGiPass::trace(const GiFrameInputs& in) {
+  GlPassScope scope(in.timer, "vct-trace");
+  trace_.use();
+  setCameraUniforms(trace_, in);
+  const bool aniso = pipeline_.volume().anisotropic() != nullptr;
+  bindConeTracing(trace_, {pipeline_.volume().params(), &pipeline_.textures(), aniso, cones_, s_.aperture_deg,
+                           s_.broken});
+  trace_.setU2("u_lo_size", lo_w_, lo_h_);
+  trace_.set("u_specular_tan", std::tan(kSpecularApertureDeg * 3.14159265f / 360.0f));
+  glBindTextureUnit(2, in.normal);
+  glBindTextureUnit(3, in.depth);
+  glBindImageTexture(0, lo_irradiance_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  glBindImageTexture(1, lo_geometry_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(2, lo_specular_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  glDispatchCompute(groups(lo_w_), groups(lo_h_), 1);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  glCheck("vct-trace");
+}
+
+void VctGiPass::upsample(const GiFrameInputs& in) {
+  GlPassScope scope(in.timer, "vct-upsample");
+  upsample_.use();
+  setCameraUniforms(upsample_, in);
+  upsample_.setU2("u_lo_size", lo_w_, lo_h_);
+  upsample_.set("u_radiance_scale", 1.0f / ML_SHADE_DIRECT);
+  upsample_.set("u_specular_weight", s_.specular ? kSpecularWeight : 0.0f);
+  glBindTextureUnit(1, in.albedo);
+  glBindTextureUnit(2, in.normal);
+  glBindTextureUnit(3, in.depth);
+  glBindTextureUnit(4, lo_irradiance_);
+  glBindTextureUnit(5, lo_geometry_);
+  glBindTextureUnit(6, lo_specular_);
+  glBindImageTexture(0, in.color, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  glBindImageTexture(1, indirect_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(2, ao_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  glDispatchCompute(groups(width_), groups(height_), 1);
+  glCheck("vct-upsample");
+}
+
+std::vector<float> VctGiPass::indirectRgba() const {
+  std::vector<float> px(std::size_t(width_) * height_ * 4);
+  if (indirect_)
+    glGetTextureImage(indirect_, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(px.size() * sizeof(float)), px.data());
+  glCheck("reading the indirect image");
+  return px;
+}
+
+std::vector<float> VctGiPass::ambientOcclusion() const {
+  std::vector<float> px(std::size_t(width_) * height_);
+  if (ao_) glGetTextureImage(ao_, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(px.size() * sizeof(float)), px.data());
+  glCheck("reading the ambient occlusion image");
+  return px;
+}
+
+std::size_t VctGiPass::memoryBytes() const {
+  const std::size_t lo = std::size_t(lo_w_) * lo_h_, full = std::size_t(width_) * height_;
+  const std::size_t voxels = voxelsAllLevels(s_.grid.voxels, s_.grid.levels);
+  const std::size_t textures = voxels * 8 * (s_.grid.anisotropic ? 7 : 1);  // RGBA16F
+  return voxelBytes(s_.grid) + textures + lo * (8 + 16 + 8) + full * (16 + 4);
+}
+
+}  // namespace ml::vct
