@@ -27,7 +27,10 @@ TEST(ViewVct, FrameIndirectAndVoxelViewsEqualRender) {
   std::mt19937 rng(seed);
   const char* kinds[] = {"albedo", "radiance", "opacity"};
   const std::string kind = kinds[rng() % 3];
-  const unsigned level = rng() % 3;
+  // Level 0's opacity is 1 wherever a surface is, and from inside the default
+  // scene's rooms level 2's 8^3 voxels can all read the same opacity: flat
+  // images, which expectSameImage refuses. Opacity at level 1, the others at 0 or 1.
+  const unsigned level = kind == std::string("opacity") ? 1 : rng() % 2;
   const float yaw = std::uniform_real_distribution<float>(-30.0f, 30.0f)(rng);
   SCOPED_TRACE("voxel view " + kind + " level " + std::to_string(level) + " yaw " + std::to_string(yaw));
   const json script = json::array(

@@ -50,7 +50,8 @@ vec4 march(vec3 eye, vec3 dir) {
   const vec3 inv = vec3(1.0) / d;
   const vec3 t0 = (vec3(0.0) - o) * inv, t1 = (vec3(float(e)) - o) * inv;
   const vec3 tlo = min(t0, t1), thi = max(t0, t1);
-  const float tmin = max(max(max(tlo.x, tlo.y), tlo.z), 0.0);
+  const float tenter = max(max(tlo.x, tlo.y), tlo.z);
+  const float tmin = max(tenter, 0.0);
   const float tmax = min(min(thi.x, thi.y), thi.z);
   if (tmax < tmin) return vec4(0.0);
   const ivec3 last = ivec3(int(e) - 1);
@@ -58,9 +59,10 @@ vec4 march(vec3 eye, vec3 dir) {
   const ivec3 stp = ivec3(greaterThan(d, vec3(0.0))) * 2 - 1;
   vec3 next = (vec3(cell + max(stp, ivec3(0))) - o) * inv;
   const vec3 delta = abs(inv);
+  const uint first = tenter < 0.0 ? 1u : 0u;  // the eye's own voxel is not shown
   for (uint i = 0u; i < 3u * e + 1u; ++i) {
     const vec4 v = radiance[u_offset + uint(cell.x) + e * (uint(cell.y) + e * uint(cell.z))];
-    if (v.a > 0.0) return shade(cell, v);
+    if (i >= first && v.a > 0.0) return shade(cell, v);
     if (next.x < next.y && next.x < next.z) {
       cell.x += stp.x;
       next.x += delta.x;

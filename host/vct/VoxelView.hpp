@@ -1,7 +1,9 @@
 #pragma once
 // Debug images of the voxel volume "as cubes": per pixel, the camera ray is
 // marched through one level's grid (3D DDA, Amanatides-Woo) to the first voxel
-// whose opacity is > 0, and the image shows that voxel's
+// whose opacity is > 0 (from an eye inside the grid, the voxel holding the
+// eye is passed over: at a coarse level it would fill the image), and the
+// image shows that voxel's
 //   albedo:   mean albedo of the voxelized fragments under it (level 0's
 //             VoxelAccum sums over the 2^level-cube of level-0 voxels it covers);
 //   radiance: its radiance, un-premultiplied (rgb / opacity);

@@ -47,7 +47,8 @@ glm::vec4 voxelViewPixelTwin(const std::vector<gpu::ml_float4>& radiance, const 
   const glm::vec3 inv = 1.0f / d;
   const glm::vec3 t0 = (glm::vec3(0.0f) - o) * inv, t1 = (glm::vec3(float(e)) - o) * inv;
   const glm::vec3 tlo = glm::min(t0, t1), thi = glm::max(t0, t1);
-  const float tmin = std::max(std::max(std::max(tlo.x, tlo.y), tlo.z), 0.0f);
+  const float tenter = std::max(std::max(tlo.x, tlo.y), tlo.z);
+  const float tmin = std::max(tenter, 0.0f);
   const float tmax = std::min(std::min(thi.x, thi.y), thi.z);
   if (tmax < tmin) return glm::vec4(0.0f);
   const glm::ivec3 last(int(e) - 1);
@@ -55,9 +56,10 @@ glm::vec4 voxelViewPixelTwin(const std::vector<gpu::ml_float4>& radiance, const 
   const glm::ivec3 stp(d.x > 0 ? 1 : -1, d.y > 0 ? 1 : -1, d.z > 0 ? 1 : -1);
   glm::vec3 next = (glm::vec3(cell + glm::max(stp, glm::ivec3(0))) - o) * inv;
   const glm::vec3 delta = glm::abs(inv);
+  const unsigned first = tenter < 0.0f ? 1 : 0;  // the eye's own voxel is not shown
   for (unsigned i = 0; i < 3 * e + 1; ++i) {
     const gpu::ml_float4& v = radiance[offset + unsigned(cell.x) + e * (unsigned(cell.y) + e * unsigned(cell.z))];
-    if (v.w > 0.0f) {
+    if (i >= first && v.w > 0.0f) {
       if (kind == VoxelViewKind::Albedo) return glm::vec4(meanAlbedo(accum, grid.edge, level, cell), 1.0f);
       if (kind == VoxelViewKind::Radiance) return glm::vec4(v.x / v.w, v.y / v.w, v.z / v.w, 1.0f);
       return glm::vec4(v.w, v.w, v.w, 1.0f);
