@@ -27,6 +27,7 @@
 #include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR
 #include "shape_support.hpp"
 #include "support/FpTolerance.hpp"
+#include "support/RandomSoup.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
@@ -34,39 +35,6 @@ namespace ml::vct {
 namespace {
 
 using F4 = gpu::ml_float4;
-
-float uni(std::mt19937_64& rng, float a, float b) { return std::uniform_real_distribution<float>(a, b)(rng); }
-
-// Triangles in [-1, 1]^3 with random colours (one material each).
-Scene randomScene(std::mt19937_64& rng, std::size_t triangles) {
-  Scene s;
-  s.source = "random triangles";
-  for (std::size_t t = 0; t < triangles; ++t) {
-    glm::vec3 p[3];
-    for (auto& q : p) q = {uni(rng, -1, 1), uni(rng, -1, 1), uni(rng, -1, 1)};
-    glm::vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
-    n = glm::length(n) > 0 ? glm::normalize(n) : glm::vec3(0, 1, 0);
-    const auto first = static_cast<std::uint32_t>(s.indices.size());
-    for (const auto& q : p) {
-      s.vertices.push_back({q, n, glm::vec2(0.0f)});
-      s.indices.push_back(static_cast<std::uint32_t>(s.indices.size()));
-      s.bounds.extend(q);
-    }
-    s.materials.push_back({glm::vec4(uni(rng, 0, 1), uni(rng, 0, 1), uni(rng, 0, 1), 1), -1});
-    s.batches.push_back({first, 3, static_cast<std::uint32_t>(s.materials.size() - 1)});
-  }
-  return s;
-}
-
-std::vector<gpu::PointLight> randomLights(std::mt19937_64& rng, std::size_t n, const Aabb& b) {
-  std::vector<gpu::PointLight> out;
-  const float size = glm::length(b.max - b.min);
-  for (std::size_t i = 0; i < n; ++i) {
-    const glm::vec3 p(uni(rng, b.min.x, b.max.x), uni(rng, b.min.y, b.max.y), uni(rng, b.min.z, b.max.z));
-    out.push_back(makeLight(p, uni(rng, 0.1f, 1.0f) * size, glm::vec3(uni(rng, 0, 1), uni(rng, 0, 1), uni(rng, 0, 1))));
-  }
-  return out;
-}
 
 template <class T>
 std::vector<T> downloadAll(SharedBuffer& b, std::size_t count) {
@@ -184,13 +152,13 @@ TEST_P(VctPipelineTest, RandomScenesEqualTheTwinsAndLightMovesSkipVoxelization) 
   const std::size_t light_count = light_counts[rng() % 5];
   SCOPED_TRACE("edge " + std::to_string(edge) + " levels " + std::to_string(levels) + " anisotropic " +
                std::to_string(aniso) + " lights " + std::to_string(light_count));
-  const Scene scene = randomScene(rng, 10 + rng() % 40);  // enough orientations that some face the lights
+  const Scene scene = test::randomSoup(rng, 10 + rng() % 40);  // enough orientations that some face the lights
   SceneGpu gpu_scene(scene);
   VctPipeline p(test::runtime(), options({edge, levels, aniso}), scene.bounds);
   PassTimings first, second;
-  const auto before = updateAndCheck(p, gpu_scene, randomLights(rng, light_count, scene.bounds), first);
+  const auto before = updateAndCheck(p, gpu_scene, test::randomLightsIn(rng, light_count, scene.bounds), first);
   // The lights move (every one of them, and their number changes).
-  const auto moved = randomLights(rng, 8 + rng() % 40, scene.bounds);
+  const auto moved = test::randomLightsIn(rng, 8 + rng() % 40, scene.bounds);
   const auto after = updateAndCheck(p, gpu_scene, moved, second);
   EXPECT_EQ(p.voxelizations(), 1u);
   EXPECT_EQ(p.updates(), 2u);
@@ -205,12 +173,12 @@ TEST_P(VctPipelineTest, RevoxelizeVoxelizesEveryUpdate) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  const Scene scene = randomScene(rng, 20);
+  const Scene scene = test::randomSoup(rng, 20);
   SceneGpu gpu_scene(scene);
   VctPipelineOptions o = options({8, 2, false});
   o.revoxelize = true;
   VctPipeline p(test::runtime(), o, scene.bounds);
-  const auto lights = randomLights(rng, 9, scene.bounds);
+  const auto lights = test::randomLightsIn(rng, 9, scene.bounds);
   for (int i = 0; i < 2; ++i) {
     PassTimings t;
     updateAndCheck(p, gpu_scene, lights, t);

@@ -5,27 +5,41 @@
 
 #include "host/bench/OutputFiles.hpp"
 #include "host/util/Error.hpp"
+#include "host/util/GiToneMap.hpp"
+#include "host/vct/VctSettingsTable.hpp"
+#include "host/vct/VoxelView.hpp"
 
 namespace ml {
 
 namespace {
 
+// From the one VCT settings table (host/vct/VctSettingsTable.hpp): parsed
+// here, checked as a whole by checkGiFlags (a flag's range can depend on another's).
 void addVctFlags(CLI::App& cmd, vct::VctGiSettings& v, bool& with_reference) {
-  cmd.add_option("--voxels", v.grid.voxels, "--gi vct: level-0 voxels per axis (a power of two up to 512)")
-      ->capture_default_str();
-  cmd.add_option("--levels", v.grid.levels, "--gi vct: mip levels (1..log2(voxels) + 1)")->capture_default_str();
-  cmd.add_flag("--anisotropic", v.grid.anisotropic, "--gi vct: anisotropic voxels (6 directions per voxel)");
-  cmd.add_option("--cones", v.cones, "--gi vct: diffuse cones per pixel (1..32)")->capture_default_str();
-  cmd.add_option("--cone-aperture", v.aperture_deg, "--gi vct: diffuse cone aperture in degrees (0..180)")
-      ->capture_default_str();
-  cmd.add_option("--gi-scale", v.gi_scale, "--gi vct: trace resolution as a fraction of --size, (0, 1]")
-      ->capture_default_str();
-  cmd.add_flag("--specular", v.specular, "--gi vct: add a specular cone (reflectance 0.04, aperture 10 degrees)");
-  cmd.add_option("--vct-shadows", v.shadows,
-                 "--gi vct: visibility of the lights in the injected direct light (none; voxel is not available)")
-      ->capture_default_str();
+  const vct::VctGiSettings defaults;
+  for (const vct::VctSetting& s : vct::vctSettings()) {
+    const std::string help = "--gi vct: " + s.help;
+    auto parse = [&v, &s](const std::string& text) {
+      try {
+        s.set(v, s.key, text);
+      } catch (const UserError& e) {
+        throw CLI::ValidationError(e.what());  // reported by the parser as one line, exit 2
+      }
+    };
+    if (s.type == vct::VctSettingType::Switch)
+      cmd.add_flag_function(s.flag(), [parse](std::int64_t) { parse("on"); }, help);
+    else
+      cmd.add_option_function<std::string>(s.flag(), parse, help + " (default " + s.get(defaults) + ")");
+  }
   cmd.add_flag("--gi-reference", with_reference,
                "--gi vct: also trace the Embree reference (--gi-samples, --gi-seed) and report gi_rel_rmse");
+}
+
+void addVoxelViewFlags(CLI::App& cmd, std::string& view, unsigned& level) {
+  cmd.add_option("--voxel-view", view,
+                 std::string("--gi vct: write the voxel volume seen from the camera as cubes (") + vct::kVoxelViewNames +
+                     ") as <out>_gi_vct_voxels.exr/.png");
+  cmd.add_option("--voxel-level", level, "--voxel-view: the level shown (0..--levels - 1)")->capture_default_str();
 }
 
 }  // namespace
@@ -44,6 +58,7 @@ void addGiFlags(CLI::App& cmd, GiArgs& a) {
       ->capture_default_str();
   cmd.add_option("--gi-seed", a.seed, "--gi reference: seed of the hemisphere samples")->capture_default_str();
   addVctFlags(cmd, a.vct, a.with_reference);
+  addVoxelViewFlags(cmd, a.voxel_view, a.voxel_level);
 }
 
 std::string giOutputPath(const std::string& out, const std::string& kind, const std::string& ext) {
@@ -63,6 +78,14 @@ void checkGiFlags(const GiArgs& a, const std::string& out) {
   if (a.with_reference && a.mode != "vct") throw UserError("--gi-reference: only with --gi vct");
   if (a.with_reference && a.shadows != "none")
     throw UserError("--gi-shadows: vct injects light without visibility, so its reference must too (none)");
+  if (!a.voxel_view.empty()) {
+    vct::parseVoxelView(a.voxel_view);
+    vct::checkVoxelLevel(a.voxel_level, a.vct.grid.levels);
+    if (a.mode != "vct") throw UserError("--voxel-view: only with --gi vct");
+    if (out.empty()) throw UserError("--voxel-view: needs --out (the image is <out>_gi_vct_voxels.png)");
+  } else if (a.voxel_level != 0) {
+    throw UserError("--voxel-level: only with --voxel-view");
+  }
   if (a.mode == "none" || out.empty()) return;
   const bool reference = a.mode == "reference" || a.with_reference;
   for (const char* ext : {".exr", ".png"}) {
@@ -70,6 +93,8 @@ void checkGiFlags(const GiArgs& a, const std::string& out) {
     if (a.mode == "vct") requireImageFile("--out", giOutputPath(out, "vct", ext));
   }
   if (a.mode == "vct") requireImageFile("--out", giOutputPath(out, "vct_ao", ".png"));
+  if (!a.voxel_view.empty())
+    for (const char* ext : {".exr", ".png"}) requireImageFile("--out", giOutputPath(out, "vct_voxels", ext));
 }
 
 std::unique_ptr<GiPass> makeGiPass(const GiArgs& a, ClRuntime& cl, const Scene& scene) {
@@ -79,28 +104,13 @@ std::unique_ptr<GiPass> makeGiPass(const GiArgs& a, ClRuntime& cl, const Scene& 
 
 namespace {
 
-// c / (c + mean luminance of the covered pixels); alpha 1.
-std::vector<float> toneMapped(const std::vector<float>& rgba) {
-  double sum = 0;
-  std::size_t covered = 0;
-  for (std::size_t i = 0; i < rgba.size(); i += 4)
-    if (rgba[i + 3] > 0) {
-      sum += 0.2126 * rgba[i] + 0.7152 * rgba[i + 1] + 0.0722 * rgba[i + 2];
-      ++covered;
-    }
-  const float key = covered && sum > 0 ? float(sum / double(covered)) : 1.0f;
-  std::vector<float> px(rgba);
-  for (std::size_t i = 0; i < px.size(); ++i) px[i] = i % 4 == 3 ? 1.0f : px[i] / (px[i] + key);
-  return px;
-}
-
 // Linear EXR and tone-mapped PNG of `rgba` as <out stem>_gi_<kind>.
 void writeGiImages(const std::string& out, const std::string& kind, unsigned w, unsigned h,
                    const std::vector<float>& rgba, GiResult& r) {
   if (out.empty()) return;
   const std::string exr = giOutputPath(out, kind, ".exr"), png = giOutputPath(out, kind, ".png");
   writeImageAtomically("--out", exr, w, h, 4, rgba);
-  writeImageAtomically("--out", png, w, h, 4, toneMapped(rgba));
+  writeImageAtomically("--out", png, w, h, 4, giToneMapped(rgba));
   r.files.insert(r.files.end(), {exr, png});
 }
 
@@ -110,6 +120,21 @@ void writeAo(const std::string& out, unsigned w, unsigned h, const std::vector<f
   for (float v : ao) px.insert(px.end(), {v, v, v, 1.0f});
   r.files.push_back(giOutputPath(out, "vct_ao", ".png"));
   writeImageAtomically("--out", r.files.back(), w, h, 4, px);
+}
+
+// --voxel-view: linear EXR (alpha: hit) and the PNG as displayed.
+void writeVoxelView(const GiArgs& a, const vct::VctGiPass& pass, const Camera& camera, unsigned w, unsigned h,
+                    const std::string& out, GiResult& r) {
+  const vct::VoxelViewKind kind = vct::parseVoxelView(a.voxel_view);
+  const vct::VoxelViewCamera cam{camera.view(), camera.projection(float(w) / float(h)), w, h};
+  const std::vector<float> rgba = vct::VoxelViewPass().render(pass.pipeline().volume(), kind, a.voxel_level, cam);
+  const std::vector<float> png = vct::voxelViewDisplay(rgba, kind);
+  const std::string exr = giOutputPath(out, "vct_voxels", ".exr"), png_file = giOutputPath(out, "vct_voxels", ".png");
+  writeImageAtomically("--voxel-view", exr, w, h, 4, rgba);
+  writeImageAtomically("--voxel-view", png_file, w, h, 4, png);
+  r.files.insert(r.files.end(), {exr, png_file});
+  std::printf("voxel view: %s of level %u (%u voxels per axis)\n", a.voxel_view.c_str(), a.voxel_level,
+              a.vct.grid.voxels >> a.voxel_level);
 }
 
 }  // namespace
@@ -125,6 +150,7 @@ GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera,
     r.voxel_bytes = vct::voxelBytes(a.vct.grid);
     writeGiImages(out, "vct", width, height, vct_image, r);
     writeAo(out, width, height, v->ambientOcclusion(), r);
+    if (!a.voxel_view.empty()) writeVoxelView(a, *v, camera, width, height, out, r);
   }
   if (a.mode == "reference" || a.with_reference) {
     const IndirectOptions o{a.samples, a.seed, a.shadows == "ray"};

@@ -13,6 +13,11 @@
 // --gi-reference the Embree reference of the same transport (no visibility in
 // the bounce light: --gi-shadows none) is traced in the same run and the
 // relative RMSE of the indirect image against it reported (gi_rel_rmse).
+// --voxel-view albedo|radiance|opacity [--voxel-level k] (with --gi vct): the
+// chosen level of the voxel volume seen from the camera as cubes
+// (host/vct/VoxelView.hpp), as <out stem>_gi_vct_voxels.exr (linear, alpha 1
+// on hit voxels) and .png (radiance with the tone-map above, albedo and
+// opacity as they are).
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
@@ -36,6 +41,8 @@ struct GiArgs {
   std::uint64_t seed = kThesisSeed;
   vct::VctGiSettings vct;          // --voxels --levels --anisotropic --cones --cone-aperture --gi-scale ...
   bool with_reference = false;     // --gi-reference (with --gi vct)
+  std::string voxel_view;          // --voxel-view albedo|radiance|opacity (with --gi vct); empty: none
+  unsigned voxel_level = 0;        // --voxel-level: the level --voxel-view shows
 };
 inline constexpr unsigned kMaxGiSamples = 1u << 16;
 

@@ -55,6 +55,7 @@ class VctGiPass final : public GiPass {
   std::size_t memoryBytes() const override;  // voxel volumes (voxelBytes) + textures + images
   std::vector<float> ambientOcclusion() const;  // last frame, one float per pixel, 0 on the sky
   const VctGiSettings& settings() const { return s_; }
+  const VctPipeline& pipeline() const { return pipeline_; }  // the voxel volume, for debug views
 
  private:
   void allocate(unsigned width, unsigned height);

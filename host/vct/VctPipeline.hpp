@@ -47,6 +47,7 @@ class VctPipeline {
   void update(const SceneGpu& scene, const std::vector<gpu::PointLight>& lights, PassTimings& timings);
 
   VoxelVolume& volume() { return volume_; }
+  const VoxelVolume& volume() const { return volume_; }
   const VoxelTextures& textures() const { return textures_; }
   std::size_t voxelizations() const { return voxelizations_; }  // tests: static geometry once
   std::size_t updates() const { return updates_; }

@@ -29,6 +29,8 @@ class VoxelVolume {
 
   SharedBuffer& accum() { return *accum_; }
   SharedBuffer& radiance() { return *radiance_; }
+  const SharedBuffer& accum() const { return *accum_; }        // read-only views (debug images)
+  const SharedBuffer& radiance() const { return *radiance_; }
   SharedBuffer* anisotropic() { return aniso_.get(); }  // null unless settings().anisotropic
   std::size_t bytes() const { return voxelBytes(settings_); }
 

@@ -10,29 +10,11 @@
 
 #include "host/util/Error.hpp"
 #include "host/util/Heatmap.hpp"
+#include "host/view/PanelWidgets.hpp"
 #include "host/view/ViewerSession.hpp"
 
 namespace ml {
 namespace {
-
-// Runs a panel action; a refused value becomes the panel's error line.
-template <typename F>
-void attempt(PanelState& state, F&& action) {
-  try {
-    action();
-    state.error.clear();
-  } catch (const UserError& e) {
-    state.error = e.what();
-  }
-}
-
-bool inputText(const char* label, std::string& text) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, "%s", text.c_str());
-  const bool done = ImGui::InputText(label, buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue);
-  text = buf;
-  return done;
-}
 
 bool isSoftwareGl(const std::string& gl) {
   for (const char* name : {"llvmpipe", "softpipe", "SwiftShader", "software"})
@@ -216,6 +198,7 @@ void drawPanel(ViewerSession& s, PanelState& state) {
   drawDevices(s);
   if (ImGui::CollapsingHeader("technique", ImGuiTreeNodeFlags_DefaultOpen)) drawTechnique(s, state);
   if (ImGui::CollapsingHeader("lights", ImGuiTreeNodeFlags_DefaultOpen)) drawLights(s, state);
+  if (ImGui::CollapsingHeader("global illumination")) drawGi(s, state);
   if (ImGui::CollapsingHeader("view", ImGuiTreeNodeFlags_DefaultOpen)) drawViewMode(s, state);
   if (ImGui::CollapsingHeader("camera")) drawCamera(s, state);
   if (ImGui::CollapsingHeader("timings", ImGuiTreeNodeFlags_DefaultOpen)) drawTimings(s);

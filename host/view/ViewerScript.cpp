@@ -22,7 +22,9 @@ const std::map<std::string, Shape>& verbs() {
       {"camera_frame", Shape::Count}, {"orbit", Shape::Pair},        {"fly", Shape::Triple},
       {"wait", Shape::Count},         {"screenshot", Shape::String}, {"screenshot_window", Shape::String},
       {"panel", Shape::Bool},         {"counts", Shape::Bool},       {"record", Shape::String},
-      {"record_save", Shape::String}, {"ratio_max", Shape::Number},  {"play", Shape::Bool}};
+      {"record_save", Shape::String}, {"ratio_max", Shape::Number},  {"play", Shape::Bool},
+      {"gi", Shape::String},          {"gi_param", Shape::Object},   {"voxel_view", Shape::String},
+      {"voxel_level", Shape::Count}};
   return v;
 }
 
@@ -146,6 +148,11 @@ void ViewerScript::run(const ScriptAction& a, ViewerSession& s, ScriptWindowActi
       if (v.get<bool>()) s.requestCounts();
     } else if (a.verb == "record") s.startRecording();
     else if (a.verb == "record_save") s.saveRecording(v.get<std::string>());
+    else if (a.verb == "gi") s.setGi(v.get<std::string>());
+    else if (a.verb == "gi_param")
+      for (const auto& [k, x] : v.items()) s.setGiParam(k, x.get<std::string>());
+    else if (a.verb == "voxel_view") s.setVoxelView(v.get<std::string>());
+    else if (a.verb == "voxel_level") s.setVoxelLevel(v.get<unsigned>());
   } catch (const UserError& e) {
     throw UserError(a.where + ": " + e.what());
   }

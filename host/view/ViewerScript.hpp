@@ -15,6 +15,9 @@
 //   {"screenshot_window": "w.png"}      (the window as shown, panel included)
 //   {"panel": false}                    {"counts": true}
 //   {"record": "start"}                 {"record_save": "path.json"}
+//   {"gi": "vct"}                       {"gi_param": {"voxels": "32"}}  (render's --gi vct flags, by key)
+//   {"view": "indirect"}                {"view": "voxels"}              (with gi vct)
+//   {"voxel_view": "radiance"}          {"voxel_level": 1}
 // Loading checks the file's shape (UserError naming the file and the action's
 // index); values are checked when they run, as the panel's are.
 #include <cstddef>

@@ -16,6 +16,7 @@ ViewerSession::ViewerSession(RunContext& ctx, ViewerSetup setup)
   renderer_ = std::make_unique<FrameRenderer>(*ctx_.cl, setup_.scene, setup_.width, setup_.height);
   lights_ = setup_.lights;
   renderer_->setLights(lights_);
+  gi_ = std::make_unique<ViewerGi>(*ctx_.cl, setup_.scene.bounds);
   given_ = setup_.params;
   controller_.set(cameras_.frames.front());
   setTechnique(setup_.technique);
@@ -94,7 +95,29 @@ std::vector<ViewMode> ViewerSession::viewModes() const {
                                  {"bound-heatmap", "heat map: lower bound (lights in range)"},
                                  {"ratio-map", "evaluations / lower bound"}};
   for (const DebugViewSpec& v : technique_->descriptor->debug_views) modes.push_back({v.name, v.name + " view"});
+  if (gi_->on()) modes.insert(modes.end(), {{"indirect", "indirect light (vct)"}, {"voxels", "voxels (vct)"}});
   return modes;
+}
+
+void ViewerSession::setGi(const std::string& mode) {
+  gi_->setMode(mode);
+  if (!gi_->on() && (view_mode_ == "indirect" || view_mode_ == "voxels")) view_mode_ = "shaded";
+  stale_ = true;
+}
+
+void ViewerSession::setGiParam(const std::string& key, const std::string& value) {
+  gi_->setParam(key, value);
+  stale_ = true;
+}
+
+void ViewerSession::setVoxelView(const std::string& kind) {
+  gi_->setVoxelView(kind);
+  stale_ = true;
+}
+
+void ViewerSession::setVoxelLevel(unsigned level) {
+  gi_->setVoxelLevel(level);
+  stale_ = true;
 }
 
 void ViewerSession::setViewMode(const std::string& name) {
@@ -174,7 +197,7 @@ void ViewerSession::render() {
     counts_ = last_;
     counts_requested_ = false;
   } else {
-    last_ = renderer_->render(camera, *assigner_, {technique_->pipeline, false});
+    last_ = renderer_->render(camera, *assigner_, {.pipeline = technique_->pipeline, .gi = gi_->pass()});
   }
   history_ms_.push_back(last_.passes.total());
   if (history_ms_.size() > kHistoryFrames) history_ms_.pop_front();
@@ -186,6 +209,8 @@ void ViewerSession::render() {
 std::vector<float> ViewerSession::image() {
   if (stale_ || controller_.version() != rendered_version_) render();
   if (view_mode_ == "shaded") return renderer_->targets().readColor();
+  if (view_mode_ == "indirect") return gi_->indirectImage();
+  if (view_mode_ == "voxels") return gi_->voxelImage(controller_.camera(), width(), height());
   if (const auto kind = heatmapKind()) {
     const double top = *kind == HeatmapKind::Ratio ? ratio_max_ : double(heatmap_max_);
     FrameHeatmap map = frameHeatmap(*renderer_, technique_->pipeline, {*kind, top});

@@ -22,6 +22,7 @@
 #include "host/scene/LightAnimator.hpp"
 #include "host/techniques/Registry.hpp"
 #include "host/view/CameraController.hpp"
+#include "host/view/ViewerGi.hpp"
 
 namespace ml {
 
@@ -38,8 +39,9 @@ struct ViewerSetup {
 };
 
 // A view mode: the shaded image, a heat map of the counted frame (lights
-// evaluated, lights in range = the exact lower bound, or their ratio), or a
-// debug view of the technique (DebugViewSpec name, e.g. "cluster").
+// evaluated, lights in range = the exact lower bound, or their ratio), a
+// debug view of the technique (DebugViewSpec name, e.g. "cluster"), or, with
+// gi vct, "indirect" (the indirect light) and "voxels" (ViewerGi).
 struct ViewMode {
   std::string name;   // "shaded", "heatmap", "bound-heatmap", "ratio-map", or a debug view's name
   std::string label;  // for the panel
@@ -60,6 +62,12 @@ class ViewerSession {
   void setLightCount(std::uint64_t count);
   void setAnimation(double fraction, double speed);
   void setViewMode(const std::string& name);
+  // Global illumination (ViewerGi): none|vct, a VCT setting by key, the voxel view.
+  void setGi(const std::string& mode);
+  void setGiParam(const std::string& key, const std::string& value);
+  void setVoxelView(const std::string& kind);
+  void setVoxelLevel(unsigned level);
+  const ViewerGi& gi() const { return *gi_; }
   void setHeatmapMax(std::uint32_t max_value);  // the count heat maps' top; 0: the frame's maximum
   void setRatioMax(double max_ratio);           // the ratio map's top (above 1; UserError otherwise)
   void setCameraFrame(std::size_t index);
@@ -106,6 +114,7 @@ class ViewerSession {
   ViewerSetup setup_;
   std::unique_ptr<FrameRenderer> renderer_;
   std::unique_ptr<LightAssigner> assigner_;
+  std::unique_ptr<ViewerGi> gi_;
   const TechniqueInfo* technique_ = nullptr;
   std::map<std::string, std::string> given_;  // parameter values set so far, by key (shared keys carry over)
   ParamValues params_;

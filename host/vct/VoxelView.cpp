@@ -1,0 +1,86 @@
+#include "host/vct/VoxelView.hpp"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+
+#include "gl/GlCheck.hpp"
+#include "host/util/Error.hpp"
+#include "host/util/GiToneMap.hpp"
+
+namespace ml::vct {
+namespace {
+
+constexpr unsigned kGroup = 8;  // voxel_view.comp's local size per axis
+
+}  // namespace
+
+VoxelViewKind parseVoxelView(const std::string& name) {
+  if (name == "albedo") return VoxelViewKind::Albedo;
+  if (name == "radiance") return VoxelViewKind::Radiance;
+  if (name == "opacity") return VoxelViewKind::Opacity;
+  throw UserError(std::string("--voxel-view: expected ") + kVoxelViewNames + ", got '" + name + "'");
+}
+
+const char* voxelViewName(VoxelViewKind kind) {
+  switch (kind) {
+    case VoxelViewKind::Albedo: return "albedo";
+    case VoxelViewKind::Radiance: return "radiance";
+    case VoxelViewKind::Opacity: return "opacity";
+  }
+  return "?";
+}
+
+void checkVoxelLevel(unsigned level, unsigned levels) {
+  if (level >= levels)
+    throw UserError("--voxel-level: expected 0.." + std::to_string(levels - 1) + " (below --levels " +
+                    std::to_string(levels) + "), got " + std::to_string(level));
+}
+
+std::vector<float> voxelViewDisplay(const std::vector<float>& rgba, VoxelViewKind kind) {
+  std::vector<float> px = kind == VoxelViewKind::Radiance ? giToneMapped(rgba) : rgba;
+  for (std::size_t i = 3; i < px.size(); i += 4) px[i] = 1.0f;
+  return px;
+}
+
+VoxelViewPass::VoxelViewPass() : program_({"voxel_view.comp"}) {}
+
+std::vector<float> VoxelViewPass::render(const VoxelVolume& volume, VoxelViewKind kind, unsigned level,
+                                         const VoxelViewCamera& camera) {
+  const gpu::VoxelGridParams& grid = volume.params();
+  checkVoxelLevel(level, grid.levels);
+  const unsigned w = camera.width, h = camera.height;
+  GLuint image = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &image);
+  glTextureStorage2D(image, 1, GL_RGBA32F, static_cast<GLsizei>(w), static_cast<GLsizei>(h));
+  // Poisoned: a pixel the shader skipped reads NaN, not whatever the storage held.
+  const float nan[4] = {std::nanf(""), std::nanf(""), std::nanf(""), std::nanf("")};
+  glClearTexImage(image, 0, GL_RGBA, GL_FLOAT, nan);
+  glCheck("creating the voxel view image");
+  const glm::mat4 inv_vp = glm::inverse(camera.proj * camera.view);
+  const glm::vec3 eye = glm::vec3(glm::inverse(camera.view)[3]);
+  const gpu::ml_float4& ovs = grid.origin_voxel_size;
+  program_.use();
+  program_.set("u_inv_view_proj", glm::value_ptr(inv_vp));
+  program_.set3("u_eye", eye.x, eye.y, eye.z);
+  program_.set4("u_origin_voxel_size", ovs.x, ovs.y, ovs.z, ovs.w);
+  program_.set("u_edge", grid.edge);
+  program_.set("u_level", level);
+  program_.set("u_offset", gpu::voxel_level_offset(grid.edge, level));
+  program_.set("u_kind", static_cast<unsigned>(kind));
+  program_.setU2("u_size", w, h);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, volume.radiance().gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, volume.accum().gl());
+  glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glDispatchCompute((w + kGroup - 1) / kGroup, (h + kGroup - 1) / kGroup, 1);
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  std::vector<float> px(std::size_t(w) * h * 4);
+  glGetTextureImage(image, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(px.size() * sizeof(float)), px.data());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+  glDeleteTextures(1, &image);
+  glCheck("voxel view");
+  return px;
+}
+
+}  // namespace ml::vct

@@ -1,0 +1,75 @@
+// `manylights view` with voxel cone tracing, under Xvfb: a scripted session
+// turns gi vct on with settings by key (the same table as render's flags),
+// and its shaded frame, its "indirect" view and its "voxels" view (a fresh
+// random kind and level) equal `render --gi vct` of the same camera: the
+// frame, <out>_gi_vct.png and <out>_gi_vct_voxels.png, within the render
+// tests' tolerance (expectSameImage). Refused values name the action and
+// the flag, exit 2.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include "view_support.hpp"
+
+namespace ml {
+namespace {
+
+using nlohmann::json;
+
+TEST(ViewVct, FrameIndirectAndVoxelViewsEqualRender) {
+  if (!test::haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (Debian package xvfb): the viewer cannot be tested";
+  const std::string dir = test::tempDir() + "/view_vct";
+  std::filesystem::create_directories(dir);
+  const unsigned seed = std::random_device{}();
+  std::printf("view vct test seed %u\n", seed);
+  std::mt19937 rng(seed);
+  const char* kinds[] = {"albedo", "radiance", "opacity"};
+  const std::string kind = kinds[rng() % 3];
+  // Level 0's opacity is 1 wherever a surface is, and from inside the default
+  // scene's rooms level 2's 8^3 voxels can all read the same opacity: flat
+  // images, which expectSameImage refuses. Opacity at level 1, the others at 0 or 1.
+  const unsigned level = kind == std::string("opacity") ? 1 : rng() % 2;
+  const float yaw = std::uniform_real_distribution<float>(-30.0f, 30.0f)(rng);
+  SCOPED_TRACE("voxel view " + kind + " level " + std::to_string(level) + " yaw " + std::to_string(yaw));
+  const json script = json::array(
+      {{{"technique", "tiled-deferred"}}, {{"orbit", {yaw, 0.0}}}, {{"record", "start"}}, {{"gi", "vct"}},
+       {{"gi_param", {{"voxels", "32"}, {"levels", "3"}}}}, {{"wait", 1}}, {{"screenshot", dir + "/view.png"}},
+       {{"view", "indirect"}}, {{"wait", 1}}, {{"screenshot", dir + "/view_indirect.png"}},
+       {{"voxel_view", kind}}, {{"voxel_level", level}}, {{"view", "voxels"}}, {{"wait", 1}},
+       {{"screenshot", dir + "/view_voxels.png"}}, {{"record_save", dir + "/camera.json"}}});
+  const test::CommandResult v = test::runViewScript(script, "vct");
+  ASSERT_EQ(v.exit_code, 0) << v.out << v.err;
+  const auto r = test::runManylights("render --technique tiled-deferred " + std::string(test::kViewFrame) +
+                                     " --camera " + dir + "/camera.json --frames 1 --gi vct --voxels 32 --levels 3"
+                                     " --voxel-view " + kind + " --voxel-level " + std::to_string(level) +
+                                     " --out " + dir + "/render.png");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  test::expectSameImage(dir + "/view.png", dir + "/render.png");
+  test::expectSameImage(dir + "/view_indirect.png", dir + "/render_gi_vct.png");
+  test::expectSameImage(dir + "/view_voxels.png", dir + "/render_gi_vct_voxels.png");
+}
+
+TEST(ViewVct, RefusedSettingsNameTheActionAndTheFlag) {
+  if (!test::haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (Debian package xvfb): the viewer cannot be tested";
+  struct Case {
+    json action;
+    std::string mention;
+  };
+  const Case cases[] = {{{{"gi_param", {{"voxels", "33"}}}}, "--voxels"},
+                        {{{"gi_param", {{"cones", "many"}}}}, "--cones"},
+                        {{{"gi_param", {{"bogus", "1"}}}}, "bogus"},
+                        {{{"voxel_level", 4}}, "--voxel-level"},
+                        {{{"gi", "path-tracing"}}, "gi"}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.action.dump());
+    const auto r = test::runViewScript(json::array({{{"gi", "vct"}}, {{"wait", 1}}, c.action}), "vct_refused");
+    EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+    EXPECT_NE(r.err.find("action 2"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.mention), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace ml
