@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""Error against time of voxel cone tracing: the Pareto front users pick a setting from.
+
+  plot_vct.py FRAME_JSON --out DIR [--load LOAD_TXT]
+
+Reads the records of `manylights-vct-bench --frame --json FRAME_JSON` (one per
+scene x voxels x isotropic/anisotropic x cone count: every vct pass in ms and
+`gi_rel_rmse` against the Embree reference) and writes into DIR:
+  vct_error_vs_time.png  per scene, relative RMSE of the indirect image against
+                         the per-frame VCT time (every pass but the one-off
+                         voxelization), colour = volume kind, marker = grid
+                         size, label = cone count, the Pareto front as a line;
+  vct_pareto.md          the front's settings as a table.
+"""
+import argparse
+import json
+import os
+import sys
+
+PER_FRAME = ("vct-lists", "vct-inject", "vct-mips", "vct-textures", "vct-trace", "vct-upsample")
+REQUIRED = ("scene", "voxels", "anisotropic", "cones", "gi_rel_rmse") + PER_FRAME
+
+
+def load(path):
+    with open(path) as f:
+        recs = json.load(f)
+    if not isinstance(recs, list) or not recs:
+        sys.exit(f"plot_vct.py: {path}: expected the non-empty record list of manylights-vct-bench --frame --json")
+    for i, r in enumerate(recs):
+        missing = [k for k in REQUIRED if k not in r]
+        if missing:
+            sys.exit(f"plot_vct.py: {path}: record {i} lacks {', '.join(missing)} (not a --frame sweep?)")
+    return recs
+
+
+def frame_ms(r):
+    return sum(r[p] for p in PER_FRAME)
+
+
+def pareto(recs):
+    """Records no other record beats in both time and error, fastest first."""
+    front, best = [], float("inf")
+    for r in sorted(recs, key=lambda r: (frame_ms(r), r["gi_rel_rmse"])):
+        if r["gi_rel_rmse"] < best:
+            front.append(r)
+            best = r["gi_rel_rmse"]
+    return front
+
+
+def plot(by_scene, out_png, load_line):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    markers = {32: "o", 64: "s", 128: "^", 256: "D"}
+    fig, axes = plt.subplots(1, len(by_scene), figsize=(6 * len(by_scene), 4.5), squeeze=False)
+    for ax, (scene, recs) in zip(axes[0], sorted(by_scene.items())):
+        for r in recs:
+            colour = "tab:blue" if r["anisotropic"] else "tab:orange"
+            ax.scatter(frame_ms(r), r["gi_rel_rmse"], c=colour, marker=markers.get(r["voxels"], "x"), s=36)
+            ax.annotate(str(r["cones"]), (frame_ms(r), r["gi_rel_rmse"]), fontsize=7,
+                        xytext=(3, 3), textcoords="offset points")
+        front = pareto(recs)
+        ax.plot([frame_ms(r) for r in front], [r["gi_rel_rmse"] for r in front], "k--", lw=1, label="Pareto front")
+        for kind, colour in (("anisotropic", "tab:blue"), ("isotropic", "tab:orange")):
+            ax.scatter([], [], c=colour, label=kind)
+        for edge, m in markers.items():
+            if any(r["voxels"] == edge for r in recs):
+                ax.scatter([], [], c="grey", marker=m, label=f"{edge}^3")
+        ax.set_xscale("log")
+        ax.set_xlabel("VCT time per frame, ms (all passes but voxelization)")
+        ax.set_ylabel("relative RMSE of the indirect image")
+        ax.set_title(f"{scene} (labels: cone count)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    if load_line:
+        fig.text(0.01, 0.01, load_line, fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=110)
+
+
+def write_table(by_scene, out_md):
+    lines = ["| scene | voxels | volume | cones | VCT ms/frame | rel RMSE | MB |", "|---|---|---|---:|---:|---:|---:|"]
+    for scene, recs in sorted(by_scene.items()):
+        for r in pareto(recs):
+            lines.append(f"| {scene} | {r['voxels']}^3 | {'aniso' if r['anisotropic'] else 'iso'} | {r['cones']} | "
+                         f"{frame_ms(r):.1f} | {r['gi_rel_rmse']:.4f} | {r.get('voxel_bytes', 0) / 1e6:.1f} |")
+    with open(out_md, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("frame_json")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--load", help="a file with the machine's load (uptime) during the run, printed on the plot")
+    a = ap.parse_args()
+    by_scene = {}
+    for r in load(a.frame_json):
+        by_scene.setdefault(r["scene"], []).append(r)
+    os.makedirs(a.out, exist_ok=True)
+    load_line = open(a.load).read().strip() if a.load else ""
+    write_table(by_scene, os.path.join(a.out, "vct_pareto.md"))
+    plot(by_scene, os.path.join(a.out, "vct_error_vs_time.png"), load_line)
+    print(f"wrote {a.out}/vct_error_vs_time.png and {a.out}/vct_pareto.md")
+
+
+if __name__ == "__main__":
+    main()
