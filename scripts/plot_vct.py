@@ -73,8 +73,8 @@ def plot(by_scene, out_png, load_line):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
     if load_line:
-        fig.text(0.01, 0.01, load_line, fontsize=7)
-    fig.tight_layout()
+        fig.text(0.01, 0.01, "load: " + " / ".join(l.strip() for l in load_line.splitlines()), fontsize=7)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
     fig.savefig(out_png, dpi=110)
 
 
