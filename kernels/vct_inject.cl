@@ -8,7 +8,10 @@
  *   opacity 1: (radiance, 1), premultiplied trivially.
  * inject_brute sums over every light (the reference); inject_hashed over the
  * hashed structure's list at the voxel centre (hashed_lookup.cl), in list
- * order. Shapes as in vct_common.cl. The C++ twin is host/vct/InjectTwin.hpp. */
+ * order. Shapes as in vct_common.cl. The C++ twin is host/vct/InjectTwin.hpp.
+ * VCT_SHADOWS=1 (--vct-shadows voxel): each light's term is multiplied by its
+ * visibility through level-0 opacity (voxel_visibility()); 0 or undefined
+ * compiles none of it, so the option costs nothing when off. */
 #pragma OPENCL FP_CONTRACT OFF
 #include "vct_common.cl"
 #include "gpu_types.h"
@@ -38,9 +41,51 @@ ML_INLINE bool resolve_voxel(__global const VoxelAccum* accum, uint i, float4 or
   return true;
 }
 
-ML_INLINE float3 add_light(float3 acc, const Surfel* s, __global const PointLight* l) {
+/* The level-0 grid the visibility march reads: filled voxels are opaque. */
+typedef struct VoxelOccupancy {
+  __global const VoxelAccum* accum;
+  float4 origin_size;
+  uint edge_log2;
+} VoxelOccupancy;
+
+#if VCT_SHADOWS
+/* Hard visibility of light position `lp` from surfel `s`: 0 when a filled
+ * level-0 voxel (opacity 1, so a soft product of (1 - opacity) would give the
+ * same) lies on the segment from a = p + n * voxel size (one voxel off the
+ * surface, so the voxel does not shadow itself) to the light, sampled at the
+ * midpoints of `steps` equal parts, steps = ceil(2 * dominant-axis span /
+ * voxel size): at most half a voxel apart along every axis, so no voxel the
+ * segment crosses deeply is skipped, and the last sample stops within half a
+ * voxel of the light. Samples outside the grid are empty. Same operations as
+ * the twin's voxelVisibility(). */
+ML_INLINE float voxel_visibility(const VoxelOccupancy* g, const Surfel* s, float3 lp) {
+  const float h = g->origin_size.w;
+  const float ax = s->p.x + s->n.x * h, ay = s->p.y + s->n.y * h, az = s->p.z + s->n.z * h;
+  const float dx = lp.x - ax, dy = lp.y - ay, dz = lp.z - az;
+  const float span = fmax(fabs(dx), fmax(fabs(dy), fabs(dz)));
+  const uint steps = (uint)ceil(2.0f * span / h);
+  const int edge = 1 << g->edge_log2;
+  for (uint k = 0; k < steps; ++k) {
+    const float t = ((float)k + 0.5f) / (float)steps;
+    const int x = (int)floor((ax + dx * t - g->origin_size.x) / h);
+    const int y = (int)floor((ay + dy * t - g->origin_size.y) / h);
+    const int z = (int)floor((az + dz * t - g->origin_size.z) / h);
+    if (x < 0 || y < 0 || z < 0 || x >= edge || y >= edge || z >= edge) continue;
+    const uint i = ((uint)z << (2u * g->edge_log2)) | ((uint)y << g->edge_log2) | (uint)x;
+    if (g->accum[i].albedo_count[3] != 0u) return 0.0f;
+  }
+  return 1.0f;
+}
+#endif
+
+ML_INLINE float3 add_light(float3 acc, const Surfel* s, __global const PointLight* l, const VoxelOccupancy* g) {
   const float4 pr = l->position_radius, c = l->color;
-  const float w = ml_light_weight(pr.x, pr.y, pr.z, pr.w, s->p.x, s->p.y, s->p.z, s->n.x, s->n.y, s->n.z);
+  float w = ml_light_weight(pr.x, pr.y, pr.z, pr.w, s->p.x, s->p.y, s->p.z, s->n.x, s->n.y, s->n.z);
+#if VCT_SHADOWS
+  if (w > 0.0f) w = w * voxel_visibility(g, s, pr.xyz);
+#else
+  (void)g;
+#endif
   return (float3)(acc.x + c.x * w, acc.y + c.y * w, acc.z + c.z * w);
 }
 
@@ -56,15 +101,16 @@ ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, uint i, float4 o
                               __global const PointLight* lights, uint n_lights, const HsBuffers* hb) {
   Surfel s;
   if (!resolve_voxel(accum, i, origin_size, edge_log2, &s)) return (float4)(0.0f);
+  const VoxelOccupancy g = {accum, origin_size, edge_log2};
   float3 acc = (float3)(0.0f);
   if (hb) {
     HsList hl = hs_list_for(hb, s.p);
     while (hl.offset < hl.end) {
       uint light;
-      if (hs_next(hb, &hl, &light)) acc = add_light(acc, &s, lights + light);
+      if (hs_next(hb, &hl, &light)) acc = add_light(acc, &s, lights + light, &g);
     }
   } else {
-    for (uint l = 0; l < n_lights; ++l) acc = add_light(acc, &s, lights + l);
+    for (uint l = 0; l < n_lights; ++l) acc = add_light(acc, &s, lights + l, &g);
   }
   return lit(&s, acc);
 }

@@ -76,9 +76,11 @@ TEST(Cli, BadVctFlags) {
   expectUserError(runManylights(vct + "--cones 33"), "--cones");
   expectUserError(runManylights(vct + "--gi-scale 0"), "--gi-scale");
   expectUserError(runManylights(vct + "--gi-scale 1.5"), "--gi-scale");
-  expectUserError(runManylights(vct + "--vct-shadows voxel"), "--vct-shadows");
   expectUserError(runManylights(vct + "--vct-shadows ray"), "--vct-shadows");
+  // The reference must model vct's transport: ray with voxel shadows, else none.
   expectUserError(runManylights(vct + "--gi-reference --gi-shadows ray"), "--gi-shadows");
+  expectUserError(runManylights(vct + "--vct-shadows voxel --gi-reference --gi-shadows none"), "--gi-shadows");
+  expectUserError(runManylights(vct + "--vct-shadows voxel --gi-shadows bogus"), "--gi-shadows");
   expectUserError(runManylights("render --size 16x16 --gi reference --gi-reference"), "--gi-reference");
   expectUserError(runManylights(vct + "--no-shading"), "--gi");
 }

@@ -5,6 +5,9 @@
 // weights broken (each 1 instead of pi / count) or the mip filter broken
 // (cones sample level 0 only) must exceed it. The bound comes from
 // measurement (see docs/vct-compute.md), with margin.
+// With --vct-shadows voxel (visibility through level-0 opacity) against the
+// reference with visibility from the bounce points (--gi-shadows ray): under
+// kCornellShadowBound, and through the command with the transports reported.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -28,12 +31,13 @@ namespace {
 
 constexpr unsigned kW = 160, kH = 90;
 constexpr double kCornellBound = 0.45;  // measured 0.337 (64^3 x 4, anisotropic, 9 x 45 deg, scale 0.5)
+constexpr double kCornellShadowBound = 0.45;  // measured 0.340 (same settings, --vct-shadows voxel)
 
 struct Cornell {
   Scene scene;
   std::vector<gpu::PointLight> lights;
   Camera camera;
-  std::vector<float> reference;
+  std::vector<float> reference, shadowed_reference;  // --gi-shadows none, ray (traced on first use)
   Cornell() {
     const std::string dir = std::string(MANYLIGHTS_TEST_DATA_DIR) + "/cornell/";
     scene = loadGltfScene(dir + "cornell.gltf");
@@ -41,16 +45,23 @@ struct Cornell {
     camera = loadCameraJson(dir + "camera.json").frames.front();
     reference = traceIndirectReference(scene, lights, camera, kW, kH, {256, 23, false}).rgba;
   }
+  const std::vector<float>& referenceFor(const VctGiSettings& s) {
+    if (s.shadows != "voxel") return reference;
+    if (shadowed_reference.empty())
+      shadowed_reference = traceIndirectReference(scene, lights, camera, kW, kH, {256, 23, true}).rgba;
+    return shadowed_reference;
+  }
 };
 
-const Cornell& cornell() {
+Cornell& cornell() {
   static Cornell c;
   return c;
 }
 
 IndirectError vctError(const VctGiSettings& s, Pipeline pipeline = Pipeline::Deferred) {
   test::glContext();
-  const Cornell& c = cornell();
+  Cornell& c = cornell();
+  const std::vector<float>& reference = c.referenceFor(s);
   FrameRenderer r(test::runtime(), c.scene, kW, kH);
   r.setLights(c.lights);
   BruteForceAssigner brute;
@@ -60,11 +71,11 @@ IndirectError vctError(const VctGiSettings& s, Pipeline pipeline = Pipeline::Def
   const std::vector<float> img = gi.indirectRgba();
   double sum = 0, ref = 0;
   for (std::size_t i = 0; i < img.size(); i += 4)
-    if (img[i + 3] > 0 && c.reference[i + 3] > 0)
-      for (int k = 0; k < 3; ++k) sum += img[i + k], ref += c.reference[i + k];
-  const IndirectError e = indirectRelRmse(img, c.reference);
-  std::printf("voxels %u levels %u aniso %d cones %u aperture %g scale %g broken %d: rel RMSE %.4f, mean ratio %.3f\n",
-              s.grid.voxels, s.grid.levels, int(s.grid.anisotropic), s.cones, double(s.aperture_deg),
+    if (img[i + 3] > 0 && reference[i + 3] > 0)
+      for (int k = 0; k < 3; ++k) sum += img[i + k], ref += reference[i + k];
+  const IndirectError e = indirectRelRmse(img, reference);
+  std::printf("shadows %s voxels %u levels %u aniso %d cones %u aperture %g scale %g broken %d: rel RMSE %.4f, mean ratio %.3f\n",
+              s.shadows.c_str(), s.grid.voxels, s.grid.levels, int(s.grid.anisotropic), s.cones, double(s.aperture_deg),
               double(s.gi_scale), int(s.broken), e.rel_rmse, ref > 0 ? sum / ref : 0.0);
   return e;
 }
@@ -83,27 +94,60 @@ TEST(VctCornell, IndirectImageIsNearTheReferenceAndBrokenTracesAreNot) {
   EXPECT_GT(vctError(s).rel_rmse, kCornellBound) << "a broken mip filter passes the bound";
 }
 
-// The command (this build's binary, a separate process): the frame, the
-// indirect image, its ambient occlusion and the reference are written, and the
-// stats JSON has the vct passes, voxel_bytes and gi_rel_rmse under the bound.
-TEST(VctCornell, RenderCommandReportsTheErrorAndThePasses) {
-  test::TempDir tmp;
+TEST(VctCornell, VoxelShadowsAreNearTheShadowedReference) {
+  VctGiSettings s;
+  s.grid.anisotropic = true;
+  s.shadows = "voxel";
+  const IndirectError e = vctError(s);
+  EXPECT_GT(e.pixels, kW * kH / 2);
+  EXPECT_EQ(e.mismatched, 0u);
+  EXPECT_LT(e.rel_rmse, kCornellShadowBound);
+}
+
+// Runs this build's binary on the Cornell box with --gi vct --anisotropic
+// --gi-reference and `extra`, writing f.png and f.json into `tmp`.
+nlohmann::json renderCornell(const test::TempDir& tmp, const std::string& extra) {
   const std::string dir = std::string(MANYLIGHTS_TEST_DATA_DIR) + "/cornell/";
   const std::string out = tmp.file("f.png"), stats = tmp.file("f.json");
   const auto r = test::runManylights("render --scene " + dir + "cornell.gltf --lights " + dir + "lights.json --camera " +
                                      dir + "camera.json --technique tiled-forward --size 160x90 --frames 1 --warmup 0 "
                                      "--gi vct --anisotropic --gi-reference --gi-samples 64 --out " + out +
-                                     " --stats-json " + stats);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+                                     " --stats-json " + stats + extra);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  if (r.exit_code != 0) return nullptr;
+  return nlohmann::json::parse(std::ifstream(stats));
+}
+
+// The command (this build's binary, a separate process): the frame, the
+// indirect image, its ambient occlusion and the reference are written, and the
+// stats JSON has the vct passes, voxel_bytes and gi_rel_rmse under the bound.
+TEST(VctCornell, RenderCommandReportsTheErrorAndThePasses) {
+  test::TempDir tmp;
+  const auto j = renderCornell(tmp, "");
+  ASSERT_FALSE(j.is_null());
   for (const char* f : {"f_gi_vct.exr", "f_gi_vct.png", "f_gi_vct_ao.png", "f_gi_reference.exr", "f.png"})
     EXPECT_TRUE(std::filesystem::exists(tmp.file(f))) << f;
-  const auto j = nlohmann::json::parse(std::ifstream(stats));
   for (const char* pass : {"vct-voxelize", "vct-inject", "vct-mips", "vct-trace", "vct-upsample"})
     EXPECT_TRUE(j.at("passes").contains(pass)) << pass;
   EXPECT_EQ(j.at("voxel_bytes").get<std::size_t>(), voxelBytes({64, 4, true}));
   EXPECT_GT(j.at("gi_rel_rmse").get<double>(), 0.0);
   EXPECT_LT(j.at("gi_rel_rmse").get<double>(), kCornellBound);
   EXPECT_EQ(j.at("gi_vct").at("cones").get<int>(), 9);
+  EXPECT_EQ(j.at("gi_shadows"), "none");
+}
+
+// --vct-shadows voxel: the reference is traced with --gi-shadows ray unasked,
+// both transports say so, and the error stays under its bound.
+TEST(VctCornell, RenderCommandWithVoxelShadowsTracesTheShadowedReference) {
+  test::TempDir tmp;
+  const auto j = renderCornell(tmp, " --vct-shadows voxel");
+  ASSERT_FALSE(j.is_null());
+  EXPECT_EQ(j.at("gi_vct").at("vct_shadows"), "voxel");
+  EXPECT_EQ(j.at("gi_shadows"), "ray");
+  EXPECT_NE(j.at("gi_transport").get<std::string>().find("--vct-shadows voxel"), std::string::npos);
+  EXPECT_NE(j.at("gi_reference_transport").get<std::string>().find("--gi-shadows ray"), std::string::npos);
+  EXPECT_GT(j.at("gi_rel_rmse").get<double>(), 0.0);
+  EXPECT_LT(j.at("gi_rel_rmse").get<double>(), kCornellShadowBound);
 }
 
 }  // namespace

@@ -8,6 +8,13 @@
 //  - the OpenCL port of the hashed lookup returns LinklessOctree::lookup()'s
 //    range and octant for random points in and around the octree.
 //  - a known value pins the shading model itself.
+//  - with voxel shadows (VCT_SHADOWS, InjectTwin's shadows = true): brute
+//    force and hashed equal the twin on sparse random volumes (shadowed and
+//    lit terms both occur, checked), and a closed wall between a light and
+//    the far side zeroes the far side's light and leaves the near side's
+//    bit for bit. The visibility is a discrete decision, so the twin is
+//    compared bit-exactly only where the device divides correctly (as
+//    above); elsewhere a sample landing on a voxel face may flip it.
 // Tolerance: bit-exact where the device divides and takes square roots
 // correctly rounded (support/FpTolerance.hpp); elsewhere (and always for the
 // hashed order) |got - want| <= 1e-5 * S per component, S = albedo * 0.9 *
@@ -47,11 +54,12 @@ gpu::VoxelGridParams randomGrid(unsigned edge, std::mt19937_64& rng) {
   return g;
 }
 
-// About half the voxels filled; 1 in 10 filled ones with a zero normal sum.
-std::vector<gpu::VoxelAccum> randomAccum(unsigned edge, std::mt19937_64& rng) {
+// 1 in `fill` voxels filled (about half by default); 1 in 10 filled ones
+// with a zero normal sum.
+std::vector<gpu::VoxelAccum> randomAccum(unsigned edge, std::mt19937_64& rng, unsigned fill = 2) {
   std::vector<gpu::VoxelAccum> a(std::size_t(edge) * edge * edge, gpu::VoxelAccum{});
   for (auto& v : a) {
-    if (rng() % 2) continue;
+    if (rng() % fill) continue;
     const unsigned count = 1 + rng() % 40;
     v.albedo_count[3] = count;
     for (int c = 0; c < 3; ++c) v.albedo_count[c] = unsigned(rng() % (255 * count + 1));
@@ -119,28 +127,33 @@ struct Case {
 class VctInject : public ::testing::TestWithParam<KernelShape> {
  protected:
   // Brute force and hashed on the device for `c`, each against the twin.
-  void check(const Case& c) {
+  // Returns the brute-force output.
+  std::vector<F4> check(const Case& c, bool shadows = false) {
     auto& rt = test::runtime();
     auto& q = rt.queue();
-    const auto want = injectTwin(c.accum, c.grid, c.lights);
+    VoxelInjector& injector = shadows ? shadowed_ : injector_;
+    const auto want = injectTwin(c.accum, c.grid, c.lights, shadows);
     const auto scale = toleranceScale(c.accum, c.grid, c.lights);
     cl::Buffer accum = compute::upload(rt.context(), q, c.accum);
     cl::Buffer lights = compute::upload(rt.context(), q, c.lights);
     cl::Buffer out(rt.context(), CL_MEM_READ_WRITE, want.size() * 16);
     compute::poison(q, out);
-    injector_.brute(q, c.grid, accum, lights, c.lights.size(), out);
-    EXPECT_EQ(compare(compute::download<F4>(q, out, want.size()), want, scale, test::exactDivideSqrt()), "")
-        << "brute force";
-    if (c.lights.empty()) return;  // the hashed structure needs lights to bound
+    injector.brute(q, c.grid, accum, lights, c.lights.size(), out);
+    const auto brute = compute::download<F4>(q, out, want.size());
+    EXPECT_EQ(compare(brute, want, scale, test::exactDivideSqrt()), "") << "brute force, shadows " << shadows;
+    if (c.lights.empty()) return brute;  // the hashed structure needs lights to bound
     hashed::HashedStructure hs(hashed::HashedConfig{});
     hs.build(c.lights);
     lists_.upload(q, hs.linkless());
     compute::poison(q, out);
-    injector_.hashed(q, c.grid, accum, lights, c.lights.size(), lists_, out);
-    EXPECT_EQ(compare(compute::download<F4>(q, out, want.size()), want, scale, false), "") << "hashed lists";
+    injector.hashed(q, c.grid, accum, lights, c.lights.size(), lists_, out);
+    EXPECT_EQ(compare(compute::download<F4>(q, out, want.size()), want, scale, false), "")
+        << "hashed lists, shadows " << shadows;
+    return brute;
   }
   compute::ComputeEnv env_{test::runtime()};
   VoxelInjector injector_{env_, compute::Options{.shape = GetParam()}};
+  VoxelInjector shadowed_{env_, compute::Options{.shape = GetParam()}, true};
   HashedListsCl lists_{env_};
 };
 
@@ -156,6 +169,66 @@ TEST_P(VctInject, MatchesTwinOnRandomVolumes) {
       c.lights = randomLights(lights, c.grid, rng);
       check(c);
     }
+}
+
+// Sparse volumes (1 in 12 voxels filled) so that some lights are hidden and
+// some seen; over the whole test both must occur, else it proves little.
+TEST_P(VctInject, VoxelShadowsMatchTwinOnRandomVolumes) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const unsigned largest = test::smallTests() ? 8 : 32;
+  std::size_t dimmed = 0, kept = 0;
+  for (unsigned edge = 1; edge <= largest; edge *= 2)
+    for (std::size_t lights : {0, 1, 2, 7, 100}) {
+      SCOPED_TRACE("edge=" + std::to_string(edge) + " lights=" + std::to_string(lights));
+      Case c{randomAccum(edge, rng, 12), randomGrid(edge, rng), {}};
+      c.lights = randomLights(lights, c.grid, rng);
+      check(c, true);
+      const auto lit = injectTwin(c.accum, c.grid, c.lights), shadowed = injectTwin(c.accum, c.grid, c.lights, true);
+      for (std::size_t i = 0; i < lit.size(); ++i) {
+        const float a = lit[i].x + lit[i].y + lit[i].z, b = shadowed[i].x + shadowed[i].y + shadowed[i].z;
+        dimmed += b < a;
+        kept += b > 0 && b == a;
+      }
+    }
+  EXPECT_GT(dimmed, 0u) << "no voxel lost light to a shadow";
+  EXPECT_GT(kept, 0u) << "no lit voxel kept all its light";
+}
+
+// A closed wall (every voxel of the plane x = 4 of an 8^3 grid, facing -x)
+// with a light at x = 2.5: receivers at x = 6 facing the light get nothing,
+// those at x = 0 facing it and the wall itself keep their unshadowed light
+// exactly, through brute force and the hashed lists.
+TEST_P(VctInject, ClosedWallHidesTheFarSideOnly) {
+  Case c{std::vector<gpu::VoxelAccum>(512, gpu::VoxelAccum{}), gpu::VoxelGridParams{}, {}};
+  c.grid.origin_voxel_size = {0, 0, 0, 1};
+  c.grid.edge = 8;
+  c.grid.levels = 1;
+  const auto fill = [&](unsigned x, unsigned y, unsigned z, int nx) {
+    auto& v = c.accum[(z * 8 + y) * 8 + x];
+    v.albedo_count[0] = v.albedo_count[1] = v.albedo_count[2] = 200;
+    v.albedo_count[3] = 1;
+    v.normal_sum[0] = nx * 1024;
+  };
+  for (unsigned y = 0; y < 8; ++y)
+    for (unsigned z = 0; z < 8; ++z) fill(4, y, z, -1);
+  for (unsigned y = 1; y < 7; ++y)
+    for (unsigned z = 1; z < 7; ++z) fill(0, y, z, 1), fill(6, y, z, -1);
+  c.lights = {makeLight({2.5f, 4.0f, 4.0f}, 30.0f, {1.0f, 0.8f, 0.6f})};
+  const auto lit = check(c, false), shadowed = check(c, true);
+  for (unsigned i = 0; i < 512; ++i) {
+    const unsigned x = i % 8;
+    if (c.accum[i].albedo_count[3] == 0) continue;
+    SCOPED_TRACE("voxel " + std::to_string(i));
+    ASSERT_GT(lit[i].x, 0.0f) << "the unshadowed light must reach every receiver";
+    if (x == 6) {
+      EXPECT_EQ(shadowed[i].x + shadowed[i].y + shadowed[i].z, 0.0f) << "light through the wall";
+      EXPECT_EQ(shadowed[i].w, 1.0f);
+    } else {
+      EXPECT_EQ(std::memcmp(&shadowed[i], &lit[i], sizeof(F4)), 0) << "the near side changed";
+    }
+  }
 }
 
 // One light far outside the grid reaching none of it, one outside reaching in.

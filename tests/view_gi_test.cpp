@@ -42,7 +42,7 @@ TEST(ViewerGi, RefusedValuesKeepTheLastWorkingState) {
   expectRefused([&] { gi.setParam("levels", "6"); }, "--levels");
   expectRefused([&] { gi.setParam("cone-aperture", "180"); }, "--cone-aperture");
   expectRefused([&] { gi.setParam("gi-scale", "0"); }, "--gi-scale");
-  expectRefused([&] { gi.setParam("vct-shadows", "voxel"); }, "--vct-shadows");
+  expectRefused([&] { gi.setParam("vct-shadows", "ray"); }, "--vct-shadows");
   expectRefused([&] { gi.setParam("anisotropic", "maybe"); }, "--anisotropic");
   expectRefused([&] { gi.setParam("bogus", "1"); }, "bogus");
   expectRefused([&] { gi.setMode("path-tracing"); }, "gi");

@@ -54,8 +54,8 @@ void addGiFlags(CLI::App& cmd, GiArgs& a) {
                                                 std::to_string(kMaxGiSamples) + ")")
       ->capture_default_str();
   cmd.add_option("--gi-shadows", a.shadows,
-                 "--gi reference: visibility of the lights from the bounce points (none|ray)")
-      ->capture_default_str();
+                 "--gi reference: visibility of the lights from the bounce points (none|ray; default: none, "
+                 "or ray for --gi vct --vct-shadows voxel --gi-reference)");
   cmd.add_option("--gi-seed", a.seed, "--gi reference: seed of the hemisphere samples")->capture_default_str();
   addVctFlags(cmd, a.vct, a.with_reference);
   addVoxelViewFlags(cmd, a.voxel_view, a.voxel_level);
@@ -67,17 +67,22 @@ std::string giOutputPath(const std::string& out, const std::string& kind, const 
   return p.string() + "_gi_" + kind + ext;
 }
 
+std::string giShadows(const GiArgs& a) {
+  if (!a.shadows.empty()) return a.shadows;
+  return a.mode == "vct" && a.vct.shadows == "voxel" ? "ray" : "none";
+}
+
 void checkGiFlags(const GiArgs& a, const std::string& out) {
   if (a.mode != "none" && a.mode != "reference" && a.mode != "vct")
     throw UserError("--gi: expected none|reference|vct, got '" + a.mode + "'");
   if (a.samples == 0 || a.samples > kMaxGiSamples)
     throw UserError("--gi-samples: expected 1.." + std::to_string(kMaxGiSamples) + ", got " + std::to_string(a.samples));
-  if (a.shadows != "none" && a.shadows != "ray")
+  if (!a.shadows.empty() && a.shadows != "none" && a.shadows != "ray")
     throw UserError("--gi-shadows: expected none|ray, got '" + a.shadows + "'");
   vct::checkVctGiSettings(a.vct);
   if (a.with_reference && a.mode != "vct") throw UserError("--gi-reference: only with --gi vct");
-  if (a.with_reference && a.shadows != "none")
-    throw UserError("--gi-shadows: vct injects light without visibility, so its reference must too (none)");
+  if (a.with_reference && giShadows(a) != (a.vct.shadows == "voxel" ? "ray" : "none"))
+    throw UserError("--gi-shadows: the reference must model vct's transport (--vct-shadows none: none, voxel: ray)");
   if (!a.voxel_view.empty()) {
     vct::parseVoxelView(a.voxel_view);
     vct::checkVoxelLevel(a.voxel_level, a.vct.grid.levels);
@@ -153,11 +158,11 @@ GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera,
     if (!a.voxel_view.empty()) writeVoxelView(a, *v, camera, width, height, out, r);
   }
   if (a.mode == "reference" || a.with_reference) {
-    const IndirectOptions o{a.samples, a.seed, a.shadows == "ray"};
+    const IndirectOptions o{a.samples, a.seed, giShadows(a) == "ray"};
     const IndirectImage img = traceIndirectReference(inputs.scene, inputs.lights, camera, width, height, o);
     r.has_reference = true;
     r.ms = img.ms;
-    std::printf("\ngi reference: %u samples/pixel, shadows %s: %.1f ms\n", a.samples, a.shadows.c_str(), img.ms);
+    std::printf("\ngi reference: %u samples/pixel, shadows %s: %.1f ms\n", a.samples, giShadows(a).c_str(), img.ms);
     writeGiImages(out, "reference", width, height, img.rgba, r);
     if (!vct_image.empty()) {
       r.error = indirectRelRmse(vct_image, img.rgba);

@@ -10,9 +10,11 @@
 // every frame (the frame is direct + indirect), whatever the technique; the
 // indirect image alone is written as <out stem>_gi_vct.exr/.png (the same
 // tone-map) and its ambient occlusion as <out stem>_gi_vct_ao.png. With
-// --gi-reference the Embree reference of the same transport (no visibility in
-// the bounce light: --gi-shadows none) is traced in the same run and the
-// relative RMSE of the indirect image against it reported (gi_rel_rmse).
+// --gi-reference the Embree reference of the same transport is traced in the
+// same run (--vct-shadows none: no visibility in the bounce light, --gi-shadows
+// none; --vct-shadows voxel: --gi-shadows ray; an explicit --gi-shadows that
+// differs is refused) and the relative RMSE of the indirect image against it
+// reported (gi_rel_rmse).
 // --voxel-view albedo|radiance|opacity [--voxel-level k] (with --gi vct): the
 // chosen level of the voxel volume seen from the camera as cubes
 // (host/vct/VoxelView.hpp), as <out stem>_gi_vct_voxels.exr (linear, alpha 1
@@ -37,7 +39,7 @@ namespace ml {
 struct GiArgs {
   std::string mode = "none";       // none | reference | vct
   unsigned samples = 64;           // hemisphere samples per pixel
-  std::string shadows = "none";    // none | ray: visibility of lights from the secondary hits
+  std::string shadows;             // none | ray: visibility of lights from the secondary hits; empty: giShadows()
   std::uint64_t seed = kThesisSeed;
   vct::VctGiSettings vct;          // --voxels --levels --anisotropic --cones --cone-aperture --gi-scale ...
   bool with_reference = false;     // --gi-reference (with --gi vct)
@@ -47,6 +49,9 @@ struct GiArgs {
 inline constexpr unsigned kMaxGiSamples = 1u << 16;
 
 void addGiFlags(CLI::App& cmd, GiArgs& a);
+// The reference's --gi-shadows: as given, else the transport of --gi vct's
+// injection (ray with --vct-shadows voxel), else none.
+std::string giShadows(const GiArgs& a);
 // Before anything loads: one UserError line naming the flag. `out` is render's
 // --out; the GI files are derived from it (none without it).
 void checkGiFlags(const GiArgs& a, const std::string& out);

@@ -232,14 +232,20 @@ void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j
                    {"cones", v.cones},         {"cone_aperture", v.aperture_deg}, {"gi_scale", v.gi_scale},
                    {"specular", v.specular},   {"vct_shadows", v.shadows}};
     j["voxel_bytes"] = gi.voxel_bytes;
-    j["gi_transport"] = "one bounce, diffuse; no visibility in the injected direct light";
+    j["gi_transport"] = v.shadows == "voxel"
+                            ? "one bounce, diffuse; visibility of the lights in the injected direct light through "
+                              "level-0 voxel opacity (--vct-shadows voxel)"
+                            : "one bounce, diffuse; no visibility in the injected direct light";
   }
   if (!gi.has_reference) return;
   j["gi_samples"] = a.samples;
-  j["gi_shadows"] = a.shadows;
+  j["gi_shadows"] = giShadows(a);
   j["gi_reference_ms"] = gi.ms;
   if (a.mode == "vct") {
-    j["gi_reference_transport"] = "one bounce, diffuse; no visibility in the bounce light (--gi-shadows none)";
+    j["gi_reference_transport"] = giShadows(a) == "ray"
+                                      ? "one bounce, diffuse; visibility of the lights from the bounce points "
+                                        "(--gi-shadows ray)"
+                                      : "one bounce, diffuse; no visibility in the bounce light (--gi-shadows none)";
     j["gi_rel_rmse"] = gi.error.rel_rmse;
     j["gi_rel_rmse_pixels"] = gi.error.pixels;
   }

@@ -22,8 +22,31 @@ bool resolveVoxel(const gpu::VoxelAccum& a, unsigned i, const gpu::VoxelGridPara
   return true;
 }
 
+float voxelVisibility(const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& g, const Surfel& s,
+                      const float lp[3]) {
+  const float h = g.origin_voxel_size.w;
+  const float o[3] = {g.origin_voxel_size.x, g.origin_voxel_size.y, g.origin_voxel_size.z};
+  float a[3], d[3];
+  for (int c = 0; c < 3; ++c) {
+    a[c] = s.p[c] + s.n[c] * h;
+    d[c] = lp[c] - a[c];
+  }
+  const float span = std::fmax(std::fabs(d[0]), std::fmax(std::fabs(d[1]), std::fabs(d[2])));
+  const auto steps = static_cast<unsigned>(std::ceil(2.0f * span / h));
+  const int edge = static_cast<int>(g.edge);
+  for (unsigned k = 0; k < steps; ++k) {
+    const float t = (float(k) + 0.5f) / float(steps);
+    int v[3];
+    for (int c = 0; c < 3; ++c) v[c] = static_cast<int>(std::floor((a[c] + d[c] * t - o[c]) / h));
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= edge || v[1] >= edge || v[2] >= edge) continue;
+    const std::size_t i = (std::size_t(v[2]) * g.edge + unsigned(v[1])) * g.edge + unsigned(v[0]);
+    if (accum[i].albedo_count[3] != 0) return 0.0f;
+  }
+  return 1.0f;
+}
+
 std::vector<gpu::ml_float4> injectTwin(const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& g,
-                                       const std::vector<gpu::PointLight>& lights) {
+                                       const std::vector<gpu::PointLight>& lights, bool shadows) {
   const std::size_t n = std::size_t(g.edge) * g.edge * g.edge;
   if (accum.size() < n) throw std::invalid_argument("injectTwin: accumulation buffer smaller than the grid");
   std::vector<gpu::ml_float4> out(n, gpu::ml_float4{0, 0, 0, 0});
@@ -33,7 +56,9 @@ std::vector<gpu::ml_float4> injectTwin(const std::vector<gpu::VoxelAccum>& accum
     float acc[3] = {0, 0, 0};
     for (const gpu::PointLight& l : lights) {
       const auto& pr = l.position_radius;
-      const float w = gpu::ml_light_weight(pr.x, pr.y, pr.z, pr.w, s.p[0], s.p[1], s.p[2], s.n[0], s.n[1], s.n[2]);
+      float w = gpu::ml_light_weight(pr.x, pr.y, pr.z, pr.w, s.p[0], s.p[1], s.p[2], s.n[0], s.n[1], s.n[2]);
+      const float lp[3] = {pr.x, pr.y, pr.z};
+      if (shadows && w > 0.0f) w = w * voxelVisibility(accum, g, s, lp);
       acc[0] = acc[0] + l.color.x * w;
       acc[1] = acc[1] + l.color.y * w;
       acc[2] = acc[2] + l.color.z * w;

@@ -5,6 +5,8 @@
 // shading_model.h per light in index order). It is also what inject_hashed
 // must equal: the hashed lists hold every light that reaches a voxel centre,
 // so the two differ only in summation order (tests: relative tolerance).
+// shadows = true is the kernel built with VCT_SHADOWS (--vct-shadows voxel):
+// each light's term times voxelVisibility().
 #include <vector>
 
 #include "host/shared/gpu_types.h"
@@ -21,8 +23,14 @@ struct Surfel {
 // False (and `s` untouched) for an empty voxel.
 bool resolveVoxel(const gpu::VoxelAccum& a, unsigned i, const gpu::VoxelGridParams& g, Surfel& s);
 
+// 1 when no filled level-0 voxel lies between `s` (one voxel off its surface
+// along its normal) and the light position `lp`, else 0: the kernel's
+// voxel_visibility(), same float operations (kernels/vct_inject.cl).
+float voxelVisibility(const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& g, const Surfel& s,
+                      const float lp[3]);
+
 // One float4 per voxel: (albedo * ML_SHADE_DIRECT * sum, 1), or zero.
 std::vector<gpu::ml_float4> injectTwin(const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& g,
-                                       const std::vector<gpu::PointLight>& lights);
+                                       const std::vector<gpu::PointLight>& lights, bool shadows = false);
 
 }  // namespace ml::vct

@@ -27,6 +27,7 @@ VctPipelineOptions pipelineOptions(const VctGiSettings& s) {
   VctPipelineOptions o;
   o.grid = s.grid;
   o.brute_force = s.brute_inject;
+  o.shadows = s.shadows == "voxel";
   return o;
 }
 
@@ -44,9 +45,8 @@ void checkVctGiSettings(const VctGiSettings& s) {
   checkConeSettings(s.cones, s.aperture_deg);
   if (!(s.gi_scale > 0.0f && s.gi_scale <= 1.0f))
     throw UserError("--gi-scale: expected a fraction of the resolution in (0, 1], got " + std::to_string(s.gi_scale));
-  if (s.shadows == "voxel")
-    throw UserError("--vct-shadows: voxel (visibility through the opacity volume) is not available yet; use none");
-  if (s.shadows != "none") throw UserError("--vct-shadows: expected none, got '" + s.shadows + "'");
+  if (s.shadows != "none" && s.shadows != "voxel")
+    throw UserError("--vct-shadows: expected none|voxel, got '" + s.shadows + "'");
 }
 
 VctGiPass::VctGiPass(ClRuntime& rt, const VctGiSettings& s, const Aabb& scene_bounds)

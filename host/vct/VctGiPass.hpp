@@ -10,7 +10,8 @@
 //                  (vct_upsample.comp: depth/normal-aware to full resolution,
 //                  times the G-buffer albedo, added to the shaded image).
 // Transport: the volume holds the direct light of the renderer's model without
-// visibility (no shadows in the injection: `--vct-shadows none`), times its
+// visibility (`--vct-shadows none`) or with each light's visibility through
+// level-0 opacity (`--vct-shadows voxel`, VoxelInjector), times its
 // 0.9 direct weight; the indirect image follows host/reference/IndirectReference
 // (bounce light without that weight), hence a 1/0.9 scale, so that it is
 // compared with the reference as is. The specular cone adds
@@ -35,7 +36,7 @@ struct VctGiSettings {
   float aperture_deg = 45;  // --cone-aperture
   float gi_scale = 0.5f;    // --gi-scale: trace resolution / frame resolution, (0, 1]
   bool specular = false;    // --specular
-  std::string shadows = "none";  // --vct-shadows: none (voxel is not built)
+  std::string shadows = "none";  // --vct-shadows: none | voxel (visibility through level-0 opacity)
   bool brute_inject = false;     // inject from every light instead of the hashed lists
   ConeBreak broken = ConeBreak::None;  // tests only
 };

@@ -12,7 +12,7 @@ VctPipeline::VctPipeline(ClRuntime& rt, const VctPipelineOptions& options, const
       options_(options),
       env_(rt),
       volume_(rt, options.grid, fitVoxelGrid(scene_bounds, options.grid)),
-      injector_(env_, options.compute),
+      injector_(env_, options.compute, options.shadows),
       mips_(env_, options.compute),
       lists_(env_),
       hashed_(hashed::HashedConfig{}) {}

@@ -35,6 +35,7 @@ struct VctPipelineOptions {
   VoxelGridSettings grid;
   bool revoxelize = false;   // moving geometry: voxelize on every update
   bool brute_force = false;  // inject from every light instead of the hashed lists
+  bool shadows = false;      // --vct-shadows voxel: visibility through level-0 opacity (VoxelInjector)
   compute::Options compute;  // kernel shape of inject and mips
 };
 

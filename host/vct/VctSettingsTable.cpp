@@ -73,7 +73,7 @@ const std::vector<VctSetting>& vctSettings() {
        [](const S& s) { return number(s.gi_scale); }, [](S& s, K k, K t) { s.gi_scale = parseNumber(k, t); }},
       {"specular", "add a specular cone (reflectance 0.04, aperture 10 degrees)", T::Switch, {},
        [](const S& s) { return onOff(s.specular); }, [](S& s, K k, K t) { s.specular = parseSwitch(k, t); }},
-      {"vct-shadows", "visibility of the lights in the injected direct light (none; voxel is not available)",
+      {"vct-shadows", "visibility of the lights in the injected direct light (none, or voxel: marched through level-0 opacity)",
        T::Choice, {"none", "voxel"}, [](const S& s) { return s.shadows; },
        [](S& s, K, K t) { s.shadows = t; }},
   };

@@ -7,8 +7,8 @@ namespace ml::vct {
 
 using compute::detail::u32;
 
-VoxelInjector::VoxelInjector(const compute::ComputeEnv& env, const compute::Options& options)
-    : env_(env), tuning_(compute::resolveTuning(env, options)) {}
+VoxelInjector::VoxelInjector(const compute::ComputeEnv& env, const compute::Options& options, bool shadows)
+    : env_(env), tuning_(compute::resolveTuning(env, options)), shadows_(shadows) {}
 
 std::size_t VoxelInjector::prepare(cl::Kernel& k, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
                                    const cl::Buffer& lights, std::size_t light_count, cl::Buffer& radiance,
@@ -23,7 +23,7 @@ std::size_t VoxelInjector::prepare(cl::Kernel& k, const gpu::VoxelGridParams& g,
   compute::detail::checkBuffer(lights, light_count * sizeof(gpu::PointLight), "VoxelInjector lights");
   compute::detail::checkCount(light_count, "VoxelInjector lights");
   if (!brute_()) {
-    cl::Program p = compute::detail::buildShaped(env_, tuning_, "vct_inject.cl");
+    cl::Program p = compute::detail::buildShaped(env_, tuning_, "vct_inject.cl", {{"VCT_SHADOWS", shadows_ ? "1" : "0"}});
     brute_ = cl::Kernel(p, "inject_brute");
     hashed_ = cl::Kernel(p, "inject_hashed");
   }

@@ -10,6 +10,9 @@
 // (compute::Shape); timed as "vct-inject" when a timer is given. The C++
 // twin is InjectTwin.hpp. Buffers are checked against the grid and light
 // count (std::invalid_argument). Not thread-safe.
+// shadows = true (--vct-shadows voxel) builds the kernels with VCT_SHADOWS:
+// each light's term times its visibility through the filled level-0 voxels
+// of `accum` (InjectTwin's voxelVisibility()); false compiles none of it.
 #include <CL/opencl.hpp>
 
 #include <cstddef>
@@ -23,7 +26,9 @@ namespace ml::vct {
 
 class VoxelInjector {
  public:
-  explicit VoxelInjector(const compute::ComputeEnv& env, const compute::Options& options = {});
+  explicit VoxelInjector(const compute::ComputeEnv& env, const compute::Options& options = {}, bool shadows = false);
+
+  bool shadows() const { return shadows_; }
 
   void brute(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum, const cl::Buffer& lights,
              std::size_t light_count, cl::Buffer& radiance, ClPassTimer* timer = nullptr);
@@ -41,6 +46,7 @@ class VoxelInjector {
 
   compute::ComputeEnv env_;
   compute::Tuning tuning_;
+  bool shadows_;
   cl::Kernel brute_, hashed_;
 };
 
