@@ -86,6 +86,7 @@ TEST(BenchGi, BadKeysAndValuesFailBeforeAnyFrame) {
   };
   for (const Case& c : std::vector<Case>{
            {b + "--param nosuch=1", "nosuch"},
+           {b + "--param nosuch=1", "voxels"},  // names the GI keys too
            {b + "--param voxels=30", "--voxels"},
            {b + "--param voxels=32,48", "--voxels"},
            {b + "--param cones=abc", "--cones"},

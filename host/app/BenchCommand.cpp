@@ -77,6 +77,12 @@ void checkBenchOutputs(const BenchArgs& a) {
   requireOutputDir("--images", a.images);
 }
 
+bool isRegistryParam(const std::string& key) {
+  for (const RegistryParam& p : registryParams())
+    if (p.spec.key == key) return true;
+  return false;
+}
+
 // The GI side's descriptor of --gi (null for none); UserError for an unknown mode.
 const GiDescriptor* benchGi(const BenchArgs& a) {
   if (a.gi == "none") return nullptr;
@@ -107,6 +113,13 @@ std::vector<TechniqueVariant> benchVariants(const BenchArgs& a, std::vector<GiVa
   const GiDescriptor* desc = benchGi(a);
   const ParamSweep gi_sweep = splitGiSweep(sweep, desc, {&vctGiDescriptor()}, "--param");
   gi = expandGiVariants(desc, gi_sweep, "--param");
+  for (const auto& [key, values] : sweep)  // neither a technique's key nor the GI's: name both lists
+    if (desc && !isRegistryParam(key)) {
+      std::string keys;
+      for (const auto& k : desc->keys) keys += (keys.empty() ? "" : "|") + k;
+      throw UserError("--param: unknown parameter '" + key + "' (neither a technique's nor --gi " + desc->mode +
+                      "'s: " + keys + ")");
+    }
   return expandVariants(tech_names, sweep, "--param");
 }
 
