@@ -196,7 +196,7 @@ TEST(BenchTypes, CsvColumnsFollowTheJsonFields) {
   ASSERT_EQ(names.size(), values.size());
   std::vector<std::string> json_keys;
   for (const auto& [k, v] : j.items())
-    if (!v.is_object() || k == "params") json_keys.push_back(k);
+    if (!v.is_object() || k == "params" || k == "gi_settings") json_keys.push_back(k);
   json_keys.erase(std::remove(json_keys.begin(), json_keys.end(), "shaded"), json_keys.end());
   std::size_t i = 0;
   for (; i < names.size() && names[i].rfind("pass:", 0) != 0; ++i) {

@@ -12,6 +12,7 @@
 #include <map>
 
 #include "host/bench/RunLayer.hpp"
+#include "host/app/GiOptions.hpp"
 #include "host/app/InputChecks.hpp"
 #include "host/app/InputFlags.hpp"
 #include "host/app/RenderCommand.hpp"
@@ -76,9 +77,23 @@ void checkBenchOutputs(const BenchArgs& a) {
   requireOutputDir("--images", a.images);
 }
 
+bool isRegistryParam(const std::string& key) {
+  for (const RegistryParam& p : registryParams())
+    if (p.spec.key == key) return true;
+  return false;
+}
+
+// The GI side's descriptor of --gi (null for none); UserError for an unknown mode.
+const GiDescriptor* benchGi(const BenchArgs& a) {
+  if (a.gi == "none") return nullptr;
+  if (a.gi == "vct") return &vctGiDescriptor();
+  throw UserError("--gi: expected none|vct, got '" + a.gi + "'");
+}
+
 // The technique variants of --techniques x the --param / --KEY sweeps, every
-// value checked against its parameter's range.
-std::vector<TechniqueVariant> benchVariants(const BenchArgs& a) {
+// value checked against its parameter's range; the keys of the GI pass
+// (--gi) go to `gi`, every point of their product resolved by its table.
+std::vector<TechniqueVariant> benchVariants(const BenchArgs& a, std::vector<GiVariant>& gi) {
   std::vector<std::string> tech_names = splitList(a.techniques);
   if (tech_names.empty())
     for (const auto& t : techniques()) tech_names.push_back(t.name);
@@ -95,6 +110,16 @@ std::vector<TechniqueVariant> benchVariants(const BenchArgs& a) {
     for (const auto& v : splitList(list)) checkParam(key, v, flag);
     addSweep(sweep, key, splitList(list));
   }
+  const GiDescriptor* desc = benchGi(a);
+  const ParamSweep gi_sweep = splitGiSweep(sweep, desc, {&vctGiDescriptor()}, "--param");
+  gi = expandGiVariants(desc, gi_sweep, "--param");
+  for (const auto& [key, values] : sweep)  // neither a technique's key nor the GI's: name both lists
+    if (desc && !isRegistryParam(key)) {
+      std::string keys;
+      for (const auto& k : desc->keys) keys += (keys.empty() ? "" : "|") + k;
+      throw UserError("--param: unknown parameter '" + key + "' (neither a technique's nor --gi " + desc->mode +
+                      "'s: " + keys + ")");
+    }
   return expandVariants(tech_names, sweep, "--param");
 }
 
@@ -107,6 +132,9 @@ std::string paramKeysHelp() {
     for (const auto& f : p.families) families += (families.empty() ? "" : ", ") + f;
     s += "  " + p.spec.key + " (" + p.spec.allowed() + "; default " + p.spec.default_value + "): " + families + "\n";
   }
+  std::string gi_keys;
+  for (const auto& k : vctGiDescriptor().keys) gi_keys += (gi_keys.empty() ? "" : ", ") + k;
+  s += "  with --gi vct also its settings (as render's --gi vct flags): " + gi_keys + "\n";
   return s;
 }
 
@@ -209,6 +237,9 @@ nlohmann::ordered_json benchMeta(const BenchArgs& a, const BenchScene& scene, co
     vj.push_back({{"label", v.label}, {"technique", v.technique}, {"params", p}});
   }
   meta["variants"] = vj;
+  meta["gi"] = a.gi;
+  meta["gi_reference"] = a.gi_reference;
+  if (a.gi_reference) meta["gi_reference_samples"] = a.gi_samples;
   meta["counts"] = plan.counts;
   meta["timing"] = plan.timing;
   meta["shading"] = plan.shade;
@@ -309,6 +340,14 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   cmd->add_option("--csv", a.csv, "write per-frame records as CSV");
   cmd->add_option("--plot", a.plot, "render thesis-style figures (PNG) into this folder (python3-matplotlib)");
   cmd->add_option("--images", a.images, "write every record's shaded image (PNG) into this folder");
+  cmd->add_option("--gi", a.gi,
+                  "none or vct: voxel cone tracing in every frame (its passes timed); --param also sweeps its "
+                  "settings (render's --gi vct flags: voxels, levels, cones, ...)")
+      ->capture_default_str();
+  cmd->add_flag("--gi-reference", a.gi_reference,
+                "--gi vct: trace the ray-traced reference once per size, light set and frame; records get gi_rel_rmse");
+  cmd->add_option("--gi-samples", a.gi_samples, "--gi-reference: hemisphere samples per pixel")->capture_default_str();
+  cmd->add_option("--gi-seed", a.gi_seed, "--gi-reference: seed of the hemisphere samples")->capture_default_str();
   cmd->add_option("--fovy", a.fovy, "override the camera's vertical field of view, degrees (suite: 45)");
   cmd->add_option("--near", a.near_plane, "override the near plane (suite: 0.01)");
   cmd->add_option("--far", a.far_plane, "override the far plane (suite: 4000)");
@@ -317,10 +356,24 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
 
 namespace {
 
+// --gi's combinations with the other flags (its settings are checked by benchVariants).
+void checkBenchGiFlags(const BenchArgs& a) {
+  if (a.gi_reference && a.gi != "vct") throw UserError("--gi-reference: only with --gi vct");
+  if (a.gi_samples == 0 || a.gi_samples > kMaxGiSamples)
+    throw UserError("--gi-samples: expected 1.." + std::to_string(kMaxGiSamples) + ", got " +
+                    std::to_string(a.gi_samples));
+  if (a.gi == "none") return;
+  if (a.no_shading) throw UserError("--gi: the indirect light is added to the shaded image; not with --no-shading");
+  if (a.no_timing) throw UserError("--gi: the GI pass runs in the timed renders; not with --no-timing");
+  if (a.gi_reference && a.animate > 0)
+    throw UserError("--gi-reference: the reference sees the lights as loaded; not with --animate");
+}
+
 // What runBench takes from the flags, all checked before anything loads.
 struct CheckedBenchFlags {
   std::vector<std::pair<unsigned, unsigned>> sizes;
   std::vector<TechniqueVariant> variants;
+  std::vector<GiVariant> gi;
   FrameRange range;
   Progress::Mode progress = Progress::Mode::Auto;
   DeviceChoice device;
@@ -334,7 +387,8 @@ CheckedBenchFlags checkBenchFlags(const BenchArgs& a, const std::string& where) 
     c.sizes.emplace_back(w, h);
   }
   if (c.sizes.empty()) throw UserError("--sizes: no sizes given");
-  c.variants = benchVariants(a);
+  c.variants = benchVariants(a, c.gi);
+  checkBenchGiFlags(a);
   c.range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
   c.progress = Progress::parseMode(a.progress, "--progress");
   (void)LightAnimator({}, a.animate, 23, a.animate_speed);  // validates --animate, --animate-speed
@@ -362,6 +416,9 @@ SceneInputArgs benchSceneArgs(const BenchArgs& a) {
 BenchPlan benchPlan(const BenchArgs& a, const CheckedBenchFlags& c, const BenchScene& scene, const std::string& where) {
   BenchPlan plan;
   plan.variants = c.variants;
+  plan.gi = c.gi;
+  plan.gi_reference_samples = a.gi_reference ? a.gi_samples : 0;
+  plan.gi_reference_seed = a.gi_seed;
   plan.light_sets = resolveLightSets(scene, benchSceneArgs(a), where);
   checkLightSets(plan.light_sets, c.variants, where);
   plan.sizes = c.sizes;
@@ -388,9 +445,22 @@ void printBenchHeader(const RunContext& ctx, const BenchScene& scene, const Benc
     for (const auto& id : scene.missing_meshes) m += (m.empty() ? "" : ", ") + id;
     std::printf("missing meshes (skipped): %s\n", m.c_str());
   }
-  std::printf("%zu technique variant(s) x %zu light set(s) x %zu size(s) x %zu frame(s) = %zu records\n",
-              plan.variants.size(), plan.light_sets.size(), plan.sizes.size(), plan.frames.size(), planSteps(plan));
+  std::printf("%zu technique variant(s) x %zu GI variant(s) x %zu light set(s) x %zu size(s) x %zu frame(s) = %zu "
+              "records\n",
+              plan.variants.size(), plan.gi.size(), plan.light_sets.size(), plan.sizes.size(), plan.frames.size(),
+              planSteps(plan));
   std::fflush(stdout);
+}
+
+// --gi-reference: each record's relative RMSE of the indirect image and its voxel memory.
+void printGiErrors(const std::vector<FrameRecord>& records) {
+  bool any = false;
+  for (const auto& r : records) {
+    if (r.gi_rel_rmse < 0) continue;
+    if (!any) std::printf("\ngi vs reference: relative RMSE of the indirect image (covered pixels), voxel MB\n");
+    any = true;
+    std::printf("%s frame %zu: %.4f %10.1f\n", r.run.c_str(), r.frame, r.gi_rel_rmse, double(r.voxel_bytes) / 1048576.0);
+  }
 }
 
 // Runs the plan, writing JSON/CSV: results so far go to <file>.partial after
@@ -445,6 +515,7 @@ int runBench(const BenchArgs& a) {
   if (json_path.empty() && !a.plot.empty()) json_path = (fs::path(a.plot) / "bench.json").string();
   const auto records = runAndWrite(a, ctx, scene, plan, checked.progress, json_path);
   printSummaries(summarizeRuns(records));
+  printGiErrors(records);
   if (!json_path.empty()) std::printf("\nwrote %s\n", json_path.c_str());
   if (!a.csv.empty()) std::printf("wrote %s\n", a.csv.c_str());
   if (!a.plot.empty()) {

@@ -6,6 +6,7 @@
 // by scripts/plot_bench.py. See docs/testbed.md.
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -34,6 +35,10 @@ struct BenchArgs {
   bool no_timing = false;
   bool no_shading = false;     // depth + assignment passes only (FrameOptions::shade)
   float fovy = 0, near_plane = 0, far_plane = 0;  // 0: keep the path's
+  std::string gi = "none";     // none | vct: a GI pass in every frame; --param sweeps its settings too
+  bool gi_reference = false;   // --gi vct: gi_rel_rmse against the ray-traced reference
+  unsigned gi_samples = 64;    // the reference's hemisphere samples per pixel (as render's --gi-samples)
+  std::uint64_t gi_seed = kThesisSeed;
   std::string command_line;  // for the JSON's meta
 };
 

@@ -61,6 +61,33 @@ void addGiFlags(CLI::App& cmd, GiArgs& a) {
   addVoxelViewFlags(cmd, a.voxel_view, a.voxel_level);
 }
 
+const GiDescriptor& vctGiDescriptor() {
+  static const GiDescriptor d = [] {
+    GiDescriptor g;
+    g.mode = "vct";
+    for (const vct::VctSetting& s : vct::vctSettings()) g.keys.push_back(s.key);
+    g.resolve = [](const SettingList& given, const std::string& flag) {
+      vct::VctGiSettings s;
+      try {
+        for (const auto& [key, value] : given) vct::parseVctSetting(s, key, value);
+        vct::checkVctGiSettings(s);
+      } catch (const UserError& e) {
+        throw UserError(flag + " " + paramsText(given) + ": " + e.what());
+      }
+      GiVariant v;
+      v.mode = "vct";
+      for (const vct::VctSetting& t : vct::vctSettings()) v.settings.emplace_back(t.key, t.get(s));
+      v.make = [s](ClRuntime& cl, const Scene& scene) -> std::unique_ptr<GiPass> {
+        return std::make_unique<vct::VctGiPass>(cl, s, scene.bounds);
+      };
+      v.voxel_bytes = vct::voxelBytes(s.grid);
+      return v;
+    };
+    return g;
+  }();
+  return d;
+}
+
 std::string giOutputPath(const std::string& out, const std::string& kind, const std::string& ext) {
   std::filesystem::path p(out);
   p.replace_extension();

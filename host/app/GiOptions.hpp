@@ -29,6 +29,7 @@
 
 #include "gl/GiPass.hpp"
 #include "host/app/SceneInputs.hpp"
+#include "host/bench/GiSweep.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/reference/IndirectReference.hpp"
 #include "host/util/ThesisSeed.hpp"
@@ -71,6 +72,11 @@ struct GiResult {
 // --gi-reference), the vct pass's images, the error, the files.
 GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera, unsigned width, unsigned height,
                const std::string& out, const GiPass* pass);
+
+// `bench --gi vct`: the VCT settings table (host/vct/VctSettingsTable) as the
+// GI sweep's descriptor; a point's settings go over the defaults and are
+// checked as a whole (UserError: "<flag> key=value,...: <the table's line>").
+const GiDescriptor& vctGiDescriptor();
 
 // "dir/x.png" -> "dir/x_gi_reference.exr" for kind "reference", ext ".exr".
 std::string giOutputPath(const std::string& out, const std::string& kind, const std::string& ext);

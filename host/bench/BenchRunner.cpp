@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <memory>
 
 #include "gl/FrameRenderer.hpp"
@@ -9,6 +10,7 @@
 #include "host/bench/RunLayer.hpp"
 #include "host/scene/LightAnimator.hpp"
 #include "host/bench/OutputFiles.hpp"
+#include "host/reference/IndirectReference.hpp"
 
 namespace ml {
 namespace {
@@ -19,15 +21,34 @@ std::string fileSafe(const std::string& s) {
   return out;
 }
 
-// One (size, light set, variant) run over the plan's frames.
+// The references of one size and light set, by frame: traced once, reused by every variant.
+using GiReferences = std::map<std::size_t, std::vector<float>>;
+
+// One (size, light set, variant, GI variant) run over the plan's frames.
 struct Run {
   const BenchScene& scene;
   const BenchPlan& plan;
   FrameRenderer& renderer;
   const LightSetInput& lights;
   const TechniqueVariant& variant;
-  std::string label;  // "<variant> <lights> <WxH>"
+  const GiVariant& gi;
+  GiReferences& references;
+  std::string label;  // "<variant>[ gi=<mode>[...]] <lights> <WxH>"
 };
+
+// The relative RMSE of the pass's last indirect image against the frame's reference.
+double giRelRmse(const Run& run, const GiPass& pass, std::size_t frame) {
+  auto it = run.references.find(frame);
+  if (it == run.references.end()) {
+    const IndirectOptions o{run.plan.gi_reference_samples, run.plan.gi_reference_seed, false};
+    it = run.references
+             .emplace(frame, traceIndirectReference(run.scene.scene, run.lights.lights, run.scene.cameras.frames[frame],
+                                                    run.renderer.width(), run.renderer.height(), o)
+                                 .rgba)
+             .first;
+  }
+  return indirectRelRmse(pass.indirectRgba(), it->second).rel_rmse;
+}
 
 FrameRecord recordOf(const Run& run, std::size_t frame) {
   FrameRecord r;
@@ -41,6 +62,9 @@ FrameRecord recordOf(const Run& run, std::size_t frame) {
   r.width = run.renderer.width();
   r.height = run.renderer.height();
   r.frame = frame;
+  r.gi = run.gi.mode;
+  r.gi_settings = run.gi.settings;
+  r.voxel_bytes = run.gi.voxel_bytes;
   return r;
 }
 
@@ -54,7 +78,9 @@ void runFrames(ClRuntime& cl, const Run& run, Progress* progress, std::size_t& d
     if (animator.movesPerStep() > 0) renderer.setLights(animator.step());
   };
   auto assigner = makeAssigner(*run.variant.info, cl, run.variant.params, &run.scene.scene);
-  const FrameOptions options{run.variant.pipeline, false, plan.shade};
+  const std::unique_ptr<GiPass> gi = run.gi.make ? run.gi.make(cl, run.scene.scene) : nullptr;
+  FrameOptions options{run.variant.pipeline, false, plan.shade};
+  options.gi = gi.get();
   if (progress) progress->update(done, run.label + " (warm-up)");
   if (!plan.frames.empty())
     for (unsigned w = 0; w < plan.warmup; ++w)
@@ -68,6 +94,7 @@ void runFrames(ClRuntime& cl, const Run& run, Progress* progress, std::size_t& d
       setCounts(r, countedRender(renderer, *assigner, options, cam));
     }
     if (plan.timing) setTimes(r, timedRenders(renderer, *assigner, options, cam, plan.repeat, animate));
+    if (gi && plan.timing && plan.gi_reference_samples > 0) r.gi_rel_rmse = giRelRmse(run, *gi, frame);
     if (!plan.image_dir.empty())  // the folder was checked before the first frame (requireOutputDir)
       writeImageAtomically("--images", plan.image_dir + "/" + fileSafe(run.label) + "_f" + std::to_string(frame) + ".png",
                            renderer.width(), renderer.height(), 4, renderer.targets().readColor());
@@ -80,7 +107,7 @@ void runFrames(ClRuntime& cl, const Run& run, Progress* progress, std::size_t& d
 }  // namespace
 
 std::size_t planSteps(const BenchPlan& plan) {
-  return plan.sizes.size() * plan.light_sets.size() * plan.variants.size() * plan.frames.size();
+  return plan.sizes.size() * plan.light_sets.size() * plan.variants.size() * plan.gi.size() * plan.frames.size();
 }
 
 std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const BenchPlan& plan, Progress* progress,
@@ -94,10 +121,15 @@ std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const 
   for (const auto& [width, height] : plan.sizes) {
     FrameRenderer renderer(cl, scene.scene, width, height);
     const std::string size_label = std::to_string(width) + "x" + std::to_string(height);
-    for (const LightSetInput& ls : plan.light_sets)
+    for (const LightSetInput& ls : plan.light_sets) {
+      GiReferences references;
       for (const TechniqueVariant& v : plan.variants)
-        runFrames(cl, Run{scene, plan, renderer, ls, v, v.label + " " + ls.label + " " + size_label}, progress, done,
-                  emit);
+        for (const GiVariant& g : plan.gi)
+          runFrames(cl,
+                    Run{scene, plan, renderer, ls, v, g, references,
+                        v.label + giRunLabel(g) + " " + ls.label + " " + size_label},
+                    progress, done, emit);
+    }
   }
   if (progress) progress->update(done, "done");
   return records;

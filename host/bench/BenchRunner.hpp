@@ -8,6 +8,7 @@
 // one-off structure builds do not land in the first frame's times.
 // Needs a current GL context and a CL runtime that shares with it.
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <utility>
@@ -15,6 +16,7 @@
 
 #include "host/bench/BenchInputs.hpp"
 #include "host/bench/BenchTypes.hpp"
+#include "host/bench/GiSweep.hpp"
 #include "host/bench/Progress.hpp"
 
 namespace ml {
@@ -23,6 +25,14 @@ class ClRuntime;
 
 struct BenchPlan {
   std::vector<TechniqueVariant> variants;
+  // The GI sweep (GiSweep.hpp): {none} without --gi; each point is a run of
+  // its own, with a fresh pass, whose passes land in the timed frames.
+  std::vector<GiVariant> gi = {GiVariant{}};
+  // > 0: the ray-traced indirect reference (host/reference/IndirectReference)
+  // with this many samples per pixel, traced once per size, light set and
+  // frame and reused by every GI variant: records get gi_rel_rmse.
+  unsigned gi_reference_samples = 0;
+  std::uint64_t gi_reference_seed = 0;
   std::vector<LightSetInput> light_sets;
   std::vector<std::pair<unsigned, unsigned>> sizes;
   std::vector<std::size_t> frames;  // indices into the scene's camera path
@@ -43,7 +53,7 @@ struct BenchPlan {
 
 std::size_t planSteps(const BenchPlan& plan);  // renders of frames the progress counts (one per record)
 
-// Records in loop order (size, light set, variant, frame). `on_record` sees
+// Records in loop order (size, light set, variant, GI variant, frame). `on_record` sees
 // each record as soon as it exists (e.g. to stream it).
 std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const BenchPlan& plan, Progress* progress,
                                   const std::function<void(const FrameRecord&)>& on_record = {});

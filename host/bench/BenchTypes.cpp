@@ -135,6 +135,22 @@ std::string variantLabel(const std::string& technique, const std::vector<std::pa
   return labels.empty() ? label : label + "]";
 }
 
+std::vector<std::vector<std::pair<std::string, std::string>>> sweepPoints(
+    const std::vector<const ParamSweep::value_type*>& axes) {
+  std::vector<std::vector<std::pair<std::string, std::string>>> out;
+  std::vector<std::size_t> idx(axes.size(), 0);
+  for (;;) {
+    auto& point = out.emplace_back();
+    for (std::size_t a = 0; a < axes.size(); ++a) point.emplace_back(axes[a]->first, axes[a]->second[idx[a]]);
+    std::size_t a = 0;
+    for (; a < axes.size(); ++a) {
+      if (++idx[a] < axes[a]->second.size()) break;
+      idx[a] = 0;
+    }
+    if (a == axes.size()) return out;
+  }
+}
+
 namespace {
 
 // Every sweep point of one technique: the product over the sweep's keys it reads.
@@ -143,22 +159,15 @@ void expandTechnique(const TechniqueInfo& info, const ParamSweep& sweep, const s
   std::vector<const ParamSweep::value_type*> axes;
   for (const auto& s : sweep)
     if (info.descriptor->param(s.first) && !s.second.empty()) axes.push_back(&s);
-  std::vector<std::size_t> idx(axes.size(), 0);
-  for (;;) {
+  for (auto& labels : sweepPoints(axes)) {
     TechniqueVariant v;
     v.info = &info;
     v.technique = info.name;
     v.pipeline = info.pipeline;
-    for (std::size_t a = 0; a < axes.size(); ++a) v.labels.emplace_back(axes[a]->first, axes[a]->second[idx[a]]);
+    v.labels = std::move(labels);
     v.params = techniqueParams(info, v.labels, flag);
     v.label = variantLabel(info.name, v.labels);
     out.push_back(std::move(v));
-    std::size_t a = 0;
-    for (; a < axes.size(); ++a) {
-      if (++idx[a] < axes[a]->second.size()) break;
-      idx[a] = 0;
-    }
-    if (a == axes.size()) break;
   }
 }
 
@@ -240,7 +249,7 @@ namespace {
 template <class R>
 struct Field {
   const char* name;
-  bool csv;  // has a CSV column (objects other than params do not)
+  bool csv;  // has a CSV column (objects other than params and gi_settings do not)
   nlohmann::ordered_json (*get)(const R&);
 };
 using Json = nlohmann::ordered_json;
@@ -292,6 +301,10 @@ const std::vector<Field<FrameRecord>>& recordFields() {
            for (const auto& [k, v] : r.technique_stats) st[k] = v;
            return st;
          }},
+        {"gi", true, [](const FrameRecord& r) { return Json(r.gi); }},
+        {"gi_settings", true, [](const FrameRecord& r) { return paramsJson(r.gi_settings); }},
+        {"voxel_bytes", true, [](const FrameRecord& r) { return Json(r.voxel_bytes); }},
+        {"gi_rel_rmse", true, [](const FrameRecord& r) { return r.gi_rel_rmse >= 0 ? Json(r.gi_rel_rmse) : Json(); }},
     };
     f.insert(f.end(), rest.begin(), rest.end());
     return f;

@@ -7,14 +7,15 @@
 //   {"run", "technique", "pipeline", "params": {k: v}, "lights", "light_file",
 //    "light_count", "width", "height", "frame", "light_evaluations",
 //    "lower_bound", "covered_pixels", "fragment_evaluations", "passes": {name: ms},
-//    "passes_total_ms", "host_ms", "memory_bytes", "technique_stats": {k: v}}],
+//    "passes_total_ms", "host_ms", "memory_bytes", "technique_stats": {k: v},
+//    "gi", "gi_settings": {k: v}, "voxel_bytes", "gi_rel_rmse"}],
 //  "summaries": [{"run", ..., "frames", "light_evaluations": {mean, median, p95,
 //    max, min}, "lower_bound": {...}, "passes_total_ms": {...}, "host_ms": {...},
 //    "memory_bytes": {...}, "passes": {name: {...}}}]}
 // Counts are null in records of runs without counting (--no-counts), times are
 // null without timing (--no-timing). CSV: one row per record, the same scalar
 // fields in the same order (one field table, BenchTypes.cpp; not "shaded"),
-// params as "k=v;k=v", then one "pass:<name>_ms" column per pass name.
+// params and gi_settings as "k=v;k=v", then one "pass:<name>_ms" column per pass name.
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
@@ -68,6 +69,10 @@ using ParamSweep = std::vector<std::pair<std::string, std::vector<std::string>>>
 // unknown keys and values name `flag`, unknown techniques --techniques.
 std::vector<TechniqueVariant> expandVariants(const std::vector<std::string>& techniques, const ParamSweep& sweep,
                                              const std::string& flag);
+// Every point of the product over `axes` (key -> values), as (key, value)
+// lists, the first axis varying fastest; one empty point without axes.
+std::vector<std::vector<std::pair<std::string, std::string>>> sweepPoints(
+    const std::vector<const ParamSweep::value_type*>& axes);
 // "tiled-deferred[tile=16,tile_depth=none]" (the name alone without labels).
 std::string variantLabel(const std::string& technique, const std::vector<std::pair<std::string, std::string>>& labels);
 
@@ -92,6 +97,13 @@ struct FrameRecord {
   // false: rendered without the shading pass (--no-shading): light and
   // fragment evaluations are not counted (null in JSON, empty in CSV).
   bool shaded = true;
+  // The frame's GI pass (bench --gi): its mode ("none" without one), every
+  // setting, its voxel memory, and with --gi-reference the relative RMSE of
+  // its indirect image against the ray-traced reference (negative: none).
+  std::string gi = "none";
+  std::vector<std::pair<std::string, std::string>> gi_settings;
+  std::size_t voxel_bytes = 0;
+  double gi_rel_rmse = -1;
 };
 
 struct RunSummary {
