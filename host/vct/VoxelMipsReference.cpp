@@ -1,5 +1,7 @@
 #include "host/vct/VoxelMipsReference.hpp"
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
 
 namespace ml::vct {
@@ -26,11 +28,28 @@ Children childrenOf(const F4* level, unsigned ep, std::size_t p) {
   return {level + 2 * x + ec * (2 * y + ec * 2 * z), ec, ec * ec};
 }
 
-F4 mean8(const Children& k) {
-  const std::size_t sy = k.sy, sz = k.sz;
-  const F4 a = add(add(k.at(0), k.at(1)), add(k.at(sy), k.at(sy + 1)));
-  const F4 b = add(add(k.at(sz), k.at(sz + 1)), add(k.at(sz + sy), k.at(sz + sy + 1)));
-  return scale(add(a, b), 0.125f);
+// As the kernel's pair_alpha(), pair_iso(), ISO_AXIS and iso_parent().
+float pairAlpha(float a, float b) { return (1.0f - 0.5f * b) * a + (1.0f - 0.5f * a) * b; }
+F4 pairIso(F4 a, F4 b) { return add(scale(a, 1.0f - 0.5f * b.w), scale(b, 1.0f - 0.5f * a.w)); }
+
+template <class T, class Pair>
+T isoAxis(const std::array<T, 8>& k, unsigned axis, Pair pair, T (*sum)(T, T), T (*quarter)(T)) {
+  const unsigned s = 1u << axis, u = axis == 0 ? 2u : 1u, v = axis == 2 ? 2u : 4u;
+  return quarter(sum(sum(pair(k[0], k[s]), pair(k[u], k[u + s])), sum(pair(k[v], k[v + s]), pair(k[u + v], k[u + v + s]))));
+}
+
+F4 isoParent(const Children& c) {
+  const std::size_t sy = c.sy, sz = c.sz;
+  const std::array<F4, 8> k{c.at(0),  c.at(1),      c.at(sy),      c.at(sy + 1),
+                            c.at(sz), c.at(sz + 1), c.at(sz + sy), c.at(sz + sy + 1)};
+  std::array<float, 8> ka{};
+  for (int i = 0; i < 8; ++i) ka[i] = k[i].w;
+  const auto fsum = +[](float a, float b) { return a + b; };
+  const auto fquarter = +[](float a) { return a * 0.25f; };
+  const float ax = isoAxis(ka, 0, pairAlpha, fsum, fquarter), ay = isoAxis(ka, 1, pairAlpha, fsum, fquarter);
+  const float az = isoAxis(ka, 2, pairAlpha, fsum, fquarter);
+  const unsigned axis = az > std::max(ax, ay) ? 2 : (ay > ax ? 1 : 0);
+  return isoAxis<F4>(k, axis, pairIso, add, +[](F4 a) { return scale(a, 0.25f); });
 }
 
 F4 anisoDir(const Children& k, unsigned d) {
@@ -56,7 +75,7 @@ void mipIsotropicTwin(std::vector<F4>& radiance, unsigned edge, unsigned levels)
     const unsigned ep = edge >> l;
     const F4* child = radiance.data() + gpu::voxel_level_offset(edge, l - 1);
     F4* parent = radiance.data() + gpu::voxel_level_offset(edge, l);
-    for (std::size_t p = 0; p < std::size_t(ep) * ep * ep; ++p) parent[p] = mean8(childrenOf(child, ep, p));
+    for (std::size_t p = 0; p < std::size_t(ep) * ep * ep; ++p) parent[p] = isoParent(childrenOf(child, ep, p));
   }
 }
 
