@@ -38,23 +38,24 @@ void VoxelMips::build() {
 void VoxelMips::launchTrees(cl::CommandQueue& q, cl::Kernel& k, cl_uint first_arg, const gpu::VoxelGridParams& g,
                             ClPassTimer* timer) {
   const unsigned edge_log2 = log2Exact(g.edge);
-  for (unsigned l0 = 0; l0 + 1 < g.levels; l0 += kTreeDepth) {
-    const unsigned depth = std::min(kTreeDepth, g.levels - 1 - l0);
-    const std::size_t n_top = std::size_t(1) << (3 * (edge_log2 - l0 - depth));
-    // Top parents per work-group (GPU: the first level's 4^3 blocks fill
-    // it) or per work-item (CPU: subtrees, not contiguous outputs, so no
-    // cache-line rounding of the chunk).
+  for (unsigned l0 = 0, depth = 0; l0 + 1 < g.levels; l0 += depth) {
+    depth = std::min(kTreeDepth, g.levels - 1 - l0);
+    const unsigned top_log2 = edge_log2 - l0 - depth;  // the top level's edge
+    // GPU: top parents per work-group, enough that the first level's
+    // blocks (8^(depth - 1) parents each) fill it; CPU: top-level z-slices
+    // per work-item (a few per core).
     std::size_t global = 0, local = 1, tops = 1;
     if (tuning_.gpu()) {
       local = tuning_.wg;
-      tops = std::max<std::size_t>(1, local / 64);
-      global = compute::detail::ceilDiv(n_top, tops) * local;
+      tops = std::max<std::size_t>(1, local >> (3 * (depth - 1)));
+      global = compute::detail::ceilDiv(std::size_t(1) << (3 * top_log2), tops) * local;
     } else {
-      tops = compute::detail::ceilDiv(n_top, std::min<std::size_t>(n_top, tuning_.chunks));
-      global = compute::detail::ceilDiv(n_top, tops);
+      const std::size_t slices = std::size_t(1) << top_log2;
+      tops = compute::detail::ceilDiv(slices, std::min<std::size_t>(slices, tuning_.chunks));
+      global = compute::detail::ceilDiv(slices, tops);
     }
     cl_uint a = first_arg;
-    for (cl_uint v : {cl_uint(edge_log2), cl_uint(l0), cl_uint(depth), u32(n_top), u32(tops)}) k.setArg(a++, v);
+    for (cl_uint v : {cl_uint(edge_log2), cl_uint(l0), cl_uint(depth), u32(tops)}) k.setArg(a++, v);
     compute::detail::launch(q, k, global, local, timer, "vct-mips");
   }
 }

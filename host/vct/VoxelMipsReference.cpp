@@ -28,28 +28,30 @@ Children childrenOf(const F4* level, unsigned ep, std::size_t p) {
   return {level + 2 * x + ec * (2 * y + ec * 2 * z), ec, ec * ec};
 }
 
-// As the kernel's pair_alpha(), pair_iso(), ISO_AXIS and iso_parent().
-float pairAlpha(float a, float b) { return (1.0f - 0.5f * b) * a + (1.0f - 0.5f * a) * b; }
-F4 pairIso(F4 a, F4 b) { return add(scale(a, 1.0f - 0.5f * b.w), scale(b, 1.0f - 0.5f * a.w)); }
+// As the kernel's axis_overlap(), axis_cross() and iso_parent(): pairs
+// (f[i], b[i]) of one axis.
+using Quad = std::array<F4, 4>;
+float axisOverlap(const Quad& f, const Quad& b) {
+  return (f[0].w * b[0].w + f[1].w * b[1].w) + (f[2].w * b[2].w + f[3].w * b[3].w);
+}
 
-template <class T, class Pair>
-T isoAxis(const std::array<T, 8>& k, unsigned axis, Pair pair, T (*sum)(T, T), T (*quarter)(T)) {
-  const unsigned s = 1u << axis, u = axis == 0 ? 2u : 1u, v = axis == 2 ? 2u : 4u;
-  return quarter(sum(sum(pair(k[0], k[s]), pair(k[u], k[u + s])), sum(pair(k[v], k[v + s]), pair(k[u + v], k[u + v + s]))));
+F4 axisCross(const Quad& f, const Quad& b) {
+  F4 q[4];
+  for (int i = 0; i < 4; ++i) q[i] = add(scale(f[i], b[i].w), scale(b[i], f[i].w));
+  return add(add(q[0], q[1]), add(q[2], q[3]));
 }
 
 F4 isoParent(const Children& c) {
   const std::size_t sy = c.sy, sz = c.sz;
   const std::array<F4, 8> k{c.at(0),  c.at(1),      c.at(sy),      c.at(sy + 1),
                             c.at(sz), c.at(sz + 1), c.at(sz + sy), c.at(sz + sy + 1)};
-  std::array<float, 8> ka{};
-  for (int i = 0; i < 8; ++i) ka[i] = k[i].w;
-  const auto fsum = +[](float a, float b) { return a + b; };
-  const auto fquarter = +[](float a) { return a * 0.25f; };
-  const float ax = isoAxis(ka, 0, pairAlpha, fsum, fquarter), ay = isoAxis(ka, 1, pairAlpha, fsum, fquarter);
-  const float az = isoAxis(ka, 2, pairAlpha, fsum, fquarter);
-  const unsigned axis = az > std::max(ax, ay) ? 2 : (ay > ax ? 1 : 0);
-  return isoAxis<F4>(k, axis, pairIso, add, +[](F4 a) { return scale(a, 0.25f); });
+  const Quad xf{k[0], k[2], k[4], k[6]}, xb{k[1], k[3], k[5], k[7]};
+  const Quad yf{k[0], k[1], k[4], k[5]}, yb{k[2], k[3], k[6], k[7]};
+  const Quad zf{k[0], k[1], k[2], k[3]}, zb{k[4], k[5], k[6], k[7]};
+  const float dx = axisOverlap(xf, xb), dy = axisOverlap(yf, yb), dz = axisOverlap(zf, zb);
+  const F4 sum = add(add(add(k[0], k[1]), add(k[2], k[3])), add(add(k[4], k[5]), add(k[6], k[7])));
+  const F4 cross = dz < std::min(dx, dy) ? axisCross(zf, zb) : (dy < dx ? axisCross(yf, yb) : axisCross(xf, xb));
+  return scale(add(sum, scale(cross, -0.5f)), 0.25f);
 }
 
 F4 anisoDir(const Children& k, unsigned d) {
