@@ -49,21 +49,15 @@ ML_INLINE void load8(__global const float4* c, uint sy, uint sz, float4* k) {
   k[7] = c[sz + sy + 1];
 }
 
-/* Direction d of one parent: the 4 pairs along d's axis (bit s of the child
- * index), u and v the other two axes' bits, in the twin's order. */
-ML_INLINE float4 aniso_dir(const float4* k, uint d) {
-  const uint axis = d >> 1;
-  const uint s = 1u << axis;
-  const uint u = axis == 0 ? 2u : 1u;
-  const uint v = axis == 2 ? 2u : 4u;
-  const uint f = (d & 1u) ? s : 0u; /* -axis travel meets the high child first */
-  const uint b = s - f;
-  const float4 p0 = over(k[f], k[b]);
-  const float4 p1 = over(k[u + f], k[u + b]);
-  const float4 p2 = over(k[v + f], k[v + b]);
-  const float4 p3 = over(k[u + v + f], k[u + v + b]);
-  return ((p0 + p1) + (p2 + p3)) * 0.25f;
-}
+/* One axis of one parent, both directions of travel at once: lanes 0-3 the
+ * + direction (children kp, the low child in front), lanes 4-7 the -
+ * direction (children kn, the high child in front); each of the 4 pairs
+ * along the axis (bit s of the child index; u, v the other two axes' bits)
+ * composited front to back, then averaged, in the twin's order. */
+ML_INLINE float8 over8(float8 f, float8 b) { return f + (1.0f - f.s33337777) * b; }
+#define ANISO_PAIR(kp, kn, i, s) over8((float8)(kp[i], kn[i + s]), (float8)(kp[i + s], kn[i]))
+#define ANISO_AXIS(kp, kn, s, u, v) \
+  (((ANISO_PAIR(kp, kn, 0u, s) + ANISO_PAIR(kp, kn, u, s)) + (ANISO_PAIR(kp, kn, v, s) + ANISO_PAIR(kp, kn, u + v, s))) * 0.25f)
 
 /* Isotropic filter. Along an axis, each of the 4 child pairs (f, b) is
  * composited front to back in both orders and averaged (an isotropic voxel
@@ -129,13 +123,21 @@ ML_INLINE void aniso_one(__global const float4* radiance, __global float4* aniso
   __global const float4* c =
       (from_iso ? radiance : aniso + voxel_aniso_index(edge, l - 1u, 0u, 0u)) + child_base(p, ep_log2);
   __global float4* dst = aniso + voxel_aniso_index(edge, l, 0u, p);
-  float4 k[8];
-  if (from_iso) load8(c, ec, ec * ec, k);
-#pragma unroll
-  for (uint d = 0; d < 6u; ++d) {
-    if (!from_iso) load8(c + d * 8u * n, ec, ec * ec, k);
-    dst[d * n] = aniso_dir(k, d);
-  }
+  float4 kp[8], kn[8];
+  float8 r;
+#define ANISO_STORE(axis, s, u, v)                                      \
+  if (!from_iso) {                                                      \
+    load8(c + (2u * axis) * 8u * n, ec, ec * ec, kp);                   \
+    load8(c + (2u * axis + 1u) * 8u * n, ec, ec * ec, kn);              \
+  }                                                                     \
+  r = from_iso ? ANISO_AXIS(kp, kp, s, u, v) : ANISO_AXIS(kp, kn, s, u, v); \
+  dst[2u * axis * n] = r.lo;                                            \
+  dst[(2u * axis + 1u) * n] = r.hi;
+  if (from_iso) load8(c, ec, ec * ec, kp);
+  ANISO_STORE(0u, 1u, 2u, 4u)
+  ANISO_STORE(1u, 2u, 1u, 4u)
+  ANISO_STORE(2u, 4u, 1u, 2u)
+#undef ANISO_STORE
 }
 
 /* Levels l0 + 1 .. l0 + depth (= lt) in one launch: every parent below a top
