@@ -16,10 +16,10 @@
  *              level, or, for level 1, isotropic level 0.
  * One launch fills levels l0 + 1 .. l0 + depth (MIP_TREE): each top parent
  * owns its subtree, so small grids are not launch-bound. Shapes
- * (vct_common.cl): ML_GPU=0 walks a range of top parents per work-item
- * (local size 1); ML_GPU=1 runs one work-group per top parent. Every child is
- * read once per parent and value set (anisotropic level 1: once for all six
- * directions), so local memory would save nothing.
+ * (vct_common.cl): ML_GPU=0, a work-item owns a range of top-level z-slices
+ * (local size 1); ML_GPU=1, a work-group owns a set of top parents. Every
+ * child is read once per parent and value set (anisotropic level 1: once for
+ * all six directions), so local memory would save nothing.
  * FP_CONTRACT is off so the sums and composites round as in the C++ twin
  * (host/vct/VoxelMipsReference.hpp), which the tests compare bit for bit. */
 #pragma OPENCL FP_CONTRACT OFF
@@ -34,8 +34,6 @@ ML_INLINE uint child_base(uint p, uint ep_log2) {
   const uint ec = 2u << ep_log2;
   return 2u * x + ec * (2u * y + ec * 2u * z);
 }
-
-ML_INLINE float4 over(float4 front, float4 back) { return front + (1.0f - front.w) * back; }
 
 /* A parent's 8 children, k[x + 2y + 4z]. */
 ML_INLINE void load8(__global const float4* c, uint sy, uint sz, float4* k) {
@@ -65,11 +63,12 @@ ML_INLINE float8 over8(float8 f, float8 b) { return f + (1.0f - f.s33337777) * b
  *   (over(f, b) + over(b, f)) / 2 = f + b - (b.a f + f.a b) / 2,
  * opacity f.a + b.a - f.a b.a, and the axis is the mean of its 4 pairs:
  *   (S - C / 2) / 4,  S = the sum of the 8 children (the same for every
- *   axis), C = the sum over pairs of b.a f + f.a b (axis_cross()).
+ *   axis), C = the sum over pairs of b.a f + f.a b (AXIS_CROSS).
  * The parent is the most opaque axis: the one whose pairs overlap least,
- * sum f.a b.a (axis_overlap()), the first on ties (x, y, z). So only the
+ * sum f.a b.a (AXIS_OVERLAP), the first on ties (x, y, z). So only the
  * chosen axis pays for C: the filter is bound by instructions, not memory,
- * wherever the grid fits in cache. Pairs i = lanes 4i..4i+3 of f and b. */
+ * wherever the grid fits in cache. Pairs as child indices (f0, b0, ..), in
+ * the twin's order. */
 #define PAIR_OVERLAP(i, j) (k[i].w * k[j].w)
 #define AXIS_OVERLAP(f0, b0, f1, b1, f2, b2, f3, b3) \
   ((PAIR_OVERLAP(f0, b0) + PAIR_OVERLAP(f1, b1)) + (PAIR_OVERLAP(f2, b2) + PAIR_OVERLAP(f3, b3)))
@@ -83,7 +82,8 @@ ML_INLINE float8 over8(float8 f, float8 b) { return f + (1.0f - f.s33337777) * b
 ML_INLINE float4 iso_parent(__global const float4* c, uint sy, uint sz) {
   float4 k[8];
   load8(c, sy, sz, k);
-  const float dx = AXIS_OVERLAP(0, 1, 2, 3, 4, 5, 6, 7), dy = AXIS_OVERLAP(0, 2, 1, 3, 4, 6, 5, 7), dz = AXIS_OVERLAP(0, 4, 1, 5, 2, 6, 3, 7);
+  const float dx = AXIS_OVERLAP(0, 1, 2, 3, 4, 5, 6, 7), dy = AXIS_OVERLAP(0, 2, 1, 3, 4, 6, 5, 7);
+  const float dz = AXIS_OVERLAP(0, 4, 1, 5, 2, 6, 3, 7);
   const float4 sum = ((k[0] + k[1]) + (k[2] + k[3])) + ((k[4] + k[5]) + (k[6] + k[7]));
   float4 cross;
   if (dz < min(dx, dy))

@@ -12,7 +12,7 @@ using F4 = gpu::ml_float4;
 
 F4 add(F4 a, F4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
 F4 scale(F4 a, float s) { return {a.x * s, a.y * s, a.z * s, a.w * s}; }
-// front + (1 - front.a) * back, as the kernel's over().
+// front + (1 - front.a) * back, as each half of the kernel's over8().
 F4 over(F4 f, F4 b) { return add(f, scale(b, 1.0f - f.w)); }
 
 // Parent (x, y, z)'s child (0, 0, 0) in a level of edge ec, and the strides.
@@ -28,7 +28,7 @@ Children childrenOf(const F4* level, unsigned ep, std::size_t p) {
   return {level + 2 * x + ec * (2 * y + ec * 2 * z), ec, ec * ec};
 }
 
-// As the kernel's axis_overlap(), axis_cross() and iso_parent(): pairs
+// As the kernel's AXIS_OVERLAP, AXIS_CROSS and iso_parent(): pairs
 // (f[i], b[i]) of one axis.
 using Quad = std::array<F4, 4>;
 float axisOverlap(const Quad& f, const Quad& b) {
