@@ -52,8 +52,15 @@ ML_INLINE void load8(__global const float4* c, uint sy, uint sz, float4* k) {
  * direction (children kn, the high child in front); each of the 4 pairs
  * along the axis (bit s of the child index; u, v the other two axes' bits)
  * composited front to back, then averaged, in the twin's order. */
-ML_INLINE float8 over8(float8 f, float8 b) { return f + (1.0f - f.s33337777) * b; }
-#define ANISO_PAIR(kp, kn, i, s) over8((float8)(kp[i], kn[i + s]), (float8)(kp[i + s], kn[i]))
+ML_INLINE float8 over8(float8 f, float8 b) {
+  const float8 fa = (float8)(f.s3, f.s3, f.s3, f.s3, f.s7, f.s7, f.s7, f.s7);
+  return f + (1.0f - fa) * b;
+}
+/* Built from components, as over8()'s broadcast: Oclgrind 21.10
+ * (scripts/oclgrind.sh) crashed on the kernel with the vector concatenation
+ * (float8)(a, b); PoCL runs both forms at the same speed. */
+ML_INLINE float8 cat8(float4 a, float4 b) { return (float8)(a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w); }
+#define ANISO_PAIR(kp, kn, i, s) over8(cat8(kp[i], kn[i + s]), cat8(kp[i + s], kn[i]))
 #define ANISO_AXIS(kp, kn, s, u, v) \
   (((ANISO_PAIR(kp, kn, 0u, s) + ANISO_PAIR(kp, kn, u, s)) + (ANISO_PAIR(kp, kn, v, s) + ANISO_PAIR(kp, kn, u + v, s))) * 0.25f)
 
