@@ -2,7 +2,8 @@
 // its C++ twin (host/vct/VoxelMipsReference.hpp), both kernel shapes,
 // isotropic and anisotropic: random volumes of edge 1 .. 64, empty, fully
 // opaque, checkerboard, one opaque black voxel among empty ones; full and
-// partial pyramids. Bit for bit: the kernels turn FP_CONTRACT off and do the
+// partial pyramids (one launch covers up to 3 levels: edge 16 and up need
+// more than one). A one-voxel wall must stay opaque at every level. Bit for bit: the kernels turn FP_CONTRACT off and do the
 // twin's additions and multiplications in its order (no division or sqrt),
 // so any difference is a bug, not rounding. Outputs are poisoned first, and
 // level 0 must come back untouched. Known values pin the filters themselves
