@@ -2,7 +2,8 @@
 // its C++ twin (host/vct/VoxelMipsReference.hpp), both kernel shapes,
 // isotropic and anisotropic: random volumes of edge 1 .. 64, empty, fully
 // opaque, checkerboard, one opaque black voxel among empty ones; full and
-// partial pyramids. Bit for bit: the kernels turn FP_CONTRACT off and do the
+// partial pyramids (one launch covers up to 3 levels: edge 16 and up need
+// more than one). A one-voxel wall must stay opaque at every level. Bit for bit: the kernels turn FP_CONTRACT off and do the
 // twin's additions and multiplications in its order (no division or sqrt),
 // so any difference is a bug, not rounding. Outputs are poisoned first, and
 // level 0 must come back untouched. Known values pin the filters themselves
@@ -115,7 +116,7 @@ TEST_P(VctMips, MatchTwinOnVolumes) {
   const unsigned largest = test::smallTests() ? 16 : 64;
   for (unsigned edge = 1; edge <= largest; edge *= 2)
     for (Pattern p : {Pattern::Random, Pattern::Empty, Pattern::Opaque, Pattern::Checkerboard, Pattern::BlackAmongEmpty})
-      for (unsigned levels : {log2Exact(edge) + 1, std::min(2u, log2Exact(edge) + 1)}) {
+      for (unsigned levels : {log2Exact(edge) + 1, std::min(2u, log2Exact(edge) + 1), std::min(4u, log2Exact(edge) + 1)}) {
         SCOPED_TRACE("edge=" + std::to_string(edge) + " levels=" + std::to_string(levels) + " " + patternName(p));
         checkVolume(mips, levelZero(edge, p, rng), edge, levels);
       }
@@ -134,10 +135,14 @@ TEST_P(VctMips, FiltersKnownValues) {
   compute::poison(q, aniso);
   mips.isotropic(q, grid(2, 2), vol);
   mips.anisotropic(q, grid(2, 2), vol, aniso);
+  // Isotropic: along X the pair composites to opacity 1 (colour the mean of
+  // both orders), 1/4 of the X columns; along Y and Z two of four columns
+  // hold one opaque child: opacity 1/2, the most opaque axis (Y before Z).
   const F4 iso = compute::download<F4>(q, vol, 9)[8];
-  EXPECT_EQ(iso.x, 0.125f);
-  EXPECT_EQ(iso.y, 0.125f);
-  EXPECT_EQ(iso.w, 0.25f);
+  EXPECT_EQ(iso.x, 0.25f);
+  EXPECT_EQ(iso.y, 0.25f);
+  EXPECT_EQ(iso.z, 0.0f);
+  EXPECT_EQ(iso.w, 0.5f);
   const auto a = compute::download<F4>(q, aniso, 6);
   // +X meets red first, -X green; along Y and Z each pair keeps its colour.
   EXPECT_EQ(a[ML_VOXEL_DIR_POS_X].x, 0.25f);
@@ -162,10 +167,44 @@ TEST_P(VctMips, OpaqueBlackKeepsOpacity) {
   cl::Buffer vol = compute::upload(rt.context(), q, v);
   mips.isotropic(q, grid(4, 3), vol);
   const auto got = compute::download<F4>(q, vol, v.size());
-  EXPECT_EQ(got[64].w, 0.125f);       // level 1, parent of the black voxel
+  EXPECT_EQ(got[64].w, 0.25f);        // level 1, parent of the black voxel: 1 of 4 columns opaque
   EXPECT_EQ(got[64].x, 0.0f);
   EXPECT_EQ(got[65].w, 0.0f);         // its empty neighbour
-  EXPECT_EQ(got[72].w, 1.0f / 64.0f);  // level 2
+  EXPECT_EQ(got[72].w, 1.0f / 16.0f);  // level 2
+}
+
+// A one-voxel wall (a plane of opaque voxels across the grid, normal to
+// each axis in turn) stays opaque at every level for a cone crossing it: the
+// pair along the wall's normal composites to opacity 1 in every column. The
+// mean of the 8 children (the former filter) gives 1/2, 1/4, ...
+TEST_P(VctMips, OneVoxelWallStaysOpaqueAtEveryLevel) {
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  VoxelMips mips(compute::ComputeEnv(rt), compute::Options{.shape = GetParam()});
+  constexpr unsigned kEdge = 16, kLevels = 5, kWall = 5;
+  for (unsigned axis = 0; axis < 3; ++axis) {
+    SCOPED_TRACE("wall normal to axis " + std::to_string(axis));
+    std::vector<F4> v(gpu::voxel_level_offset(kEdge, kLevels), F4{0, 0, 0, 0});
+    for (std::size_t i = 0; i < std::size_t(kEdge) * kEdge * kEdge; ++i) {
+      const std::size_t c[3] = {i % kEdge, i / kEdge % kEdge, i / kEdge / kEdge};
+      if (c[axis] == kWall) v[i] = {0.2f, 0.4f, 0.6f, 1.0f};
+    }
+    std::vector<F4> want = v;
+    mipIsotropicTwin(want, kEdge, kLevels);
+    cl::Buffer vol = compute::upload(rt.context(), q, v);
+    mips.isotropic(q, grid(kEdge, kLevels), vol);
+    const auto got = compute::download<F4>(q, vol, v.size());
+    for (unsigned l = 1; l < kLevels; ++l) {
+      const unsigned e = kEdge >> l;
+      for (std::size_t i = 0; i < std::size_t(e) * e * e; ++i) {
+        const std::size_t c[3] = {i % e, i / e % e, i / e / e}, at = gpu::voxel_level_offset(kEdge, l) + i;
+        const float a = c[axis] == (kWall >> l) ? 1.0f : 0.0f;
+        ASSERT_EQ(got[at].w, a) << "level " << l << " voxel " << i;
+        ASSERT_EQ(want[at].w, a) << "twin, level " << l << " voxel " << i;
+        ASSERT_EQ(got[at].x, a * 0.2f) << "level " << l << " voxel " << i;  // the wall's colour, not diluted
+      }
+    }
+  }
 }
 
 TEST_P(VctMips, RejectsSmallBuffers) {

@@ -1,5 +1,6 @@
 #include "host/vct/VoxelMips.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "host/compute/Detail.hpp"
@@ -30,15 +31,32 @@ void VoxelMips::build() {
   aniso_ = cl::Kernel(p, "mip_aniso");
 }
 
-void VoxelMips::shapeFor(std::size_t n, std::size_t& global, std::size_t& local, std::size_t& chunk) const {
-  if (tuning_.gpu()) {
-    local = tuning_.wg;
-    global = n;
-    chunk = 1;
-  } else {
-    local = 1;
-    chunk = tuning_.cpuChunk(n);
-    global = compute::detail::ceilDiv(n, chunk);
+// Launches `k` (arguments 0 .. first_arg - 1 set by the caller) once per run
+// of up to kTreeDepth levels, each top parent's subtree in one work-item (CPU
+// shape) or work-group (GPU shape): one launch for a grid of up to 4 levels,
+// where one launch per level made small grids launch-bound.
+void VoxelMips::launchTrees(cl::CommandQueue& q, cl::Kernel& k, cl_uint first_arg, const gpu::VoxelGridParams& g,
+                            ClPassTimer* timer) {
+  const unsigned edge_log2 = log2Exact(g.edge);
+  for (unsigned l0 = 0, depth = 0; l0 + 1 < g.levels; l0 += depth) {
+    depth = std::min(kTreeDepth, g.levels - 1 - l0);
+    const unsigned top_log2 = edge_log2 - l0 - depth;  // the top level's edge
+    // GPU: top parents per work-group, enough that the first level's
+    // blocks (8^(depth - 1) parents each) fill it; CPU: top-level z-slices
+    // per work-item (a few per core).
+    std::size_t global = 0, local = 1, tops = 1;
+    if (tuning_.gpu()) {
+      local = tuning_.wg;
+      tops = std::max<std::size_t>(1, local >> (3 * (depth - 1)));
+      global = compute::detail::ceilDiv(std::size_t(1) << (3 * top_log2), tops) * local;
+    } else {
+      const std::size_t slices = std::size_t(1) << top_log2;
+      tops = compute::detail::ceilDiv(slices, std::min<std::size_t>(slices, tuning_.chunks));
+      global = compute::detail::ceilDiv(slices, tops);
+    }
+    cl_uint a = first_arg;
+    for (cl_uint v : {cl_uint(edge_log2), cl_uint(l0), cl_uint(depth), u32(tops)}) k.setArg(a++, v);
+    compute::detail::launch(q, k, global, local, timer, "vct-mips");
   }
 }
 
@@ -48,15 +66,8 @@ void VoxelMips::isotropic(cl::CommandQueue& q, const gpu::VoxelGridParams& g, cl
   compute::detail::checkBuffer(radiance, std::size_t(gpu::voxel_level_offset(g.edge, g.levels)) * 16,
                                "VoxelMips radiance volume");
   build();
-  for (unsigned l = 1; l < g.levels; ++l) {
-    const unsigned ep_log2 = log2Exact(g.edge >> l);
-    const std::size_t n = std::size_t(1) << (3 * ep_log2);
-    std::size_t global, local, chunk;
-    shapeFor(n, global, local, chunk);
-    compute::detail::setArgs(iso_, radiance, gpu::voxel_level_offset(g.edge, l - 1), gpu::voxel_level_offset(g.edge, l),
-                             cl_uint(ep_log2), u32(n), u32(chunk));
-    compute::detail::launch(q, iso_, global, local, timer, "vct-mips");
-  }
+  compute::detail::setArgs(iso_, radiance);
+  launchTrees(q, iso_, 1, g, timer);
 }
 
 void VoxelMips::anisotropic(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& radiance,
@@ -66,17 +77,8 @@ void VoxelMips::anisotropic(cl::CommandQueue& q, const gpu::VoxelGridParams& g, 
   compute::detail::checkBuffer(aniso, std::size_t(gpu::voxel_aniso_index(g.edge, g.levels, 0, 0)) * 16,
                                "VoxelMips anisotropic volume");
   build();
-  for (unsigned l = 1; l < g.levels; ++l) {
-    const unsigned ep_log2 = log2Exact(g.edge >> l);
-    const std::size_t n = std::size_t(1) << (3 * ep_log2);
-    const bool from_iso = l == 1;
-    std::size_t global, local, chunk;
-    shapeFor(n, global, local, chunk);
-    compute::detail::setArgs(aniso_, from_iso ? radiance : aniso,
-                             from_iso ? 0u : gpu::voxel_aniso_index(g.edge, l - 1, 0, 0), from_iso ? 0u : u32(n * 8),
-                             aniso, gpu::voxel_aniso_index(g.edge, l, 0, 0), cl_uint(ep_log2), u32(n), u32(chunk));
-    compute::detail::launch(q, aniso_, global, local, timer, "vct-mips");
-  }
+  compute::detail::setArgs(aniso_, radiance, aniso);
+  launchTrees(q, aniso_, 2, g, timer);
 }
 
 }  // namespace ml::vct

@@ -1,14 +1,15 @@
 #pragma once
 // Voxel mip propagation on the device (kernels/vct_mips.cl): levels 1 ..
-// levels - 1 of the radiance/opacity volume from its level 0 (isotropic,
-// 002's alpha-weighted box filter) and of the 6-direction volume
-// (anisotropic, Crassin 2011; its level 1 from isotropic level 0). One
-// launch per level, in level order on the queue (each reads the previous).
-// Both kernel shapes (compute::Shape, ComputeEnv.hpp); the C++ twin is
-// VoxelMipsReference.hpp, equal bit for bit (the kernels do not fuse
-// multiply-adds). Buffers hold the layouts of host/shared/voxel_types.h and
-// are checked against the grid's size (std::invalid_argument). Not
-// thread-safe.
+// levels - 1 of the radiance/opacity volume from its level 0 (isotropic:
+// child pairs composited along each axis, the most opaque axis kept) and of
+// the 6-direction volume (anisotropic, Crassin 2011; its level 1 from
+// isotropic level 0). One launch per kTreeDepth levels, each top parent's
+// subtree in one work-item (CPU shape) or work-group (GPU shape), launches in
+// level order on the queue. Both kernel shapes (compute::Shape,
+// ComputeEnv.hpp); the C++ twin is VoxelMipsReference.hpp, equal bit for bit
+// (the kernels do not fuse multiply-adds). Buffers hold the layouts of
+// host/shared/voxel_types.h and are checked against the grid's size
+// (std::invalid_argument). Not thread-safe.
 #include <CL/opencl.hpp>
 
 #include "host/cl/ClPassTimer.hpp"
@@ -31,8 +32,11 @@ class VoxelMips {
 
  private:
   void build();
-  // Global and local size, and the CPU chunk, for n parents.
-  void shapeFor(std::size_t n, std::size_t& global, std::size_t& local, std::size_t& chunk) const;
+  // Levels per launch: subtrees of 8^3 level-0 voxels under each top parent
+  // fit in a core's L1/L2 while it walks them.
+  static constexpr unsigned kTreeDepth = 3;
+  void launchTrees(cl::CommandQueue& q, cl::Kernel& k, cl_uint first_arg, const gpu::VoxelGridParams& g,
+                   ClPassTimer* timer);
 
   compute::ComputeEnv env_;
   compute::Tuning tuning_;

@@ -1,5 +1,7 @@
 #include "host/vct/VoxelMipsReference.hpp"
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
 
 namespace ml::vct {
@@ -10,7 +12,7 @@ using F4 = gpu::ml_float4;
 
 F4 add(F4 a, F4 b) { return {a.x + b.x, a.y + b.y, a.z + b.z, a.w + b.w}; }
 F4 scale(F4 a, float s) { return {a.x * s, a.y * s, a.z * s, a.w * s}; }
-// front + (1 - front.a) * back, as the kernel's over().
+// front + (1 - front.a) * back, as each half of the kernel's over8().
 F4 over(F4 f, F4 b) { return add(f, scale(b, 1.0f - f.w)); }
 
 // Parent (x, y, z)'s child (0, 0, 0) in a level of edge ec, and the strides.
@@ -26,11 +28,30 @@ Children childrenOf(const F4* level, unsigned ep, std::size_t p) {
   return {level + 2 * x + ec * (2 * y + ec * 2 * z), ec, ec * ec};
 }
 
-F4 mean8(const Children& k) {
-  const std::size_t sy = k.sy, sz = k.sz;
-  const F4 a = add(add(k.at(0), k.at(1)), add(k.at(sy), k.at(sy + 1)));
-  const F4 b = add(add(k.at(sz), k.at(sz + 1)), add(k.at(sz + sy), k.at(sz + sy + 1)));
-  return scale(add(a, b), 0.125f);
+// As the kernel's AXIS_OVERLAP, AXIS_CROSS and iso_parent(): pairs
+// (f[i], b[i]) of one axis.
+using Quad = std::array<F4, 4>;
+float axisOverlap(const Quad& f, const Quad& b) {
+  return (f[0].w * b[0].w + f[1].w * b[1].w) + (f[2].w * b[2].w + f[3].w * b[3].w);
+}
+
+F4 axisCross(const Quad& f, const Quad& b) {
+  F4 q[4];
+  for (int i = 0; i < 4; ++i) q[i] = add(scale(f[i], b[i].w), scale(b[i], f[i].w));
+  return add(add(q[0], q[1]), add(q[2], q[3]));
+}
+
+F4 isoParent(const Children& c) {
+  const std::size_t sy = c.sy, sz = c.sz;
+  const std::array<F4, 8> k{c.at(0),  c.at(1),      c.at(sy),      c.at(sy + 1),
+                            c.at(sz), c.at(sz + 1), c.at(sz + sy), c.at(sz + sy + 1)};
+  const Quad xf{k[0], k[2], k[4], k[6]}, xb{k[1], k[3], k[5], k[7]};
+  const Quad yf{k[0], k[1], k[4], k[5]}, yb{k[2], k[3], k[6], k[7]};
+  const Quad zf{k[0], k[1], k[2], k[3]}, zb{k[4], k[5], k[6], k[7]};
+  const float dx = axisOverlap(xf, xb), dy = axisOverlap(yf, yb), dz = axisOverlap(zf, zb);
+  const F4 sum = add(add(add(k[0], k[1]), add(k[2], k[3])), add(add(k[4], k[5]), add(k[6], k[7])));
+  const F4 cross = dz < std::min(dx, dy) ? axisCross(zf, zb) : (dy < dx ? axisCross(yf, yb) : axisCross(xf, xb));
+  return scale(add(sum, scale(cross, -0.5f)), 0.25f);
 }
 
 F4 anisoDir(const Children& k, unsigned d) {
@@ -56,7 +77,7 @@ void mipIsotropicTwin(std::vector<F4>& radiance, unsigned edge, unsigned levels)
     const unsigned ep = edge >> l;
     const F4* child = radiance.data() + gpu::voxel_level_offset(edge, l - 1);
     F4* parent = radiance.data() + gpu::voxel_level_offset(edge, l);
-    for (std::size_t p = 0; p < std::size_t(ep) * ep * ep; ++p) parent[p] = mean8(childrenOf(child, ep, p));
+    for (std::size_t p = 0; p < std::size_t(ep) * ep * ep; ++p) parent[p] = isoParent(childrenOf(child, ep, p));
   }
 }
 
