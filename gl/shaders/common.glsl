@@ -11,7 +11,6 @@ layout(std430, binding = 0) readonly buffer LightBuffer { PointLight lights[]; }
 uniform mat4 u_view;
 uniform mat4 u_proj;
 uniform mat4 u_inv_view;
-uniform mat4 u_inv_proj;
 uniform vec2 u_viewport;      // width, height in pixels
 uniform uint u_light_count;
 
