@@ -410,7 +410,7 @@ CheckedBenchFlags checkBenchFlags(const BenchArgs& a, const std::string& where) 
   checkBenchGiFlags(a);
   c.range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
   c.progress = Progress::parseMode(a.progress, "--progress");
-  (void)LightAnimator({}, a.animate, 23, a.animate_speed);  // validates --animate, --animate-speed
+  (void)LightAnimator({}, a.animate, kThesisSeed, a.animate_speed);  // validates --animate, --animate-speed
   if (a.no_counts && a.no_timing) throw UserError("--no-counts and --no-timing together leave nothing to measure");
   if (a.no_shading && !a.images.empty()) throw UserError("--images: there is no shaded image with --no-shading");
   if (!a.plot.empty() && findPlotPython().empty())
