@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "BenchCommon.hpp"
 #include "gl/FrameRenderer.hpp"
 #include "host/app/InputChecks.hpp"
 #include "host/app/RenderCommand.hpp"
@@ -17,6 +18,18 @@ void addBenchArgs(CLI::App& app, BenchArgs& a, const char* reps_help) {
   app.add_option("--reps", a.reps, reps_help)->capture_default_str();
   app.add_option("--light-density", a.light_density, kLightDensityHelp)->check(finitePositive());
   app.add_option("--device", a.device, "OpenCL device");
+}
+
+std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv, const BenchArgs& common,
+                                    const std::function<void()>& checks) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  requireWritable("--json", common.json_path);
+  if (checks) checks();
+  return std::nullopt;
 }
 
 SceneInputs defaultScene() {

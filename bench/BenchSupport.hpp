@@ -1,6 +1,8 @@
 // What the technique benchmarks (tiled, clustered, hashed) share beyond
 // BenchCommon.hpp, so that each bench main keeps only its own measurements:
 //   BenchArgs + addBenchArgs()   --json, --reps, --device, --light-density
+//   parseCommandLine()           argv, then --json and the bench's own checks,
+//                                before GL/CL open
 //   BenchSetup::open()           GL + CL through the run layer (RunContext), the
 //                                device lines, the default scene and its camera
 //   generatedLights()            N lights in the default scene's light volumes
@@ -13,6 +15,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +34,14 @@ struct BenchArgs {
 };
 // `reps_help` says what a repetition is in this bench.
 void addBenchArgs(CLI::App& app, BenchArgs& a, const char* reps_help = "timed repetitions (median reported)");
+
+// The opening of a bench's run(): parses argv into `app` (--help and parse
+// errors end the program as CLI11_PARSE ends it), then checks that --json can
+// be written and runs `checks`, the bench's own flag checks (UserError), so
+// that a bad flag fails before anything opens. Returns the exit code when the
+// bench stops there, nothing when it goes on.
+std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv, const BenchArgs& common,
+                                    const std::function<void()>& checks = {});
 
 // The default scene (data/default/) without its lights; lights come per case.
 SceneInputs defaultScene();

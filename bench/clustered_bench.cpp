@@ -268,15 +268,18 @@ benchutil::FrameSweep frameSweep(const Args& a) {
           a.common.reps, true};
 }
 
+// The flags parsing leaves unchecked, checked before GL/CL open.
+void checkArgs(const Args& a) {
+  (void)parseClusterBounds(a.bounds);
+  benchutil::checkSizes(a.sizes, "--sizes");
+  benchutil::checkSizes(a.frame_sizes, "--frame-sizes");
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"Clustered shading: unique-cluster methods, BVH vs brute-force assignment, frames vs tiled"};
   Args a;
   parseArgs(app, a);
-  CLI11_PARSE(app, argc, argv);
-  benchutil::requireWritable("--json", a.common.json_path);
-  (void)parseClusterBounds(a.bounds);
-  benchutil::checkSizes(a.sizes, "--sizes");
-  benchutil::checkSizes(a.frame_sizes, "--frame-sizes");
+  if (const auto stop = benchutil::parseCommandLine(app, argc, argv, a.common, [&] { checkArgs(a); })) return *stop;
   benchutil::BenchSetup b = benchutil::BenchSetup::open(a.common.device, benchutil::defaultScene());
   json records = json::array();
 

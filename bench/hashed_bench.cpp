@@ -283,9 +283,9 @@ int run(int argc, char** argv) {
   CLI::App app{"Hashed shading: build, memory, light evaluations and dynamic updates"};
   Args a;
   parseArgs(app, a);
-  CLI11_PARSE(app, argc, argv);
-  benchutil::requireWritable("--json", a.common.json_path);
-  (void)benchutil::sizeOf(a.size, "--size");
+  if (const auto stop = benchutil::parseCommandLine(app, argc, argv, a.common,
+                                                    [&] { (void)benchutil::sizeOf(a.size, "--size"); }))
+    return *stop;
 
   json out;
   out["tool"] = "manylights-hashed-bench";

@@ -111,15 +111,18 @@ void parseArgs(CLI::App& app, Args& a) {
   app.add_option("--tile-depth", a.depth_mode, "none|minmax|mask")->capture_default_str();
 }
 
+// The flags parsing leaves unchecked, checked before GL/CL open.
+void checkArgs(const Args& a) {
+  (void)parseTileDepthMode(a.depth_mode);
+  benchutil::checkSizes(a.sizes, "--sizes");
+  benchutil::checkSizes(a.frame_sizes, "--frame-sizes");
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"Tile light culling: OpenCL kernel vs multi-threaded C++, and tiled frame breakdowns"};
   Args a;
   parseArgs(app, a);
-  CLI11_PARSE(app, argc, argv);
-  benchutil::requireWritable("--json", a.common.json_path);
-  (void)parseTileDepthMode(a.depth_mode);
-  benchutil::checkSizes(a.sizes, "--sizes");
-  benchutil::checkSizes(a.frame_sizes, "--frame-sizes");
+  if (const auto stop = benchutil::parseCommandLine(app, argc, argv, a.common, [&] { checkArgs(a); })) return *stop;
   benchutil::BenchSetup b = benchutil::BenchSetup::open(a.common.device, benchutil::defaultScene());
   nlohmann::ordered_json records = nlohmann::ordered_json::array();
 

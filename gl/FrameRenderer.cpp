@@ -6,6 +6,7 @@
 #include "gl/GlCheck.hpp"
 #include "gl/ViewUniforms.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/shared/shading_bindings.h"
 
 namespace ml {
 
@@ -139,7 +140,7 @@ void FrameRenderer::beginFrame(bool count) {
   if (count) {
     const GLuint zero[4] = {0, 0, 0, 0};
     glNamedBufferSubData(stats_ssbo_, 0, 16, zero);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, stats_ssbo_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_STATS, stats_ssbo_);
   }
   glCheck("starting a frame");
 }
@@ -235,7 +236,7 @@ void FrameRenderer::shade(bool deferred, bool count, const glm::mat4& view, cons
   const GLfloat clear_color[4] = {0, 0, 0, 1};
   const GLuint clear_counts[4] = {0, 0, 0, 0};
   const GLfloat clear_depth = gpu::kSkyDepth;
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, lights_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_LIGHTS, lights_->gl());
   glBindFramebuffer(GL_FRAMEBUFFER, targets_->outputFbo());
   glClearNamedFramebufferfv(targets_->outputFbo(), GL_COLOR, 0, clear_color);
   glClearNamedFramebufferuiv(targets_->outputFbo(), GL_COLOR, 1, clear_counts);

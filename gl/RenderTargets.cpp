@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "gl/GlCheck.hpp"
+#include "gl/Texture2d.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml {
@@ -76,14 +77,6 @@ std::pair<unsigned, unsigned> largestAtAspect(unsigned w, unsigned h, const Size
   return lo ? at(lo) : std::pair<unsigned, unsigned>(0, 0);
 }
 
-GLuint makeTexture(GLenum format, unsigned w, unsigned h) {
-  GLuint t = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &t);
-  glTextureStorage2D(t, 1, format, static_cast<GLsizei>(w), static_cast<GLsizei>(h));
-  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  return t;
-}
 void checkComplete(GLuint fbo, const char* what) {
   GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE)
@@ -121,9 +114,9 @@ void RenderTargets::checkSize(unsigned width, unsigned height) {
 
 RenderTargets::RenderTargets(unsigned width, unsigned height) : width_(width), height_(height) {
   checkSize(width, height);
-  color_ = makeTexture(GL_RGBA32F, width, height);
-  counts_ = makeTexture(GL_RG32UI, width, height);
-  depth_ = makeTexture(GL_DEPTH32F_STENCIL8, width, height);
+  color_ = makeTexture2d(GL_RGBA32F, width, height);
+  counts_ = makeTexture2d(GL_RG32UI, width, height);
+  depth_ = makeTexture2d(GL_DEPTH32F_STENCIL8, width, height);
   glCreateFramebuffers(1, &output_fbo_);
   glNamedFramebufferTexture(output_fbo_, GL_COLOR_ATTACHMENT0, color_, 0);
   glNamedFramebufferTexture(output_fbo_, GL_COLOR_ATTACHMENT1, counts_, 0);
@@ -132,9 +125,9 @@ RenderTargets::RenderTargets(unsigned width, unsigned height) : width_(width), h
   glNamedFramebufferDrawBuffers(output_fbo_, 2, bufs);
   checkComplete(output_fbo_, "output");
 
-  albedo_ = makeTexture(GL_RGBA8, width, height);
-  normal_ = makeTexture(GL_RG16, width, height);  // octahedral normals (gl/shaders/octahedral.glsl)
-  gbuffer_depth_ = makeTexture(GL_DEPTH_COMPONENT32F, width, height);
+  albedo_ = makeTexture2d(GL_RGBA8, width, height);
+  normal_ = makeTexture2d(GL_RG16, width, height);  // octahedral normals (gl/shaders/octahedral.glsl)
+  gbuffer_depth_ = makeTexture2d(GL_DEPTH_COMPONENT32F, width, height);
   glCreateFramebuffers(1, &gbuffer_fbo_);
   glNamedFramebufferTexture(gbuffer_fbo_, GL_COLOR_ATTACHMENT0, albedo_, 0);
   glNamedFramebufferTexture(gbuffer_fbo_, GL_COLOR_ATTACHMENT1, normal_, 0);

@@ -1,6 +1,6 @@
 #pragma once
-// The camera uniforms of gl/shaders/common.glsl (u_view, u_proj, their
-// inverses, u_viewport), set the one way the frame's programs and the GI
+// The camera uniforms of gl/shaders/common.glsl (u_view, u_proj, the inverse
+// view u_inv_view, u_viewport), set the one way the frame's programs and the GI
 // passes that reconstruct positions from its depth both need.
 #include <glm/glm.hpp>
 

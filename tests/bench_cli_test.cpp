@@ -21,18 +21,9 @@
 namespace ml {
 namespace {
 
+using test::lines;
+using test::readJson;
 using test::runManylights;
-
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
-int lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
 
 // The techniques of the `manylights` binary (not those the test binary adds).
 std::string allTechniques() {

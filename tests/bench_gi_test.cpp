@@ -18,22 +18,14 @@
 namespace ml {
 namespace {
 
+using test::lines;
+using test::readJson;
+
 // The Cornell box with its 4 lights, one frame, one technique: small enough to sweep.
 std::string cornellBench(const std::string& size = "48x32") {
   const std::string dir = std::string(MANYLIGHTS_TEST_DATA_DIR) + "/cornell/";
   return "bench --scene " + dir + "cornell.gltf --lights " + dir + "lights.json --camera " + dir +
          "camera.json --techniques deferred --size " + size + " --frames 0 --warmup 0 --progress none ";
-}
-
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
-int lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
 }
 
 TEST(BenchGi, SweepOfTwoVctKeysGivesFourRecordsWithTheirSettingsAndPasses) {

@@ -40,7 +40,7 @@ class ScopedEnv {
   std::optional<std::string> old_;
 };
 
-int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+using test::lines;
 
 // A render that must stop at the environment check: exit 2, one line on
 // stderr containing every string of `expect`, nothing on stdout.

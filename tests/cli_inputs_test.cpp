@@ -29,20 +29,15 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::CommandResult;
+using test::lines;
 using test::runManylights;
 using test::TempDir;
-
-int lineCount(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
 
 // Exit 2, one stderr line mentioning every string of `mentions`, and (with
 // `quiet`) nothing on stdout: the check ran before GL/CL printed anything.
 void expectRefused(const CommandResult& r, std::initializer_list<std::string> mentions, bool quiet = true) {
   EXPECT_EQ(r.exit_code, 2) << "stdout: " << r.out << "\nstderr: " << r.err;
-  EXPECT_EQ(lineCount(r.err), 1) << "expected one line: " << r.err;
+  EXPECT_EQ(lines(r.err), 1) << "expected one line: " << r.err;
   for (const auto& m : mentions) EXPECT_NE(r.err.find(m), std::string::npos) << "expected '" << m << "' in: " << r.err;
   if (quiet) {
     EXPECT_EQ(r.out, "") << "expected no output before the error";

@@ -13,19 +13,14 @@
 namespace ml {
 namespace {
 
+using test::lines;
 using test::runManylights;
-
-int lineCount(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
 
 void expectUserError(const test::CommandResult& r, const std::string& must_mention) {
   EXPECT_EQ(r.exit_code, 2) << "stderr: " << r.err;
   EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(must_mention), std::string::npos) << "expected '" << must_mention << "' in: " << r.err;
-  EXPECT_EQ(lineCount(r.err), 1) << "expected one line: " << r.err;
+  EXPECT_EQ(lines(r.err), 1) << "expected one line: " << r.err;
 }
 
 std::string writeFile(const std::string& name, const std::string& content) {
@@ -67,22 +62,29 @@ TEST(Cli, BadSizes) {
 
 TEST(Cli, BadVctFlags) {
   const std::string vct = "render --size 16x16 --gi vct ";
-  expectUserError(runManylights(vct + "--voxels 63"), "--voxels");
-  expectUserError(runManylights(vct + "--voxels 1024"), "--voxels");
-  expectUserError(runManylights(vct + "--voxels 16 --levels 6"), "--levels");
-  expectUserError(runManylights(vct + "--cone-aperture 0"), "--cone-aperture");
-  expectUserError(runManylights(vct + "--cone-aperture 180"), "--cone-aperture");
-  expectUserError(runManylights(vct + "--cones 0"), "--cones");
-  expectUserError(runManylights(vct + "--cones 33"), "--cones");
-  expectUserError(runManylights(vct + "--gi-scale 0"), "--gi-scale");
-  expectUserError(runManylights(vct + "--gi-scale 1.5"), "--gi-scale");
-  expectUserError(runManylights(vct + "--vct-shadows ray"), "--vct-shadows");
-  // The reference must model vct's transport: ray with voxel shadows, else none.
-  expectUserError(runManylights(vct + "--gi-reference --gi-shadows ray"), "--gi-shadows");
-  expectUserError(runManylights(vct + "--vct-shadows voxel --gi-reference --gi-shadows none"), "--gi-shadows");
-  expectUserError(runManylights(vct + "--vct-shadows voxel --gi-shadows bogus"), "--gi-shadows");
+  // Each row: the flags after `vct`, and the flag the one error line must name.
+  const std::pair<const char*, const char*> refused[] = {
+      {"--voxels 63", "--voxels"},
+      {"--voxels 1024", "--voxels"},
+      {"--voxels 16 --levels 6", "--levels"},
+      {"--cone-aperture 0", "--cone-aperture"},
+      {"--cone-aperture 180", "--cone-aperture"},
+      {"--cones 0", "--cones"},
+      {"--cones 33", "--cones"},
+      {"--gi-scale 0", "--gi-scale"},
+      {"--gi-scale 1.5", "--gi-scale"},
+      {"--vct-shadows ray", "--vct-shadows"},
+      // The reference must model vct's transport: ray with voxel shadows, else none.
+      {"--gi-reference --gi-shadows ray", "--gi-shadows"},
+      {"--vct-shadows voxel --gi-reference --gi-shadows none", "--gi-shadows"},
+      {"--vct-shadows voxel --gi-shadows bogus", "--gi-shadows"},
+      {"--no-shading", "--gi"},
+  };
+  for (const auto& [flags, named] : refused) {
+    SCOPED_TRACE(flags);
+    expectUserError(runManylights(vct + flags), named);
+  }
   expectUserError(runManylights("render --size 16x16 --gi reference --gi-reference"), "--gi-reference");
-  expectUserError(runManylights(vct + "--no-shading"), "--gi");
 }
 
 TEST(Cli, BadDevice) {

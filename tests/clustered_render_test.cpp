@@ -17,7 +17,6 @@ namespace ml {
 namespace {
 
 constexpr unsigned kW = test::kReferenceWidth, kH = test::kReferenceHeight;
-using test::bruteReference;
 const SceneInputs& scene() { return test::referenceScene(); }
 
 struct Param {
@@ -33,20 +32,10 @@ class RenderClustered : public ::testing::TestWithParam<Param> {};
 TEST_P(RenderClustered, MatchesBruteForce) {
   test::glContext();
   const auto [pipeline, tile, unique, assign, bounds, shape] = GetParam();
-  const test::BruteReference& ref = bruteReference(pipeline);
   FrameRenderer r(test::runtime(), scene().scene, kW, kH);
   r.setLights(scene().lights);
   ClusteredAssigner clustered(test::runtime(), tile, unique, assign, bounds, shape);
-  FrameResult res = r.render(scene().cameras.frames.front(), clustered, {pipeline, true});
-  const auto img = r.targets().readColor();
-  // Lights left out contribute exactly zero, so only the summation order differs.
-  const auto diff = test::compareImages(img, ref.image, 1.0 / 255.0);
-  EXPECT_LT(diff.mean_abs, 1e-4);
-  EXPECT_EQ(diff.frac_over_tol, 0.0) << "max diff " << diff.max_abs;
-  EXPECT_EQ(res.lower_bound, ref.result.lower_bound);
-  EXPECT_EQ(res.covered_pixels, ref.result.covered_pixels);
-  EXPECT_GE(res.light_evaluations, res.lower_bound);
-  EXPECT_LT(res.light_evaluations, ref.result.light_evaluations / 4);
+  const FrameResult res = test::expectBruteForceFrame(r, clustered, pipeline);
   // The map covers exactly the covered pixels, with valid cluster indices.
   const auto map = clustered.readClusterMap();
   std::size_t mapped = 0;
@@ -106,12 +95,8 @@ TEST(RenderClusteredShapes, GpuShapeRendersTheCpuShapesImage) {
 
 TEST(RenderClusteredEdges, OddScreenSizeAndNoLights) {
   test::glContext();
-  FrameRenderer r(test::runtime(), scene().scene, 101, 37);
-  r.setLights({});
   ClusteredAssigner clustered(test::runtime(), 32, UniqueMethod::PageTable, ClusterAssignMethod::Bvh);
-  FrameResult res = r.render(scene().cameras.frames.front(), clustered, {Pipeline::Forward, true});
-  EXPECT_EQ(res.light_evaluations, 0u);
-  EXPECT_GT(res.covered_pixels, 0u);
+  test::expectNoLightsAtOddSize(clustered);
 }
 
 }  // namespace

@@ -16,7 +16,6 @@ namespace ml {
 namespace {
 
 constexpr unsigned kW = test::kReferenceWidth, kH = test::kReferenceHeight;
-using test::bruteReference;
 const SceneInputs& scene() { return test::referenceScene(); }
 
 struct Param {
@@ -30,22 +29,10 @@ class RenderTiled : public ::testing::TestWithParam<Param> {};
 TEST_P(RenderTiled, MatchesBruteForce) {
   test::glContext();
   const auto [pipeline, tile, mode, shape] = GetParam();
-  const test::BruteReference& ref = bruteReference(pipeline);
   FrameRenderer r(test::runtime(), scene().scene, kW, kH);
   r.setLights(scene().lights);
   TiledAssigner tiled(test::runtime(), tile, mode, shape);
-  FrameResult res = r.render(scene().cameras.frames.front(), tiled, {pipeline, true});
-  const auto img = r.targets().readColor();
-  // Lights left out contribute exactly zero (attenuation clamps to 0 at d >= r),
-  // so only the summation order differs: tolerance mean < 1e-4, max 1/255.
-  const auto diff = test::compareImages(img, ref.image, 1.0 / 255.0);
-  EXPECT_LT(diff.mean_abs, 1e-4);
-  EXPECT_EQ(diff.frac_over_tol, 0.0) << "max diff " << diff.max_abs;
-  // Conservative lists: the shader finds every light in range that brute force finds.
-  EXPECT_EQ(res.lower_bound, ref.result.lower_bound);
-  EXPECT_EQ(res.covered_pixels, ref.result.covered_pixels);
-  EXPECT_LT(res.light_evaluations, ref.result.light_evaluations / 4);
-  EXPECT_GE(res.light_evaluations, res.lower_bound);
+  const FrameResult res = test::expectBruteForceFrame(r, tiled, pipeline);
   if (mode != TileDepthMode::None && tile <= 16) {
     EXPECT_LE(double(res.light_evaluations), 3.0 * double(res.lower_bound));
   }
@@ -90,12 +77,8 @@ TEST(RenderTiledShapes, GpuShapeRendersTheCpuShapesImage) {
 
 TEST(RenderTiledEdges, OddScreenSizeAndNoLights) {
   test::glContext();
-  FrameRenderer r(test::runtime(), scene().scene, 101, 37);  // not a multiple of any tile size
-  r.setLights({});
   TiledAssigner tiled(test::runtime(), 16, TileDepthMode::MinMax);
-  FrameResult res = r.render(scene().cameras.frames.front(), tiled, {Pipeline::Forward, true});
-  EXPECT_EQ(res.light_evaluations, 0u);
-  EXPECT_GT(res.covered_pixels, 0u);
+  test::expectNoLightsAtOddSize(tiled);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include "host/scene/Camera.hpp"
 #include "host/util/Error.hpp"
+#include "support/FileErrors.hpp"
 #include "support/TempDir.hpp"
 #include "support/TestDevice.hpp"
 
@@ -234,15 +235,7 @@ TEST(CameraJson, LoadsNTiledCameraFormat) {
 }
 
 void expectCameraError(const std::string& path, const std::string& also) {
-  try {
-    (void)ml::loadCameraJson(path);
-    ADD_FAILURE() << "no error for " << path;
-  } catch (const ml::UserError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find(path), std::string::npos) << msg;
-    EXPECT_NE(msg.find(also), std::string::npos) << msg;
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-  }
+  ml::test::expectFileError([&] { (void)ml::loadCameraJson(path); }, path, also);
 }
 
 TEST(CameraJson, ErrorsNameFileAndFrame) {

@@ -21,6 +21,7 @@
 #include "host/scene/LightSet.hpp"
 #include "host/scene/Scene.hpp"
 #include "host/util/Error.hpp"
+#include "support/FileErrors.hpp"
 
 #include "support/TempDir.hpp"
 
@@ -386,17 +387,7 @@ TEST(SceneGltf, UndecodableTextureFallsBackToTheFactor) {
 
 // Expects a one-line UserError that names the file.
 void expectUserError(const std::string& path, const std::string& also = "") {
-  try {
-    (void)ml::loadGltfScene(path);
-    ADD_FAILURE() << "no error for " << path;
-  } catch (const ml::UserError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find(path), std::string::npos) << msg;
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-    if (!also.empty()) {
-      EXPECT_NE(msg.find(also), std::string::npos) << msg;
-    }
-  }
+  ml::test::expectFileError([&] { (void)ml::loadGltfScene(path); }, path, also);
 }
 
 TEST(SceneGltfErrors, MissingFile) {

@@ -17,6 +17,7 @@
 
 #include "host/scene/LightSet.hpp"
 #include "host/util/Error.hpp"
+#include "support/FileErrors.hpp"
 #include "support/TempDir.hpp"
 #include "support/TestDevice.hpp"
 
@@ -222,15 +223,7 @@ TEST(LightJson, LoadsNTiledSuiteFormat) {
 }
 
 void expectLightError(const std::string& path, const std::string& also) {
-  try {
-    (void)ml::loadLightsJson(path);
-    ADD_FAILURE() << "no error for " << path;
-  } catch (const ml::UserError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find(path), std::string::npos) << msg;
-    EXPECT_NE(msg.find(also), std::string::npos) << msg;
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-  }
+  ml::test::expectFileError([&] { (void)ml::loadLightsJson(path); }, path, also);
 }
 
 TEST(LightJson, ErrorsNameFileAndLight) {
@@ -279,13 +272,7 @@ TEST(LightVolumes, LoadsAndValidates) {
 
   auto bad = [&](const std::string& name, const std::string& text, const std::string& also) {
     const std::string p = dir.write(name, text);
-    try {
-      (void)ml::loadLightVolumesJson(p);
-      ADD_FAILURE() << "no error for " << name;
-    } catch (const ml::UserError& e) {
-      EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find(also), std::string::npos) << e.what();
-    }
+    ml::test::expectFileError([&] { (void)ml::loadLightVolumesJson(p); }, p, also);
   };
   bad("empty.json", R"({"volumes": []})", "volumes");
   bad("inverted.json", R"({"volumes": [{"min": [0, 0, 0], "max": [1, 1, 1]}, {"min": [0, 2, 0], "max": [1, 1, 1]}]})",

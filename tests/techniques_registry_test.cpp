@@ -15,15 +15,15 @@
 #include "host/util/Error.hpp"
 #include "support/BruteReference.hpp"
 #include "support/InProcessCli.hpp"
+#include "support/RunCommand.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
 namespace ml {
 namespace {
 
+using test::lines;
 using test::runCliInProcess;
-
-int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
 
 bool has(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 

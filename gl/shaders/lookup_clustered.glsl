@@ -3,16 +3,17 @@
 // recomputes a key and cannot disagree with the assignment about the slice.
 // A cluster's list is a run of hit records (kernels/cluster_assign.cl): the
 // first leaf slot and a mask of the leaf's lights that reach the cluster.
+#include "shading_bindings.h"
 struct LightList {
   uint record;      // next record
   uint record_end;
   uint slot;        // leaf slot of the current record
   uint mask;        // its lights not yet visited
 };
-layout(std430, binding = 1) readonly buffer ClusterRecordBuffer { uvec2 cluster_records[]; };
-layout(std430, binding = 2) readonly buffer ClusterRangeBuffer { uvec2 cluster_ranges[]; };
-layout(std430, binding = 3) readonly buffer ClusterMapBuffer { uint cluster_map[]; };
-layout(std430, binding = 4) readonly buffer LeafLightBuffer { uint leaf_lights[]; };
+layout(std430, binding = ML_BINDING_CLUSTER_RECORDS) readonly buffer ClusterRecordBuffer { uvec2 cluster_records[]; };
+layout(std430, binding = ML_BINDING_CLUSTER_RANGES) readonly buffer ClusterRangeBuffer { uvec2 cluster_ranges[]; };
+layout(std430, binding = ML_BINDING_CLUSTER_MAP) readonly buffer ClusterMapBuffer { uint cluster_map[]; };
+layout(std430, binding = ML_BINDING_CLUSTER_LEAF_LIGHTS) readonly buffer LeafLightBuffer { uint leaf_lights[]; };
 uniform uint u_cluster_width;
 LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {
   uvec2 p = uvec2(frag_coord);

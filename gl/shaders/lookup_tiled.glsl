@@ -1,10 +1,11 @@
 // Tiled shading: the fragment's screen tile holds (offset, count) into the
 // light index list (built by kernels/tiled_light_culling.cl).
+#include "shading_bindings.h"
 struct LightList {
   uint offset;
   uint count;
 };
-layout(std430, binding = 1) readonly buffer LightIndexBuffer { uint light_indices[]; };
+layout(std430, binding = ML_BINDING_TILED_INDICES) readonly buffer LightIndexBuffer { uint light_indices[]; };
 bool listEnded(LightList list) { return list.count == 0u; }
 bool nextLight(inout LightList list, out uint light_index) {
   light_index = 0u;
@@ -13,7 +14,7 @@ bool nextLight(inout LightList list, out uint light_index) {
   --list.count;
   return true;
 }
-layout(std430, binding = 2) readonly buffer TileGridBuffer { uvec2 tile_grid[]; };
+layout(std430, binding = ML_BINDING_TILED_GRID) readonly buffer TileGridBuffer { uvec2 tile_grid[]; };
 uniform uint u_tiles_x;
 LightList lightListFor(vec3 world_pos, vec3 view_pos, vec2 frag_coord) {
   uvec2 tile = uvec2(frag_coord) / TILE_SIZE;

@@ -291,6 +291,58 @@ void runPlotScript(const std::string& json_path, const std::string& out_dir) {
     throw UserError("--plot: " + script + " failed (status " + std::to_string(status) + ") on " + json_path);
 }
 
+namespace {
+
+// What a bench sweeps: light sets, techniques, sizes, frames, parameter values.
+void addSweepFlags(CLI::App& cmd, BenchArgs& a) {
+  cmd.add_option("--lights,--light-sets", a.scene.lights,
+                 "light sets, comma-separated (see below; default: the scene's)")
+      ->check(nonEmptyList("a comma list of light sets (leave the flag out for the scene's)"));
+  cmd.add_option("--techniques", a.techniques, "comma list of: " + techniqueNames() + " (default: all)")
+      ->check(nonEmptyList("a comma list of techniques (leave the flag out for all)"));
+  cmd.add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
+  cmd.add_option("--sizes", a.sizes, "comma list of WIDTHxHEIGHT (resolution sweep; overrides --size)")
+      ->check(nonEmptyList("a comma list of WIDTHxHEIGHT"));
+  cmd.add_option("--frames", a.frames, "FIRST:LAST:STEP along the camera path, LAST inclusive (default: all)");
+  cmd.add_option("--resample", a.scene.resample, "resample the camera path to N frames first (linear in eye/center/up)");
+  cmd.add_option("--param,--params", a.params, "sweep KEY=V1,V2,... (repeatable; keys below)")->expected(1, -1);
+  for (const RegistryParam& p : registryParams()) {
+    const std::string key = p.spec.key;
+    cmd.add_option_function<std::string>(
+        p.spec.renderFlag(), [&a, key](const std::string& v) { a.shorthands[key] = v; },
+        "shorthand for --param " + key + "=LIST");
+  }
+}
+
+// How each frame is measured: repeats, warm-up, animation, counting, timing, shading.
+void addMeasureFlags(CLI::App& cmd, BenchArgs& a) {
+  cmd.add_option("--repeat", a.repeat, "timed renders per frame (per-pass median)")->capture_default_str();
+  cmd.add_option("--warmup", a.warmup, "untimed renders before each run")->capture_default_str();
+  cmd.add_option("--animate", a.animate,
+                 "move this fraction of the lights (0..1) before every render of a frame; per-pass times then "
+                 "include the structure update (hashed-update)")
+      ->capture_default_str();
+  cmd.add_option("--animate-speed", a.animate_speed, "--animate step per axis, times the light radius")
+      ->capture_default_str();
+  cmd.add_flag("--no-counts", a.no_counts, "skip the counting render (times only)");
+  cmd.add_flag("--no-timing", a.no_timing, "skip the timed renders (counts only)");
+  cmd.add_flag("--no-shading", a.no_shading, kNoShadingHelp);
+}
+
+// The GI pass in every frame and its reference.
+void addBenchGiFlags(CLI::App& cmd, BenchArgs& a) {
+  cmd.add_option("--gi", a.gi,
+                 "none or vct: voxel cone tracing in every frame (its passes timed); --param also sweeps its "
+                 "settings (render's --gi vct flags: voxels, levels, cones, ...)")
+      ->capture_default_str();
+  cmd.add_flag("--gi-reference", a.gi_reference,
+               "--gi vct: trace the ray-traced reference once per size, light set and frame; records get gi_rel_rmse");
+  cmd.add_option("--gi-samples", a.gi_samples, "--gi-reference: hemisphere samples per pixel")->capture_default_str();
+  cmd.add_option("--gi-seed", a.gi_seed, "--gi-reference: seed of the hemisphere samples")->capture_default_str();
+}
+
+}  // namespace
+
 CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
   auto* cmd = app.add_subcommand(
       "bench",
@@ -308,46 +360,13 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       std::string(kLightLimitsHelp));
   addInputFlags(*cmd, {kSceneFlag | kGenerateFlags | kSuiteFlags | kDeviceFlag | kProgressFlag, &a.scene, &a.device,
                        &a.progress});
-  cmd->add_option("--lights,--light-sets", a.scene.lights,
-                  "light sets, comma-separated (see below; default: the scene's)")
-      ->check(nonEmptyList("a comma list of light sets (leave the flag out for the scene's)"));
-  cmd->add_option("--techniques", a.techniques, "comma list of: " + techniqueNames() + " (default: all)")
-      ->check(nonEmptyList("a comma list of techniques (leave the flag out for all)"));
-  cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
-  cmd->add_option("--sizes", a.sizes, "comma list of WIDTHxHEIGHT (resolution sweep; overrides --size)")
-      ->check(nonEmptyList("a comma list of WIDTHxHEIGHT"));
-  cmd->add_option("--frames", a.frames, "FIRST:LAST:STEP along the camera path, LAST inclusive (default: all)");
-  cmd->add_option("--resample", a.scene.resample, "resample the camera path to N frames first (linear in eye/center/up)");
-  cmd->add_option("--param,--params", a.params, "sweep KEY=V1,V2,... (repeatable; keys below)")->expected(1, -1);
-  for (const RegistryParam& p : registryParams()) {
-    const std::string key = p.spec.key;
-    cmd->add_option_function<std::string>(
-        p.spec.renderFlag(), [&a, key](const std::string& v) { a.shorthands[key] = v; },
-        "shorthand for --param " + key + "=LIST");
-  }
-  cmd->add_option("--repeat", a.repeat, "timed renders per frame (per-pass median)")->capture_default_str();
-  cmd->add_option("--warmup", a.warmup, "untimed renders before each run")->capture_default_str();
-  cmd->add_option("--animate", a.animate,
-                  "move this fraction of the lights (0..1) before every render of a frame; per-pass times then "
-                  "include the structure update (hashed-update)")
-      ->capture_default_str();
-  cmd->add_option("--animate-speed", a.animate_speed, "--animate step per axis, times the light radius")
-      ->capture_default_str();
-  cmd->add_flag("--no-counts", a.no_counts, "skip the counting render (times only)");
-  cmd->add_flag("--no-timing", a.no_timing, "skip the timed renders (counts only)");
-  cmd->add_flag("--no-shading", a.no_shading, kNoShadingHelp);
+  addSweepFlags(*cmd, a);
+  addMeasureFlags(*cmd, a);
   cmd->add_option("--json", a.json, "write per-frame records and per-run summaries as JSON");
   cmd->add_option("--csv", a.csv, "write per-frame records as CSV");
   cmd->add_option("--plot", a.plot, "render thesis-style figures (PNG) into this folder (python3-matplotlib)");
   cmd->add_option("--images", a.images, "write every record's shaded image (PNG) into this folder");
-  cmd->add_option("--gi", a.gi,
-                  "none or vct: voxel cone tracing in every frame (its passes timed); --param also sweeps its "
-                  "settings (render's --gi vct flags: voxels, levels, cones, ...)")
-      ->capture_default_str();
-  cmd->add_flag("--gi-reference", a.gi_reference,
-                "--gi vct: trace the ray-traced reference once per size, light set and frame; records get gi_rel_rmse");
-  cmd->add_option("--gi-samples", a.gi_samples, "--gi-reference: hemisphere samples per pixel")->capture_default_str();
-  cmd->add_option("--gi-seed", a.gi_seed, "--gi-reference: seed of the hemisphere samples")->capture_default_str();
+  addBenchGiFlags(*cmd, a);
   cmd->add_option("--fovy", a.fovy, "override the camera's vertical field of view, degrees (suite: 45)");
   cmd->add_option("--near", a.near_plane, "override the near plane (suite: 0.01)");
   cmd->add_option("--far", a.far_plane, "override the far plane (suite: 4000)");
@@ -391,7 +410,7 @@ CheckedBenchFlags checkBenchFlags(const BenchArgs& a, const std::string& where) 
   checkBenchGiFlags(a);
   c.range = a.frames.empty() ? FrameRange{} : parseFrameRange(a.frames, "--frames");
   c.progress = Progress::parseMode(a.progress, "--progress");
-  (void)LightAnimator({}, a.animate, 23, a.animate_speed);  // validates --animate, --animate-speed
+  (void)LightAnimator({}, a.animate, kThesisSeed, a.animate_speed);  // validates --animate, --animate-speed
   if (a.no_counts && a.no_timing) throw UserError("--no-counts and --no-timing together leave nothing to measure");
   if (a.no_shading && !a.images.empty()) throw UserError("--images: there is no shaded image with --no-shading");
   if (!a.plot.empty() && findPlotPython().empty())

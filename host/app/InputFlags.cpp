@@ -1,6 +1,7 @@
 #include "host/app/InputFlags.hpp"
 
 #include "host/app/InputChecks.hpp"
+#include "host/util/ThesisSeed.hpp"
 
 namespace ml {
 namespace {
@@ -21,7 +22,7 @@ void addSceneFlags(CLI::App& cmd, SceneInputArgs& a, unsigned groups) {
     cmd.add_option("--light-radius", a.light_radius, "radius of generated lights (default: from the volume file)")
         ->check(finitePositive());
     cmd.add_option("--light-density", a.light_density, kLightDensityHelp)->check(finitePositive());
-    cmd.add_option("--seed", a.seed, "seed for generated lights (default 23, the thesis's)");
+    cmd.add_option("--seed", a.seed, "seed for generated lights (default " + std::to_string(kThesisSeed) + ", the thesis's)");
   }
   if (groups & kSuiteFlags) {
     cmd.add_option("--geometry", a.geometry,

@@ -110,7 +110,7 @@ namespace {
 void checkRenderFlags(const RenderArgs& a, const TechniqueInfo& tech) {
   for (const auto& [key, value] : a.params) checkParam(key, value, findParam(key, "--param").renderFlag());
   if (a.frames == 0) throw UserError("--frames: must be at least 1");
-  (void)LightAnimator({}, a.animate, 23, a.animate_speed);  // validates --animate and --animate-speed
+  (void)LightAnimator({}, a.animate, kThesisSeed, a.animate_speed);  // validates --animate and --animate-speed
   for (const auto& [view, file] : a.views) {
     const std::string flag = DebugViewSpec{view, ""}.flag();
     bool offered = false;
@@ -195,7 +195,7 @@ RenderRun renderFrames(const RenderArgs& a, const TechniqueInfo& tech, const Sce
   const Camera& camera = inputs.cameras.frames[a.frame];
   const FrameOptions options{tech.pipeline, false, !a.no_shading, gi};
   for (unsigned i = 0; i < a.warmup; ++i) renderer.render(camera, assigner, options);
-  LightAnimator animator(inputs.lights, a.animate, 23, a.animate_speed);
+  LightAnimator animator(inputs.lights, a.animate, kThesisSeed, a.animate_speed);
   RenderRun run;
   run.animated_per_frame = animator.movesPerStep();
   if (a.animate > 0.0)

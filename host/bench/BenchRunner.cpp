@@ -73,7 +73,7 @@ void runFrames(ClRuntime& cl, const Run& run, Progress* progress, std::size_t& d
   const BenchPlan& plan = run.plan;
   FrameRenderer& renderer = run.renderer;
   renderer.setLights(run.lights.lights);
-  LightAnimator animator(run.lights.lights, plan.animate, 23, plan.animate_speed);
+  LightAnimator animator(run.lights.lights, plan.animate, kThesisSeed, plan.animate_speed);
   auto animate = [&] {
     if (animator.movesPerStep() > 0) renderer.setLights(animator.step());
   };

@@ -191,15 +191,7 @@ std::vector<RunSummary> summarizeRuns(const std::vector<FrameRecord>& records) {
     auto& list = by_run[r.run];
     if (list.empty()) {
       RunSummary s;
-      s.run = r.run;
-      s.technique = r.technique;
-      s.pipeline = r.pipeline;
-      s.lights = r.lights;
-      s.light_file = r.light_file;
-      s.params = r.params;
-      s.light_count = r.light_count;
-      s.width = r.width;
-      s.height = r.height;
+      static_cast<RunIdentity&>(s) = r;
       out.push_back(std::move(s));
     }
     list.push_back(&r);
@@ -254,7 +246,7 @@ struct Field {
 };
 using Json = nlohmann::ordered_json;
 
-// What identifies a run, shared by its frame records and its summary.
+// The RunIdentity fields, first in both a record and a summary.
 template <class R>
 std::vector<Field<R>> runFields() {
   return {

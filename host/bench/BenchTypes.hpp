@@ -76,7 +76,8 @@ std::vector<std::vector<std::pair<std::string, std::string>>> sweepPoints(
 // "tiled-deferred[tile=16,tile_depth=none]" (the name alone without labels).
 std::string variantLabel(const std::string& technique, const std::vector<std::pair<std::string, std::string>>& labels);
 
-struct FrameRecord {
+// What identifies a run: shared by its frame records and its summary.
+struct RunIdentity {
   std::string run;  // variant label + " " + lights + " " + WxH
   std::string technique;
   std::string pipeline;  // "forward" | "deferred"
@@ -85,6 +86,9 @@ struct FrameRecord {
   std::string light_file;  // empty for generated sets
   std::uint32_t light_count = 0;
   unsigned width = 0, height = 0;
+};
+
+struct FrameRecord : RunIdentity {
   std::size_t frame = 0;
   bool counted = false;
   std::uint64_t light_evaluations = 0, lower_bound = 0, covered_pixels = 0, fragment_evaluations = 0;
@@ -106,11 +110,7 @@ struct FrameRecord {
   double gi_rel_rmse = -1;
 };
 
-struct RunSummary {
-  std::string run, technique, pipeline, lights, light_file;
-  std::vector<std::pair<std::string, std::string>> params;
-  std::uint32_t light_count = 0;
-  unsigned width = 0, height = 0;
+struct RunSummary : RunIdentity {
   std::size_t frames = 0;
   bool counted = false, timed = false, shaded = true;
   Summary light_evaluations, lower_bound, covered_pixels, passes_total_ms, host_ms, memory_bytes;

@@ -3,6 +3,7 @@
 #include "gl/GlCheck.hpp"
 #include "gl/ShaderProgram.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/shared/shading_bindings.h"
 #include "host/util/IdColour.hpp"
 
 namespace ml {
@@ -45,10 +46,10 @@ void ClusteredAssigner::assign(const FrameInputs& in) {
 }
 
 void ClusteredAssigner::bindForShading(const ShaderProgram& program) const {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, records_->gl());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, ranges_->gl());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, map_->gl());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, leaf_lights_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_CLUSTER_RECORDS, records_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_CLUSTER_RANGES, ranges_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_CLUSTER_MAP, map_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_CLUSTER_LEAF_LIGHTS, leaf_lights_->gl());
   program.set("u_cluster_width", grid_.width);
   glCheck("binding the cluster buffers");
 }

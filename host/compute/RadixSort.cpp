@@ -57,6 +57,39 @@ cl::Buffer hostPageBuffer(const ComputeEnv& env, std::size_t bytes) {
   }
 }
 
+// Balanced digits: the fewest passes the widest digit allows, then the
+// narrowest digit that still needs no more passes (20 key bits: 2 x 10, not
+// 11 + 9), so that no pass pays for counters it does not use.
+struct DigitPlan {
+  unsigned passes, digit;
+};
+DigitPlan balancedDigits(unsigned key_bits, unsigned widest) {
+  const unsigned passes = static_cast<unsigned>(ceilDiv(key_bits, widest));
+  return {passes, static_cast<unsigned>(ceilDiv(key_bits, passes))};
+}
+
+// The keys each work-group (GPU shape) or work-item (CPU shape) counts and
+// scatters, the local size, and how many chunks cover n keys.
+struct Chunks {
+  std::size_t chunk, local, groups;
+};
+Chunks chunksOf(const Tuning& t, const ComputeEnv& env, std::size_t n) {
+  std::size_t chunk, local;
+  if (t.gpu()) {
+    const std::size_t tile = t.wg * t.items;
+    const std::size_t tiles = ceilDiv(n, tile);
+    // Enough groups to fill the device several times over, few enough that
+    // the counter array (radix * groups) stays a small scan.
+    const std::size_t max_groups = std::max<std::size_t>(env.info().compute_units, 1) * 8;
+    chunk = ceilDiv(tiles, std::min(tiles, max_groups)) * tile;
+    local = t.wg;
+  } else {
+    chunk = t.cpuChunk(n);
+    local = 1;
+  }
+  return {chunk, local, ceilDiv(n, chunk)};
+}
+
 }  // namespace
 
 cl::Buffer& RadixSorter::PassScratch::ensure(const ComputeEnv& env, std::size_t bytes, bool host_pages) {
@@ -138,28 +171,9 @@ void RadixSorter::sortImpl(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* va
   }
   if (n < 2 || key_bits == 0) return;
   Variant& v = variant(wide);
-
-  // Balanced digits: the fewest passes the widest digit allows, then the
-  // narrowest digit that still needs no more passes (20 key bits: 2 x 10, not
-  // 11 + 9), so that no pass pays for counters it does not use.
-  const unsigned widest = digitBits(n);
-  const unsigned passes = static_cast<unsigned>(ceilDiv(key_bits, widest));
-  const unsigned digit = static_cast<unsigned>(ceilDiv(key_bits, passes));
+  const auto [passes, digit] = balancedDigits(key_bits, digitBits(n));
   const std::size_t radix = std::size_t(1) << tuning_.radix_bits;  // counters per chunk, widest digit
-  std::size_t groups, chunk, local;
-  if (tuning_.gpu()) {
-    const std::size_t tile = tuning_.wg * tuning_.items;
-    const std::size_t tiles = ceilDiv(n, tile);
-    // Enough groups to fill the device several times over, few enough that
-    // the counter array (radix * groups) stays a small scan.
-    const std::size_t max_groups = std::max<std::size_t>(env_.info().compute_units, 1) * 8;
-    chunk = ceilDiv(tiles, std::min(tiles, max_groups)) * tile;
-    local = tuning_.wg;
-  } else {
-    chunk = tuning_.cpuChunk(n);
-    local = 1;
-  }
-  groups = ceilDiv(n, chunk);
+  const auto [chunk, local, groups] = chunksOf(tuning_, env_, n);
 
   // Pass p writes into scratch p % 2. With host pages (CPU device) both are
   // scratch on huge pages, so no pass scatters into the caller's buffer

@@ -22,12 +22,13 @@
 #include "host/scene/Camera.hpp"
 #include "host/scene/Scene.hpp"
 #include "host/shared/gpu_types.h"
+#include "host/util/ThesisSeed.hpp"
 
 namespace ml {
 
 struct IndirectOptions {
   unsigned samples = 64;      // hemisphere samples per pixel, >= 1
-  std::uint64_t seed = 23;
+  std::uint64_t seed = kThesisSeed;
   bool shadow_rays = false;   // visibility of the lights from the secondary hits
 };
 

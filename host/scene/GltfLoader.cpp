@@ -343,29 +343,30 @@ struct Loader {
     return glm::mat4(m);
   }
 
-  void addPrimitive(const tinygltf::Primitive& prim, const glm::mat4& world, const std::string& where) {
-    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-      warnings().warn("{}: {} has mode {} (points or lines); skipped", path, where, mode);
-      return;
-    }
-    auto pos_it = prim.attributes.find("POSITION");
-    if (pos_it == prim.attributes.end()) {
-      warnings().warn("{}: {} has no POSITION attribute; skipped", path, where);
-      return;
-    }
-    const std::vector<float> positions = floats(pos_it->second, 3, where + " POSITION");
-    const std::size_t n = positions.size() / 3;
-    std::vector<float> normals, uvs;
+  // A primitive's vertex attributes; normals and uvs empty when it has none.
+  struct Attributes {
+    std::vector<float> positions, normals, uvs;
+    std::size_t count() const { return positions.size() / 3; }
+  };
+
+  Attributes attributes(const tinygltf::Primitive& prim, int position_accessor, const std::string& where) const {
+    Attributes a;
+    a.positions = floats(position_accessor, 3, where + " POSITION");
     if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
-      normals = floats(it->second, 3, where + " NORMAL");
-      if (normals.size() != positions.size()) fail(where + " NORMAL and POSITION counts differ");
+      a.normals = floats(it->second, 3, where + " NORMAL");
+      if (a.normals.size() != a.positions.size()) fail(where + " NORMAL and POSITION counts differ");
     }
     if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
-      uvs = floats(it->second, 2, where + " TEXCOORD_0");
-      if (uvs.size() / 2 != n) fail(where + " TEXCOORD_0 and POSITION counts differ");
+      a.uvs = floats(it->second, 2, where + " TEXCOORD_0");
+      if (a.uvs.size() / 2 != a.count()) fail(where + " TEXCOORD_0 and POSITION counts differ");
     }
+    return a;
+  }
 
+  // Three vertex indices per triangle of a triangle list, strip or fan over
+  // n vertices (indexed or not); strips keep their winding.
+  std::vector<std::uint32_t> triangles(const tinygltf::Primitive& prim, int mode, std::size_t n,
+                                       const std::string& where) const {
     std::vector<std::uint32_t> order;
     if (prim.indices >= 0) {
       order = indices(prim.indices, n, where);
@@ -384,35 +385,34 @@ struct Loader {
           tris.insert(tris.end(), {order[i + 1], order[i + 2], order[0]});
       }
     }
-    if (tris.empty()) return;
+    return tris;
+  }
 
-    const glm::mat3 linear(world);
-    const float det = glm::determinant(linear);
-    if (!(std::abs(det) > 1e-20f) || !std::isfinite(det)) {
-      warnings().warn("{}: {} has a singular or non-finite transform; skipped", path, where);
-      return;
-    }
-    // A mirroring transform turns counter-clockwise triangles clockwise.
-    if (det < 0.0f)
-      for (std::size_t t = 0; t < tris.size(); t += 3) std::swap(tris[t + 1], tris[t + 2]);
-    const glm::mat3 normal_matrix = glm::inverseTranspose(linear);
-
+  // Appends the primitive's vertices in world space; returns the first one's index.
+  std::uint32_t appendVertices(const Attributes& a, const glm::mat4& world, const std::string& where) {
+    const glm::mat3 normal_matrix = glm::inverseTranspose(glm::mat3(world));
+    const std::size_t n = a.count();
     if (scene.vertices.size() + n > std::numeric_limits<std::uint32_t>::max()) fail("too many vertices for 32-bit indices");
     const auto base = static_cast<std::uint32_t>(scene.vertices.size());
     for (std::size_t i = 0; i < n; ++i) {
       Vertex v;
-      v.position = glm::vec3(world * glm::vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0f));
+      v.position = glm::vec3(world * glm::vec4(a.positions[3 * i], a.positions[3 * i + 1], a.positions[3 * i + 2], 1.0f));
       if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) || !std::isfinite(v.position.z))
         fail(where + " has a non-finite vertex position");
-      v.normal = normals.empty() ? glm::vec3(0.0f)
-                                 : normal_matrix * glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
-      v.uv = uvs.empty() ? glm::vec2(0.0f) : glm::vec2(uvs[2 * i], uvs[2 * i + 1]);
+      v.normal = a.normals.empty()
+                     ? glm::vec3(0.0f)
+                     : normal_matrix * glm::vec3(a.normals[3 * i], a.normals[3 * i + 1], a.normals[3 * i + 2]);
+      v.uv = a.uvs.empty() ? glm::vec2(0.0f) : glm::vec2(a.uvs[2 * i], a.uvs[2 * i + 1]);
       scene.vertices.push_back(v);
       scene.bounds.extend(v.position);
     }
+    return base;
+  }
 
-    // Area-weighted face normals (the unnormalised cross product is twice the
-    // area), for missing normals and for degenerate supplied ones.
+  // Normalises the normals of the n vertices from `base`; missing and
+  // degenerate ones become area-weighted face normals (the unnormalised cross
+  // product is twice the area).
+  void finishNormals(std::uint32_t base, std::size_t n, const std::vector<std::uint32_t>& tris) {
     std::vector<glm::vec3> generated;
     for (std::size_t i = 0; i < n; ++i) {
       Vertex& v = scene.vertices[base + i];
@@ -434,6 +434,33 @@ struct Loader {
       const float glen = glm::length(generated[i]);
       v.normal = glen > 0.0f ? generated[i] / glen : glm::vec3(0.0f, 1.0f, 0.0f);
     }
+  }
+
+  void addPrimitive(const tinygltf::Primitive& prim, const glm::mat4& world, const std::string& where) {
+    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      warnings().warn("{}: {} has mode {} (points or lines); skipped", path, where, mode);
+      return;
+    }
+    auto pos_it = prim.attributes.find("POSITION");
+    if (pos_it == prim.attributes.end()) {
+      warnings().warn("{}: {} has no POSITION attribute; skipped", path, where);
+      return;
+    }
+    const Attributes attrs = attributes(prim, pos_it->second, where);
+    std::vector<std::uint32_t> tris = triangles(prim, mode, attrs.count(), where);
+    if (tris.empty()) return;
+
+    const float det = glm::determinant(glm::mat3(world));
+    if (!(std::abs(det) > 1e-20f) || !std::isfinite(det)) {
+      warnings().warn("{}: {} has a singular or non-finite transform; skipped", path, where);
+      return;
+    }
+    // A mirroring transform turns counter-clockwise triangles clockwise.
+    if (det < 0.0f)
+      for (std::size_t t = 0; t < tris.size(); t += 3) std::swap(tris[t + 1], tris[t + 2]);
+    const std::uint32_t base = appendVertices(attrs, world, where);
+    finishNormals(base, attrs.count(), tris);
 
     const int material = materialFor(prim.material, where);
     auto& dst = material_indices[static_cast<std::size_t>(material)];

@@ -35,46 +35,62 @@ std::string oneLine(std::string s) {
   return s;
 }
 
-ObjMesh loadObj(const std::string& path) {
+void readObj(const std::string& path, tinyobj::ObjReader& reader) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   config.mtl_search_path = fs::path(path).parent_path().string();
-  tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config))
     throw UserError(path + ": cannot read OBJ mesh: " + oneLine(reader.Error().empty() ? "unknown error" : reader.Error()));
+}
+
+glm::vec3 objPosition(const tinyobj::attrib_t& attrib, int i) {
+  return glm::vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+}
+
+bool hasNormal(const tinyobj::attrib_t& attrib, const tinyobj::index_t& corner) {
+  return corner.normal_index >= 0 && static_cast<std::size_t>(corner.normal_index) < attrib.normals.size() / 3;
+}
+
+// Per input position, the sum of its faces' area-weighted normals, for the
+// corners that have no normal of their own; empty when every corner has one.
+std::vector<glm::vec3> smoothNormals(const tinyobj::ObjReader& reader) {
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const std::size_t nv = attrib.vertices.size() / 3;
-  const std::size_t nn = attrib.normals.size() / 3;
+  bool need_smooth = false;
+  for (const auto& shape : reader.GetShapes())
+    for (const auto& idx : shape.mesh.indices)
+      if (!hasNormal(attrib, idx)) need_smooth = true;
+  if (!need_smooth) return {};
+  std::vector<glm::vec3> smooth(nv, glm::vec3(0.0f));
+  for (const auto& shape : reader.GetShapes()) {
+    const auto& ix = shape.mesh.indices;
+    for (std::size_t t = 0; t + 2 < ix.size(); t += 3) {
+      const int a = ix[t].vertex_index, b = ix[t + 1].vertex_index, c = ix[t + 2].vertex_index;
+      // Faces past the vertices are refused by loadObj; skip them here (found by fuzzing).
+      auto bad = [&](int i) { return i < 0 || static_cast<std::size_t>(i) >= nv; };
+      if (bad(a) || bad(b) || bad(c)) continue;
+      const glm::vec3 face =
+          glm::cross(objPosition(attrib, b) - objPosition(attrib, a), objPosition(attrib, c) - objPosition(attrib, a));
+      smooth[a] += face;
+      smooth[b] += face;
+      smooth[c] += face;
+    }
+  }
+  return smooth;
+}
+
+ObjMesh loadObj(const std::string& path) {
+  tinyobj::ObjReader reader;
+  readObj(path, reader);
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const std::size_t nv = attrib.vertices.size() / 3;
 
   // One output vertex per distinct (position, normal) pair; corners without a
   // normal share a smooth, area-weighted normal of their position.
   ObjMesh mesh;
   std::unordered_map<std::uint64_t, std::uint32_t> remap;
-  std::vector<glm::vec3> smooth;  // per input position, filled on demand
-  auto pos = [&](int i) {
-    return glm::vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
-  };
-  bool need_smooth = false;
-  for (const auto& shape : reader.GetShapes())
-    for (const auto& idx : shape.mesh.indices)
-      if (idx.normal_index < 0 || static_cast<std::size_t>(idx.normal_index) >= nn) need_smooth = true;
-  if (need_smooth) {
-    smooth.assign(nv, glm::vec3(0.0f));
-    for (const auto& shape : reader.GetShapes()) {
-      const auto& ix = shape.mesh.indices;
-      for (std::size_t t = 0; t + 2 < ix.size(); t += 3) {
-        const int a = ix[t].vertex_index, b = ix[t + 1].vertex_index, c = ix[t + 2].vertex_index;
-        // Faces past the vertices are refused below; skip them here (found by fuzzing).
-        auto bad = [&](int i) { return i < 0 || static_cast<std::size_t>(i) >= nv; };
-        if (bad(a) || bad(b) || bad(c)) continue;
-        const glm::vec3 face = glm::cross(pos(b) - pos(a), pos(c) - pos(a));
-        smooth[a] += face;
-        smooth[b] += face;
-        smooth[c] += face;
-      }
-    }
-  }
+  const std::vector<glm::vec3> smooth = smoothNormals(reader);
   for (const auto& shape : reader.GetShapes()) {
     const auto& ix = shape.mesh.indices;
     for (std::size_t t = 0; t + 2 < ix.size(); t += 3) {
@@ -83,12 +99,12 @@ ObjMesh loadObj(const std::string& path) {
         const auto& c = ix[t + k];
         if (c.vertex_index < 0 || static_cast<std::size_t>(c.vertex_index) >= nv)
           throw UserError(path + ": face refers to a vertex that does not exist");
-        const bool has_n = c.normal_index >= 0 && static_cast<std::size_t>(c.normal_index) < nn;
+        const bool has_n = hasNormal(attrib, c);
         const std::uint64_t key = (static_cast<std::uint64_t>(c.vertex_index) << 32) |
                                   static_cast<std::uint32_t>(has_n ? c.normal_index : -1);
         auto [it, fresh] = remap.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
         if (fresh) {
-          mesh.positions.push_back(pos(c.vertex_index));
+          mesh.positions.push_back(objPosition(attrib, c.vertex_index));
           glm::vec3 n = has_n ? glm::vec3(attrib.normals[3 * c.normal_index], attrib.normals[3 * c.normal_index + 1],
                                           attrib.normals[3 * c.normal_index + 2])
                               : smooth[static_cast<std::size_t>(c.vertex_index)];
@@ -209,35 +225,60 @@ std::vector<std::string> thesisLightFiles(const std::vector<std::string>& light_
   return out;
 }
 
-SuiteScene loadNtiledSuite(const std::string& dir, const SuiteLoadOptions& options) {
-  if (!fs::is_directory(dir)) throw UserError("--suite: '" + dir + "' is not a folder");
-  if (!isNtiledSuiteDir(dir))
-    throw UserError(dir + ": not a scene-suite folder (needs geometry/*.json and camera/camera.json)");
-  SuiteScene out;
-  out.dir = dir;
-  out.name = fs::path(dir).lexically_normal().filename().string();
-  if (out.name.empty()) out.name = fs::path(dir).lexically_normal().parent_path().filename().string();
-  out.camera = options.camera;
-  out.geometry_file = chooseGeometryFile(dir, options.geometry);
-  SuiteGeometry geo = parseSuiteGeometry(out.geometry_file);
-  out.objects = geo.objects;
-  if (geo.objects.empty()) throw UserError(out.geometry_file + ": no objects");
+namespace {
 
-  const fs::path obj_dir = fs::path(dir) / "obj";
-  std::map<std::string, std::string> declared(geo.meshes.begin(), geo.meshes.end());
-  auto meshFile = [&](const std::string& id) -> fs::path {
-    if (auto it = declared.find(id); it != declared.end() && !it->second.empty()) {
-      const fs::path by_name = obj_dir / fileNameOf(it->second);
+// Where a mesh id's OBJ file is: the path the geometry file declares for it,
+// by its file name under obj/ or as written, else obj/<id>.obj.
+class MeshFiles {
+ public:
+  MeshFiles(const std::string& dir, const SuiteGeometry& geo)
+      : obj_dir_(fs::path(dir) / "obj"), declared_(geo.meshes.begin(), geo.meshes.end()) {}
+  fs::path operator()(const std::string& id) const {
+    if (auto it = declared_.find(id); it != declared_.end() && !it->second.empty()) {
+      const fs::path by_name = obj_dir_ / fileNameOf(it->second);
       if (fs::is_regular_file(by_name)) return by_name;
       if (fs::is_regular_file(it->second)) return it->second;  // a usable path as written
     }
-    return obj_dir / (id + ".obj");
-  };
+    return obj_dir_ / (id + ".obj");
+  }
 
+ private:
+  fs::path obj_dir_;
+  std::map<std::string, std::string> declared_;
+};
+
+// Appends one instance of `m` placed by `o` to the scene; a mirroring
+// transform gets its triangles' winding turned back.
+void placeMesh(Scene& scene, const ObjMesh& m, const SuiteObject& o, const std::string& geometry_file) {
+  const glm::mat4 world = ntiledObjectTransform(o.translation, o.rotation);
+  const glm::mat3 linear(world);
+  const glm::mat3 normal_matrix = glm::inverseTranspose(linear);
+  const bool mirrored = glm::determinant(linear) < 0.0f;
+  if (scene.vertices.size() + m.positions.size() > std::numeric_limits<std::uint32_t>::max())
+    throw UserError(geometry_file + ": too many vertices for 32-bit indices");
+  const auto base = static_cast<std::uint32_t>(scene.vertices.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    Vertex v;
+    v.position = glm::vec3(world * glm::vec4(m.positions[i], 1.0f));
+    v.normal = glm::normalize(normal_matrix * m.normals[i]);
+    v.uv = glm::vec2(0.0f);
+    scene.vertices.push_back(v);
+    scene.bounds.extend(v.position);
+  }
+  for (std::size_t t = 0; t < m.triangles.size(); t += 3) {
+    scene.indices.push_back(base + m.triangles[t]);
+    scene.indices.push_back(base + m.triangles[t + (mirrored ? 2 : 1)]);
+    scene.indices.push_back(base + m.triangles[t + (mirrored ? 1 : 2)]);
+  }
+}
+
+// Places every object of `geo` in out.scene, loading each mesh once. A
+// missing mesh is refused, or with allow_missing_meshes skipped, listed in
+// out.missing_meshes and warned about once.
+void placeObjects(SuiteScene& out, const SuiteGeometry& geo, const SuiteLoadOptions& options) {
+  const MeshFiles meshFile(out.dir, geo);
   std::map<std::string, ObjMesh> meshes;
   std::map<std::string, std::size_t> missing_uses;
-  Scene& scene = out.scene;
-  scene.source = dir;
   for (const SuiteObject& o : geo.objects) {
     auto it = meshes.find(o.mesh_id);
     if (it == meshes.end()) {
@@ -255,27 +296,7 @@ SuiteScene loadNtiledSuite(const std::string& dir, const SuiteLoadOptions& optio
       }
       it = meshes.emplace(o.mesh_id, loadObj(file.string())).first;
     }
-    const ObjMesh& m = it->second;
-    const glm::mat4 world = ntiledObjectTransform(o.translation, o.rotation);
-    const glm::mat3 linear(world);
-    const glm::mat3 normal_matrix = glm::inverseTranspose(linear);
-    const bool mirrored = glm::determinant(linear) < 0.0f;
-    if (scene.vertices.size() + m.positions.size() > std::numeric_limits<std::uint32_t>::max())
-      throw UserError(out.geometry_file + ": too many vertices for 32-bit indices");
-    const auto base = static_cast<std::uint32_t>(scene.vertices.size());
-    for (std::size_t i = 0; i < m.positions.size(); ++i) {
-      Vertex v;
-      v.position = glm::vec3(world * glm::vec4(m.positions[i], 1.0f));
-      v.normal = glm::normalize(normal_matrix * m.normals[i]);
-      v.uv = glm::vec2(0.0f);
-      scene.vertices.push_back(v);
-      scene.bounds.extend(v.position);
-    }
-    for (std::size_t t = 0; t < m.triangles.size(); t += 3) {
-      scene.indices.push_back(base + m.triangles[t]);
-      scene.indices.push_back(base + m.triangles[t + (mirrored ? 2 : 1)]);
-      scene.indices.push_back(base + m.triangles[t + (mirrored ? 1 : 2)]);
-    }
+    placeMesh(out.scene, it->second, o, out.geometry_file);
     ++out.placed_objects;
   }
   for (const auto& [id, uses] : missing_uses) {
@@ -284,17 +305,42 @@ SuiteScene loadNtiledSuite(const std::string& dir, const SuiteLoadOptions& optio
                  "will differ from the thesis's",
                  meshFile(id).string(), id, uses);
   }
-  if (scene.indices.empty()) throw UserError(dir + ": no geometry could be loaded");
-  scene.materials = {Material{}};
-  scene.batches = {DrawBatch{0, static_cast<std::uint32_t>(scene.indices.size()), 0}};
+}
 
-  const std::string cam_file = (fs::path(dir) / "camera" / "camera.json").string();
+// The suite's camera path, every frame with the lens of out.camera.
+void loadSuiteCameras(SuiteScene& out) {
+  const std::string cam_file = (fs::path(out.dir) / "camera" / "camera.json").string();
   out.cameras = loadCameraJson(cam_file);
   for (Camera& c : out.cameras.frames) {
     c.fovy_degrees = out.camera.fovy_degrees;
     c.near_plane = out.camera.near_plane;
     c.far_plane = out.camera.far_plane;
   }
+}
+
+}  // namespace
+
+SuiteScene loadNtiledSuite(const std::string& dir, const SuiteLoadOptions& options) {
+  if (!fs::is_directory(dir)) throw UserError("--suite: '" + dir + "' is not a folder");
+  if (!isNtiledSuiteDir(dir))
+    throw UserError(dir + ": not a scene-suite folder (needs geometry/*.json and camera/camera.json)");
+  SuiteScene out;
+  out.dir = dir;
+  out.name = fs::path(dir).lexically_normal().filename().string();
+  if (out.name.empty()) out.name = fs::path(dir).lexically_normal().parent_path().filename().string();
+  out.camera = options.camera;
+  out.geometry_file = chooseGeometryFile(dir, options.geometry);
+  SuiteGeometry geo = parseSuiteGeometry(out.geometry_file);
+  out.objects = geo.objects;
+  if (geo.objects.empty()) throw UserError(out.geometry_file + ": no objects");
+
+  Scene& scene = out.scene;
+  scene.source = dir;
+  placeObjects(out, geo, options);
+  if (scene.indices.empty()) throw UserError(dir + ": no geometry could be loaded");
+  scene.materials = {Material{}};
+  scene.batches = {DrawBatch{0, static_cast<std::uint32_t>(scene.indices.size()), 0}};
+  loadSuiteCameras(out);
   out.light_files = suiteLightFiles(dir);
   return out;
 }

@@ -61,71 +61,80 @@ std::map<std::size_t, double> readLcData(const std::string& path) {
   return out;
 }
 
-ThesisReference loadThesisReference(const std::string& dir, const std::string& scene, const std::string& pipeline) {
-  ThesisReference ref;
-  ref.pipeline = pipeline;
+namespace {
+
+// The folder holding frames/{ns,ts,cs}: `dir` is the suite root, reference/,
+// reference/light_calculations/ or that folder itself.
+std::string findFramesDir(const std::string& dir) {
   const fs::path base(dir);
   for (const fs::path& cand : {base / "frames", base / "light_calculations" / "frames",
                                base / "reference" / "light_calculations" / "frames", base})
-    if (fs::is_directory(cand / "ns") || fs::is_directory(cand / "ts") || fs::is_directory(cand / "cs")) {
-      ref.frames_dir = cand.string();
-      break;
-    }
-  if (ref.frames_dir.empty())
-    throw UserError("--reference: no frames/{ns,ts,cs} folders under '" + dir +
-                    "' (expected the thesis-suite root, reference/ or reference/light_calculations/)");
+    if (fs::is_directory(cand / "ns") || fs::is_directory(cand / "ts") || fs::is_directory(cand / "cs"))
+      return cand.string();
+  throw UserError("--reference: no frames/{ns,ts,cs} folders under '" + dir +
+                  "' (expected the thesis-suite root, reference/ or reference/light_calculations/)");
+}
+
+// The reference's scene: `scene` as asked, or the only one present.
+std::string chooseScene(const std::string& frames_dir, const std::string& scene, const std::string& pipeline) {
+  const fs::path frames(frames_dir);
+  if (!scene.empty() && fs::is_directory(frames / "ns" / pipeline / scene)) return scene;
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const char* kind : {"ns", "ts", "cs"})
+    for (const auto& e : fs::directory_iterator(frames / kind / pipeline, ec))
+      if (e.is_directory() && std::find(found.begin(), found.end(), e.path().filename().string()) == found.end())
+        found.push_back(e.path().filename().string());
+  if (!scene.empty() && std::find(found.begin(), found.end(), scene) != found.end()) return scene;
+  if (scene.empty() && found.size() == 1) return found.front();
+  std::string list;
+  for (const auto& f : found) list += (list.empty() ? "" : ", ") + f;
+  throw UserError("--reference: " + frames_dir + " has no " + pipeline + " data for scene '" + scene +
+                  "' (found: " + (list.empty() ? "none" : list) + ")");
+}
+
+// One series (`kind`, `tile` 0 for naive) from `folder`; a note instead when
+// it has no lc_data.json, and a note for a missing config.json.
+void addSeries(ThesisReference& ref, const std::string& kind, unsigned tile, const fs::path& folder) {
+  ReferenceSeries s;
+  s.kind = kind;
+  s.tile = tile;
+  s.id = tile ? kind + "/" + std::to_string(tile) : kind;
+  s.lc_path = (folder / "lc_data.json").string();
+  s.config_path = (folder / "config.json").string();
+  if (!fs::is_regular_file(s.lc_path)) {
+    ref.notes.push_back(s.id + ": no lc_data.json in " + folder.string() + " (skipped)");
+    return;
+  }
+  if (fs::is_regular_file(s.config_path)) readConfig(s);
+  else ref.notes.push_back(s.id + ": no config.json; assuming 320x320 and the suite's camera settings");
+  s.counts = readLcData(s.lc_path);
+  ref.series.push_back(std::move(s));
+}
+
+// Every tile-size folder of a tiled or clustered `kind`, in increasing size.
+void addTiledSeries(ThesisReference& ref, const std::string& kind, const fs::path& folder) {
+  std::vector<unsigned> tiles;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(folder, ec)) {
+    unsigned t = 0;
+    if (e.is_directory() && parseTile(e.path().filename().string(), t)) tiles.push_back(t);
+  }
+  std::sort(tiles.begin(), tiles.end());
+  for (unsigned t : tiles) addSeries(ref, kind, t, folder / std::to_string(t));
+}
+
+}  // namespace
+
+ThesisReference loadThesisReference(const std::string& dir, const std::string& scene, const std::string& pipeline) {
+  ThesisReference ref;
+  ref.pipeline = pipeline;
+  ref.frames_dir = findFramesDir(dir);
+  ref.scene = chooseScene(ref.frames_dir, scene, pipeline);
   const fs::path frames(ref.frames_dir);
-
-  // The scene: as asked, or the only one present.
-  ref.scene = scene;
-  if (ref.scene.empty() || !fs::is_directory(frames / "ns" / pipeline / ref.scene)) {
-    std::vector<std::string> found;
-    std::error_code ec;
-    for (const char* kind : {"ns", "ts", "cs"})
-      for (const auto& e : fs::directory_iterator(frames / kind / pipeline, ec))
-        if (e.is_directory() && std::find(found.begin(), found.end(), e.path().filename().string()) == found.end())
-          found.push_back(e.path().filename().string());
-    if (!scene.empty() && std::find(found.begin(), found.end(), scene) != found.end()) {
-      ref.scene = scene;
-    } else if (scene.empty() && found.size() == 1) {
-      ref.scene = found.front();
-    } else {
-      std::string list;
-      for (const auto& f : found) list += (list.empty() ? "" : ", ") + f;
-      throw UserError("--reference: " + ref.frames_dir + " has no " + pipeline + " data for scene '" + scene +
-                      "' (found: " + (list.empty() ? "none" : list) + ")");
-    }
-  }
-
-  auto addSeries = [&](const std::string& kind, unsigned tile, const fs::path& folder) {
-    ReferenceSeries s;
-    s.kind = kind;
-    s.tile = tile;
-    s.id = tile ? kind + "/" + std::to_string(tile) : kind;
-    s.lc_path = (folder / "lc_data.json").string();
-    s.config_path = (folder / "config.json").string();
-    if (!fs::is_regular_file(s.lc_path)) {
-      ref.notes.push_back(s.id + ": no lc_data.json in " + folder.string() + " (skipped)");
-      return;
-    }
-    if (fs::is_regular_file(s.config_path)) readConfig(s);
-    else ref.notes.push_back(s.id + ": no config.json; assuming 320x320 and the suite's camera settings");
-    s.counts = readLcData(s.lc_path);
-    ref.series.push_back(std::move(s));
-  };
   const fs::path ns = frames / "ns" / pipeline / ref.scene;
-  if (fs::is_directory(ns)) addSeries("ns", 0, ns);
-  for (const char* kind : {"ts", "cs"}) {
-    const fs::path k = frames / kind / pipeline / ref.scene;
-    std::vector<unsigned> tiles;
-    std::error_code ec;
-    for (const auto& e : fs::directory_iterator(k, ec)) {
-      unsigned t = 0;
-      if (e.is_directory() && parseTile(e.path().filename().string(), t)) tiles.push_back(t);
-    }
-    std::sort(tiles.begin(), tiles.end());
-    for (unsigned t : tiles) addSeries(kind, t, k / std::to_string(t));
-  }
+  if (fs::is_directory(ns)) addSeries(ref, "ns", 0, ns);
+  for (const char* kind : {"ts", "cs"}) addTiledSeries(ref, kind, frames / kind / pipeline / ref.scene);
   if (ref.series.empty())
     throw UserError("--reference: no lc_data.json files under " + ref.frames_dir + " for scene '" + ref.scene + "'");
   return ref;

@@ -3,6 +3,7 @@
 #include "gl/GlCheck.hpp"
 #include "gl/ShaderProgram.hpp"
 #include "host/cl/ClRuntime.hpp"
+#include "host/shared/shading_bindings.h"
 
 namespace ml {
 
@@ -37,8 +38,8 @@ ShaderDefines TiledAssigner::shaderDefines() const {
 }
 
 void TiledAssigner::bindForShading(const ShaderProgram& program) const {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, indices_->gl());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, grid_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TILED_INDICES, indices_->gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TILED_GRID, grid_->gl());
   program.set("u_tiles_x", culler_.tileGrid().tilesX());
   glCheck("binding the tile light grid");
 }

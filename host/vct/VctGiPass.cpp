@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "gl/GlCheck.hpp"
+#include "gl/Texture2d.hpp"
 #include "gl/ViewUniforms.hpp"
 #include "host/shared/shading_model.h"
 #include "host/util/Error.hpp"
@@ -12,16 +13,6 @@ namespace ml::vct {
 namespace {
 
 constexpr unsigned kGroup = 8;  // local size of vct_trace.comp and vct_upsample.comp per axis
-
-GLuint makeImage(GLenum format, unsigned w, unsigned h) {
-  GLuint t = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &t);
-  glTextureStorage2D(t, 1, format, static_cast<GLsizei>(w), static_cast<GLsizei>(h));
-  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glCheck("creating a cone-tracing image");
-  return t;
-}
 
 VctPipelineOptions pipelineOptions(const VctGiSettings& s) {
   VctPipelineOptions o;
@@ -71,11 +62,12 @@ void VctGiPass::allocate(unsigned width, unsigned height) {
   height_ = height;
   lo_w_ = std::max(1u, static_cast<unsigned>(std::lround(double(width) * s_.gi_scale)));
   lo_h_ = std::max(1u, static_cast<unsigned>(std::lround(double(height) * s_.gi_scale)));
-  lo_irradiance_ = makeImage(GL_RGBA16F, lo_w_, lo_h_);
-  lo_geometry_ = makeImage(GL_RGBA32F, lo_w_, lo_h_);
-  lo_specular_ = makeImage(GL_RGBA16F, lo_w_, lo_h_);
-  indirect_ = makeImage(GL_RGBA32F, width, height);
-  ao_ = makeImage(GL_R32F, width, height);
+  lo_irradiance_ = makeTexture2d(GL_RGBA16F, lo_w_, lo_h_);
+  lo_geometry_ = makeTexture2d(GL_RGBA32F, lo_w_, lo_h_);
+  lo_specular_ = makeTexture2d(GL_RGBA16F, lo_w_, lo_h_);
+  indirect_ = makeTexture2d(GL_RGBA32F, width, height);
+  ao_ = makeTexture2d(GL_R32F, width, height);
+  glCheck("creating the cone-tracing images");
 }
 
 void VctGiPass::update(const GiSceneInputs& in) { pipeline_.update(in.scene, in.lights, in.passes); }

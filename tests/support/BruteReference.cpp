@@ -2,7 +2,10 @@
 
 #include <map>
 
+#include <gtest/gtest.h>
+
 #include "host/assign/BruteForceAssigner.hpp"
+#include "support/ImageCompare.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
@@ -28,6 +31,28 @@ const BruteReference& bruteReference(Pipeline pipeline) {
   ref.result = r.render(referenceScene().cameras.frames.front(), brute, {pipeline, true});
   ref.image = r.targets().readColor();
   return cache.emplace(pipeline, std::move(ref)).first->second;
+}
+
+FrameResult expectBruteForceFrame(FrameRenderer& r, LightAssigner& assigner, Pipeline pipeline) {
+  const BruteReference& ref = bruteReference(pipeline);
+  const FrameResult res = r.render(referenceScene().cameras.frames.front(), assigner, {pipeline, true});
+  const auto diff = compareImages(r.targets().readColor(), ref.image, 1.0 / 255.0);
+  EXPECT_LT(diff.mean_abs, 1e-4);
+  EXPECT_EQ(diff.frac_over_tol, 0.0) << "max diff " << diff.max_abs;
+  EXPECT_EQ(res.lower_bound, ref.result.lower_bound);
+  EXPECT_EQ(res.covered_pixels, ref.result.covered_pixels);
+  EXPECT_GE(res.light_evaluations, res.lower_bound);
+  EXPECT_LT(res.light_evaluations, ref.result.light_evaluations / 4);
+  return res;
+}
+
+void expectNoLightsAtOddSize(LightAssigner& assigner) {
+  glContext();
+  FrameRenderer r(runtime(), referenceScene().scene, 101, 37);
+  r.setLights({});
+  const FrameResult res = r.render(referenceScene().cameras.frames.front(), assigner, {Pipeline::Forward, true});
+  EXPECT_EQ(res.light_evaluations, 0u);
+  EXPECT_GT(res.covered_pixels, 0u);
 }
 
 }  // namespace ml::test

@@ -2,7 +2,8 @@
 // The scene and brute-force reference frames that the technique render tests
 // compare against: the default scene with 1,024 generated lights, its first
 // camera frame, at kReferenceWidth x kReferenceHeight with counts on. Loaded
-// and rendered once per test process (per pipeline), shared by every suite.
+// and rendered once per test process (per pipeline), shared by every suite;
+// and the checks those suites make of every technique against them.
 #include <vector>
 
 #include "gl/FrameRenderer.hpp"
@@ -19,5 +20,18 @@ struct BruteReference {
   FrameResult result;
 };
 const BruteReference& bruteReference(Pipeline pipeline);
+
+// Renders the reference frame with `assigner` through `r` (the reference
+// size, over referenceScene()'s lights) and expects brute force's image
+// within 1/255 per channel and 1e-4 on average (lights a list leaves out
+// contribute exactly zero, so only the summation order differs), its lower
+// bound and covered pixels (lists lose no light in range), and light
+// evaluations from the bound up to a quarter of brute force's. Returns the
+// frame's result for the technique's own checks.
+FrameResult expectBruteForceFrame(FrameRenderer& r, LightAssigner& assigner, Pipeline pipeline);
+
+// The reference camera at 101 x 37 (a multiple of no tile or cluster size)
+// without lights, forward: no light evaluated, pixels still covered.
+void expectNoLightsAtOddSize(LightAssigner& assigner);
 
 }  // namespace ml::test

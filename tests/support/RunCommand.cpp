@@ -12,6 +12,17 @@
 
 namespace ml::test {
 
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+int lines(const std::string& output) {
+  int n = 0;
+  for (char c : output) n += c == '\n';
+  return n;
+}
+
 std::string tempDir() {
   static const std::string dir = [] {
     auto d = std::filesystem::temp_directory_path() / ("manylights-test-" + std::to_string(::getpid()));

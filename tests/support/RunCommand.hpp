@@ -1,5 +1,7 @@
 #pragma once
 // Runs the manylights binary as a user would, capturing exit code and output.
+#include <nlohmann/json.hpp>
+
 #include <string>
 
 namespace ml::test {
@@ -16,5 +18,10 @@ CommandResult runManylights(const std::string& args, const std::string& env = ""
 // Runs a shell command line (no redirections of its own) the same way.
 CommandResult runShell(const std::string& command);
 std::string tempDir();  // a fresh directory for this test process
+
+// What a command wrote: the JSON file at `path` (throws if it does not parse),
+// and the number of lines of an output (one-line errors are one).
+nlohmann::json readJson(const std::string& path);
+int lines(const std::string& output);
 
 }  // namespace ml::test
