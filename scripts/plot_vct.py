@@ -4,9 +4,10 @@
   plot_vct.py FRAME_JSON --out DIR [--load LOAD_TXT]
 
 Reads the records of `manylights-vct-bench --frame --json FRAME_JSON` (one per
-scene x voxels x isotropic/anisotropic x cone count: every vct pass in ms and
-`gi_rel_rmse` against the Embree reference) and writes into DIR:
-  vct_error_vs_time.png  per scene, relative RMSE of the indirect image against
+scene x light set x voxels x isotropic/anisotropic x cone count: every vct pass
+in ms and `gi_rel_rmse` against the Embree reference) and writes into DIR:
+  vct_error_vs_time.png  per scene and light count (records with `lights`,
+                         from --frame-lights sweeps), relative RMSE of the indirect image against
                          the per-frame VCT time (every pass but the one-off
                          voxelization), colour = volume kind, marker = grid
                          size, label = cone count, the Pareto front as a line;
@@ -45,6 +46,11 @@ def pareto(recs):
             front.append(r)
             best = r["gi_rel_rmse"]
     return front
+
+
+def group(r):
+    """A panel of the plot: the scene, and its light count when the record has one."""
+    return f"{r['scene']}, {r['lights']} lights" if "lights" in r else r["scene"]
 
 
 def plot(by_scene, out_png, load_line):
@@ -96,7 +102,7 @@ def main():
     a = ap.parse_args()
     by_scene = {}
     for r in load(a.frame_json):
-        by_scene.setdefault(r["scene"], []).append(r)
+        by_scene.setdefault(group(r), []).append(r)
     os.makedirs(a.out, exist_ok=True)
     load_line = open(a.load).read().strip() if a.load else ""
     write_table(by_scene, os.path.join(a.out, "vct_pareto.md"))
