@@ -58,8 +58,12 @@ def plot(by_scene, out_png, load_line):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     markers = {32: "o", 64: "s", 128: "^", 256: "D"}
-    fig, axes = plt.subplots(1, len(by_scene), figsize=(6 * len(by_scene), 4.5), squeeze=False)
-    for ax, (scene, recs) in zip(axes[0], sorted(by_scene.items())):
+    cols = min(2, len(by_scene))
+    rows = (len(by_scene) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 4.5 * rows), squeeze=False)
+    for ax in axes.flat[len(by_scene):]:
+        ax.set_visible(False)
+    for ax, (scene, recs) in zip(axes.flat, sorted(by_scene.items())):
         for r in recs:
             colour = "tab:blue" if r["anisotropic"] else "tab:orange"
             ax.scatter(frame_ms(r), r["gi_rel_rmse"], c=colour, marker=markers.get(r["voxels"], "x"), s=36)
@@ -72,7 +76,9 @@ def plot(by_scene, out_png, load_line):
         for edge, m in markers.items():
             if any(r["voxels"] == edge for r in recs):
                 ax.scatter([], [], c="grey", marker=m, label=f"{edge}^3")
-        ax.set_xscale("log")
+        times = [frame_ms(r) for r in recs]
+        if max(times) > 10 * min(times):  # a log axis within one decade has no labelled tick
+            ax.set_xscale("log")
         ax.set_xlabel("VCT time per frame, ms (all passes but voxelization)")
         ax.set_ylabel("relative RMSE of the indirect image")
         ax.set_title(f"{scene} (labels: cone count)")
