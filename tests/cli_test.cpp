@@ -83,6 +83,9 @@ TEST(Cli, BadVctFlags) {
   expectUserError(runManylights(vct + "--vct-shadows voxel --gi-shadows bogus"), "--gi-shadows");
   expectUserError(runManylights("render --size 16x16 --gi reference --gi-reference"), "--gi-reference");
   expectUserError(runManylights(vct + "--no-shading"), "--gi");
+  expectUserError(runManylights(vct + "--voxel-view albedo --voxel-slice v"), "--voxel-slice");
+  expectUserError(runManylights(vct + "--voxel-view albedo --voxel-slice y:-1"), "--voxel-slice");
+  expectUserError(runManylights(vct + "--voxel-slice x:0.5"), "--voxel-slice");
 }
 
 TEST(Cli, BadDevice) {
