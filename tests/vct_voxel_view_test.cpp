@@ -56,6 +56,22 @@ std::vector<T> downloadAll(const SharedBuffer& b, std::size_t count) {
   return out;
 }
 
+// The volume read back to the host, as the twins take it.
+struct ReadBack {
+  std::vector<F4> radiance, aniso;  // aniso: empty when isotropic
+  std::vector<gpu::VoxelAccum> accum;
+};
+ReadBack readBack(const VoxelVolume& v) {
+  const VoxelGridSettings& s = v.settings();
+  ReadBack r;
+  r.radiance = downloadAll<F4>(v.radiance(), radianceBytes(s) / sizeof(F4));
+  r.accum = downloadAll<gpu::VoxelAccum>(v.accum(), std::size_t(s.voxels) * s.voxels * s.voxels);
+  if (s.anisotropic) r.aniso = downloadAll<F4>(*v.anisotropic(), anisotropicBytes(s) / sizeof(F4));
+  return r;
+}
+
+constexpr VoxelViewKind kKinds[] = {VoxelViewKind::Albedo, VoxelViewKind::Radiance, VoxelViewKind::Opacity};
+
 // The grid's cube.
 Aabb gridBounds(const gpu::VoxelGridParams& g) {
   const glm::vec3 o(g.origin_voxel_size.x, g.origin_voxel_size.y, g.origin_voxel_size.z);
@@ -91,11 +107,9 @@ bool close(float got, float want) {
 // Renders every view kind of `level` and compares each pixel with the twin.
 void checkAgainstTwin(VctPipeline& p, unsigned level, const VoxelViewCamera& cam) {
   const VoxelVolume& v = p.volume();
-  const VoxelGridSettings& s = v.settings();
-  const auto radiance = downloadAll<F4>(v.radiance(), radianceBytes(s) / sizeof(F4));
-  const auto accum = downloadAll<gpu::VoxelAccum>(v.accum(), std::size_t(s.voxels) * s.voxels * s.voxels);
+  const ReadBack host = readBack(v);
   VoxelViewPass pass;
-  for (VoxelViewKind kind : {VoxelViewKind::Albedo, VoxelViewKind::Radiance, VoxelViewKind::Opacity}) {
+  for (VoxelViewKind kind : kKinds) {
     SCOPED_TRACE(std::string("view ") + voxelViewName(kind) + " level " + std::to_string(level) + " size " +
                  std::to_string(cam.width) + "x" + std::to_string(cam.height));
     const std::vector<float> got = pass.render(v, kind, level, cam);
@@ -103,7 +117,7 @@ void checkAgainstTwin(VctPipeline& p, unsigned level, const VoxelViewCamera& cam
     std::string first;
     for (unsigned y = 0; y < cam.height; ++y)
       for (unsigned x = 0; x < cam.width; ++x) {
-        const glm::vec4 want = voxelViewPixelTwin(radiance, accum, v.params(), kind, level, cam, x, y);
+        const glm::vec4 want = voxelViewPixelTwin(host.radiance, host.accum, v.params(), kind, level, cam, x, y);
         const float* g = &got[4 * (std::size_t(y) * cam.width + x)];
         hits += want.w > 0;
         if (close(g[0], want.x) && close(g[1], want.y) && close(g[2], want.z) && close(g[3], want.w)) continue;
@@ -184,21 +198,18 @@ VoxelSlice randomSlice(std::mt19937_64& rng, const std::vector<F4>& radiance, un
 // Every kind of one slice against the twin; returns the pixels that show a voxel.
 std::size_t checkSliceAgainstTwin(VctPipeline& p, unsigned level, const VoxelSlice& slice, unsigned w, unsigned h) {
   const VoxelVolume& v = p.volume();
-  const VoxelGridSettings& s = v.settings();
-  const auto radiance = downloadAll<F4>(v.radiance(), radianceBytes(s) / sizeof(F4));
-  const auto accum = downloadAll<gpu::VoxelAccum>(v.accum(), std::size_t(s.voxels) * s.voxels * s.voxels);
-  const auto aniso =
-      s.anisotropic ? downloadAll<F4>(*v.anisotropic(), anisotropicBytes(s) / sizeof(F4)) : std::vector<F4>{};
+  const ReadBack host = readBack(v);
   VoxelViewPass pass;
   std::size_t hits = 0;
-  for (VoxelViewKind kind : {VoxelViewKind::Albedo, VoxelViewKind::Radiance, VoxelViewKind::Opacity}) {
+  for (VoxelViewKind kind : kKinds) {
     SCOPED_TRACE(std::string("slice ") + voxelSliceText(slice) + " view " + voxelViewName(kind) + " level " +
                  std::to_string(level) + " size " + std::to_string(w) + "x" + std::to_string(h));
     const std::vector<float> got = pass.renderSlice(v, kind, level, slice, w, h);
     std::size_t bad = 0;
     for (unsigned y = 0; y < h; ++y)
       for (unsigned x = 0; x < w; ++x) {
-        const glm::vec4 want = voxelSlicePixelTwin(radiance, aniso, accum, v.params(), kind, level, slice, w, h, x, y);
+        const glm::vec4 want =
+            voxelSlicePixelTwin(host.radiance, host.aniso, host.accum, v.params(), kind, level, slice, w, h, x, y);
         const float* g = &got[4 * (std::size_t(y) * w + x)];
         hits += want.w > 0;
         if (close(g[0], want.x) && close(g[1], want.y) && close(g[2], want.z) && close(g[3], want.w)) continue;
@@ -209,7 +220,7 @@ std::size_t checkSliceAgainstTwin(VctPipeline& p, unsigned level, const VoxelSli
     EXPECT_EQ(bad, 0u) << bad << " of " << std::size_t(w) * h << " pixels differ from the twin";
   }
   std::printf("voxel slice %s, level %u, %ux%u%s: %zu pixels (3 kinds) show a voxel\n", voxelSliceText(slice).c_str(),
-              level, w, h, s.anisotropic ? ", anisotropic" : "", hits);
+              level, w, h, v.settings().anisotropic ? ", anisotropic" : "", hits);
   return hits;
 }
 
@@ -232,8 +243,7 @@ TEST(VctVoxelView, SlicesEqualTheTwin) {
   VctPipeline p(test::runtime(), o, scene.bounds);
   PassTimings t;
   p.update(gpu_scene, test::randomLightsIn(rng, 1 + rng() % 30, scene.bounds), t);
-  const VoxelVolume& v = p.volume();
-  const auto radiance = downloadAll<F4>(v.radiance(), radianceBytes(v.settings()) / sizeof(F4));
+  const std::vector<F4> radiance = readBack(p.volume()).radiance;
   std::size_t hits = 0;
   for (int round = 0; round < 3; ++round) {
     const unsigned level = unsigned(rng() % levels);
