@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cmath>
+#include <string>
 
 #include "gl/GlCheck.hpp"
 #include "host/util/Error.hpp"
@@ -12,6 +13,19 @@ namespace ml::vct {
 namespace {
 
 constexpr unsigned kGroup = 8;  // voxel_view.comp's local size per axis
+
+// The shader indexes each buffer whole: one larger than the GL's shader
+// storage block limit would read past it, so it is refused.
+void checkBlockLimit(const SharedBuffer& buffer) {
+  GLint64 size = 0, max_block = 0;
+  glGetNamedBufferParameteri64v(buffer.gl(), GL_BUFFER_SIZE, &size);
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  glCheck("querying the voxel volume's size");
+  if (max_block > 0 && size > max_block)
+    throw UserError("--voxel-view: a voxel volume of " + std::to_string(size >> 20) +
+                    " MiB exceeds this GL's shader storage block limit (" + std::to_string(max_block >> 20) +
+                    " MiB): use fewer --voxels");
+}
 
 }  // namespace
 
@@ -72,6 +86,9 @@ std::vector<float> VoxelViewPass::renderSlice(const VoxelVolume& volume, VoxelVi
 std::vector<float> VoxelViewPass::dispatch(const VoxelVolume& volume, VoxelViewKind kind, unsigned level,
                                            unsigned w, unsigned h) {
   const gpu::VoxelGridParams& grid = volume.params();
+  const SharedBuffer* aniso = volume.anisotropic();
+  for (const SharedBuffer* b : {&volume.radiance(), &volume.accum(), aniso})
+    if (b) checkBlockLimit(*b);
   GLuint image = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &image);
   glTextureStorage2D(image, 1, GL_RGBA32F, static_cast<GLsizei>(w), static_cast<GLsizei>(h));
@@ -89,7 +106,6 @@ std::vector<float> VoxelViewPass::dispatch(const VoxelVolume& volume, VoxelViewK
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, volume.radiance().gl());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, volume.accum().gl());
   // Without an anisotropic volume the shader reads no binding 2; bind something valid.
-  const SharedBuffer* aniso = volume.anisotropic();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, aniso ? aniso->gl() : volume.radiance().gl());
   glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute((w + kGroup - 1) / kGroup, (h + kGroup - 1) / kGroup, 1);

@@ -17,7 +17,9 @@
 // an average cone sees; the cubes show the isotropic mips). GL compute shader
 // gl/shaders/voxel_view.comp reading the volume's SharedBuffers (GL owns them
 // between updates); voxelViewPixelTwin (VoxelViewTwin.hpp) is its C++ twin.
-// parseVoxelView / checkVoxelLevel: UserError naming --voxel-view / --voxel-level.
+// parseVoxelView / checkVoxelLevel: UserError naming --voxel-view / --voxel-level;
+// so is a volume buffer larger than the GL's shader storage block limit (the
+// shader indexes each buffer whole).
 #include <glm/glm.hpp>
 
 #include <string>
