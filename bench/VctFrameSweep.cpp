@@ -20,7 +20,8 @@ struct SweepScene {
   std::vector<float> reference;
 };
 
-SweepScene loadScene(const std::string& name, const FrameSweepOptions& o) {
+// `lights` > 0: that many lights generated as `render --lights N` does; 0: the scene's own set.
+SweepScene loadScene(const std::string& name, unsigned lights, const FrameSweepOptions& o) {
   SceneInputArgs a;
   if (name == "cornell") {
     const std::string dir = dataPath("cornell") + "/";
@@ -28,6 +29,7 @@ SweepScene loadScene(const std::string& name, const FrameSweepOptions& o) {
     a.lights = dir + "lights.json";
     a.camera = dir + "camera.json";
   }
+  if (lights > 0) a.lights = std::to_string(lights);
   SweepScene s{name, loadSceneInputs(a), {}};
   const IndirectOptions r{o.reference_samples, 23, false};
   s.reference = traceIndirectReference(s.in.scene, s.in.lights, s.in.cameras.frames.front(), o.width, o.height, r).rgba;
@@ -35,20 +37,20 @@ SweepScene loadScene(const std::string& name, const FrameSweepOptions& o) {
 }
 
 nlohmann::json row(RunContext& ctx, FrameRenderer& renderer, const SweepScene& s, const vct::VctGiSettings& v,
-                   int reps) {
-  auto brute = makeAssigner("deferred", *ctx.cl, &s.in.scene);
+                   const FrameSweepOptions& o) {
+  auto assigner = makeAssigner(o.technique, *ctx.cl, &s.in.scene);
   vct::VctGiPass gi(*ctx.cl, v, s.in.scene.bounds);
-  const FrameOptions options{Pipeline::Deferred, false, true, &gi};
+  const FrameOptions options{findTechnique(o.technique).pipeline, false, true, &gi};
   const Camera& cam = s.in.cameras.frames.front();
-  const double voxelize = renderer.render(cam, *brute, options).passes.get("vct-voxelize");
-  const TimedFrame t = timedRenders(renderer, *brute, options, cam, static_cast<unsigned>(reps));
+  const double voxelize = renderer.render(cam, *assigner, options).passes.get("vct-voxelize");
+  const TimedFrame t = timedRenders(renderer, *assigner, options, cam, static_cast<unsigned>(o.reps));
   const IndirectError e = indirectRelRmse(gi.indirectRgba(), s.reference);
-  nlohmann::json j{{"scene", s.name},         {"voxels", v.grid.voxels}, {"levels", v.grid.levels},
-                   {"anisotropic", v.grid.anisotropic}, {"cones", v.cones}, {"vct-voxelize", voxelize},
-                   {"gi_rel_rmse", e.rel_rmse}, {"voxel_bytes", vct::voxelBytes(v.grid)}};
+  nlohmann::json j{{"scene", s.name},         {"lights", s.in.lights.size()}, {"voxels", v.grid.voxels},
+                   {"levels", v.grid.levels}, {"anisotropic", v.grid.anisotropic}, {"cones", v.cones},
+                   {"vct-voxelize", voxelize}, {"gi_rel_rmse", e.rel_rmse}, {"voxel_bytes", vct::voxelBytes(v.grid)}};
   double sum = voxelize;
-  std::printf("%-8s %5u^3 %-5s %5u %9.2f", s.name.c_str(), v.grid.voxels, v.grid.anisotropic ? "aniso" : "iso",
-              v.cones, voxelize);
+  std::printf("%-8s %7zu %5u^3 %-5s %5u %9.2f", s.name.c_str(), s.in.lights.size(), v.grid.voxels,
+              v.grid.anisotropic ? "aniso" : "iso", v.cones, voxelize);
   for (const char* p : kPasses) {
     j[p] = t.passes.get(p);
     sum += t.passes.get(p);
@@ -63,26 +65,28 @@ nlohmann::json row(RunContext& ctx, FrameRenderer& renderer, const SweepScene& s
 nlohmann::json frameSweep(const FrameSweepOptions& o) {
   RunContext ctx = RunContext::open(DeviceChoice::resolve(o.device));
   ctx.printDevices();
-  std::printf("\nVCT in the frame, %ux%u (trace at 0.5), ms: vct-voxelize of the first frame, the rest median of %d "
+  std::printf("\nVCT in %s frames, %ux%u (trace at 0.5), ms: vct-voxelize of the first frame, the rest median of %d "
               "frames; rel RMSE vs the Embree reference (%u samples/pixel)\n",
-              o.width, o.height, o.reps, o.reference_samples);
-  std::printf("%-8s %7s %-5s %5s %9s", "scene", "voxels", "vol", "cones", "voxelize");
+              o.technique.c_str(), o.width, o.height, o.reps, o.reference_samples);
+  std::printf("%-8s %7s %7s %-5s %5s %9s", "scene", "lights", "voxels", "vol", "cones", "voxelize");
   for (const char* p : kPasses) std::printf(" %9s", p + 4);
   std::printf(" %9s %8s %9s\n", "sum", "rel RMSE", "MB");
   nlohmann::json records = nlohmann::json::array();
-  for (const char* name : {"cornell", "default"}) {
-    const SweepScene s = loadScene(name, o);
-    FrameRenderer renderer(*ctx.cl, s.in.scene, o.width, o.height);
-    renderer.setLights(s.in.lights);
-    for (unsigned voxels : o.voxels)
-      for (bool aniso : {false, true})
-        for (unsigned cones : o.cones) {
-          vct::VctGiSettings v;
-          v.grid = {voxels, o.levels, aniso};
-          v.cones = cones;
-          records.push_back(row(ctx, renderer, s, v, o.reps));
-        }
-  }
+  const std::vector<unsigned> light_sets = o.lights.empty() ? std::vector<unsigned>{0} : o.lights;
+  for (const char* name : {"cornell", "default"})
+    for (unsigned lights : light_sets) {
+      const SweepScene s = loadScene(name, lights, o);
+      FrameRenderer renderer(*ctx.cl, s.in.scene, o.width, o.height);
+      renderer.setLights(s.in.lights);
+      for (unsigned voxels : o.voxels)
+        for (bool aniso : {false, true})
+          for (unsigned cones : o.cones) {
+            vct::VctGiSettings v;
+            v.grid = {voxels, o.levels, aniso};
+            v.cones = cones;
+            records.push_back(row(ctx, renderer, s, v, o));
+          }
+    }
   return records;
 }
 

@@ -12,7 +12,9 @@
 //    length per filled voxel says why.
 //  - With --frame, instead: cone tracing inside the frame (VctFrameSweep.hpp),
 //    per pass at --edges x isotropic/anisotropic x --cones, and the error
-//    against the Embree reference, on the Cornell box and the default scene.
+//    against the Embree reference, on the Cornell box and the default scene,
+//    with their own lights or --frame-lights counts of generated ones, in
+//    --frame-technique frames.
 // Prints tables and, with --json, one record per case.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -29,6 +31,7 @@
 #include "host/compute/HostIo.hpp"
 #include "host/hashed/HashedStructure.hpp"
 #include "host/scene/LightSet.hpp"
+#include "host/techniques/Registry.hpp"
 #include "host/util/ThesisSeed.hpp"
 #include "host/vct/ConeTracing.hpp"
 #include "host/vct/VoxelGrid.hpp"
@@ -175,9 +178,13 @@ int run(int argc, char** argv) {
   double radius = 0.1;
   int reps = 5;
   bool frame = false;
-  std::string cones = "5,9,16";
+  std::string cones = "5,9,16", frame_lights, frame_technique = "deferred";
   app.add_flag("--frame", frame, "cone tracing in the frame instead: per pass and error vs the reference");
   app.add_option("--cones", cones, "--frame: diffuse cone counts")->capture_default_str();
+  app.add_option("--frame-lights", frame_lights,
+                 "--frame: generated light counts (as render --lights N), e.g. 1000,10000; default: each scene's own");
+  app.add_option("--frame-technique", frame_technique, "--frame: the technique of the direct light")
+      ->capture_default_str();
   app.add_option("--json", json_path, "write records as JSON");
   app.add_option("--edges", edges, "mip grid edges (powers of two)")->capture_default_str();
   app.add_option("--levels", levels, "mip levels")->capture_default_str();
@@ -197,6 +204,8 @@ int run(int argc, char** argv) {
     o.voxels = edge_list;
     o.cones = parseCounts(cones, "--cones");
     for (unsigned c : o.cones) vct::checkConeSettings(c, 45.0f);
+    if (!frame_lights.empty()) o.lights = parseCounts(frame_lights, "--frame-lights");
+    o.technique = findTechnique(frame_technique, "--frame-technique").name;
     o.levels = levels;
     o.reps = reps;
     o.device = device;

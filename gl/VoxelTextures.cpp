@@ -1,14 +1,11 @@
 #include "gl/VoxelTextures.hpp"
 
-#include <string>
+#include <cstddef>
 
 #include "gl/GlCheck.hpp"
-#include "host/util/Error.hpp"
 
 namespace ml {
 namespace {
-
-constexpr unsigned kGroup = 4;  // voxel_unpack.comp's local size per axis
 
 GLuint makeTexture(unsigned edge, unsigned levels) {
   GLuint t = 0;
@@ -27,20 +24,15 @@ GLuint makeTexture(unsigned edge, unsigned levels) {
   return t;
 }
 
-void checkBlockLimit(GLuint buffer) {
-  GLint64 size = 0, max_block = 0;
-  glGetNamedBufferParameteri64v(buffer, GL_BUFFER_SIZE, &size);
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-  glCheck("querying the voxel volume's size");
-  if (max_block > 0 && size > max_block)
-    throw UserError("voxel volume of " + std::to_string(size >> 20) +
-                    " MiB exceeds this GL's shader storage block limit (" + std::to_string(max_block >> 20) +
-                    " MiB): use fewer --voxels");
+// Level `level` (edge `e`) of `texture` from the bound pixel unpack buffer,
+// starting at its float4 `first`.
+void uploadLevel(GLuint texture, unsigned level, unsigned e, std::size_t first) {
+  const GLsizei n = static_cast<GLsizei>(e);
+  glTextureSubImage3D(texture, static_cast<GLint>(level), 0, 0, 0, n, n, n, GL_RGBA, GL_FLOAT,
+                      reinterpret_cast<const void*>(first * sizeof(gpu::ml_float4)));
 }
 
 }  // namespace
-
-VoxelTextures::VoxelTextures() : program_({"voxel_unpack.comp"}) {}
 
 VoxelTextures::~VoxelTextures() {
   glDeleteTextures(1, &radiance_);
@@ -61,36 +53,31 @@ void VoxelTextures::allocate(const gpu::VoxelGridParams& grid, bool aniso) {
     for (GLuint& d : dirs_) d = makeTexture(grid.edge, grid.levels);
 }
 
-void VoxelTextures::unpackLevel(GLuint buffer, std::size_t offset, GLuint texture, unsigned edge, unsigned level) {
-  glBindImageTexture(0, texture, static_cast<GLint>(level), GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
-  program_.set("u_offset", static_cast<unsigned>(offset));
-  program_.set("u_edge", edge);
-  const GLuint groups = (edge + kGroup - 1) / kGroup;
-  glDispatchCompute(groups, groups, groups);
-}
-
 void VoxelTextures::unpack(const gpu::VoxelGridParams& grid, GLuint radiance, GLuint aniso, GlPassTimer* timer) {
-  checkBlockLimit(radiance);
-  if (aniso) checkBlockLimit(aniso);
   GlPassScope scope(timer, "vct-textures");
   allocate(grid, aniso != 0);
-  program_.use();
-  for (unsigned l = 0; l < grid.levels; ++l) {
-    const unsigned e = grid.edge >> l;
-    const std::size_t offset = gpu::voxel_level_offset(grid.edge, l);
-    unpackLevel(radiance, offset, radiance_, e, l);
-    if (!aniso) continue;
-    for (unsigned d = 0; d < ML_VOXEL_DIRECTIONS; ++d) {
-      if (l == 0)
-        unpackLevel(radiance, 0, dirs_[d], e, 0);
-      else
-        unpackLevel(aniso, gpu::voxel_aniso_index(grid.edge, l, d, 0), dirs_[d], e, l);
-    }
+  GLint previous = 0;
+  glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &previous);
+  // The volumes are tightly packed float4s; reset whatever unpack state a caller left.
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
+  glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+  glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+  glPixelStorei(GL_UNPACK_SKIP_IMAGES, 0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, radiance);
+  for (unsigned l = 0; l < grid.levels; ++l)
+    uploadLevel(radiance_, l, grid.edge >> l, gpu::voxel_level_offset(grid.edge, l));
+  if (aniso) {
+    const GLsizei n = static_cast<GLsizei>(grid.edge);
+    for (GLuint d : dirs_) glCopyImageSubData(radiance_, GL_TEXTURE_3D, 0, 0, 0, 0, d, GL_TEXTURE_3D, 0, 0, 0, 0, n, n, n);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, aniso);
+    for (unsigned l = 1; l < grid.levels; ++l)
+      for (unsigned d = 0; d < ML_VOXEL_DIRECTIONS; ++d)
+        uploadLevel(dirs_[d], l, grid.edge >> l, gpu::voxel_aniso_index(grid.edge, l, d, 0));
   }
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-  glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(previous));
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
   glCheck("unpacking the voxel volume into 3D textures");
 }
 

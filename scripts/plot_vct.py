@@ -4,9 +4,10 @@
   plot_vct.py FRAME_JSON --out DIR [--load LOAD_TXT]
 
 Reads the records of `manylights-vct-bench --frame --json FRAME_JSON` (one per
-scene x voxels x isotropic/anisotropic x cone count: every vct pass in ms and
-`gi_rel_rmse` against the Embree reference) and writes into DIR:
-  vct_error_vs_time.png  per scene, relative RMSE of the indirect image against
+scene x light set x voxels x isotropic/anisotropic x cone count: every vct pass
+in ms and `gi_rel_rmse` against the Embree reference) and writes into DIR:
+  vct_error_vs_time.png  per scene and light count (records with `lights`,
+                         from --frame-lights sweeps), relative RMSE of the indirect image against
                          the per-frame VCT time (every pass but the one-off
                          voxelization), colour = volume kind, marker = grid
                          size, label = cone count, the Pareto front as a line;
@@ -47,13 +48,22 @@ def pareto(recs):
     return front
 
 
+def group(r):
+    """A panel of the plot: the scene, and its light count when the record has one."""
+    return f"{r['scene']}, {r['lights']} lights" if "lights" in r else r["scene"]
+
+
 def plot(by_scene, out_png, load_line):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     markers = {32: "o", 64: "s", 128: "^", 256: "D"}
-    fig, axes = plt.subplots(1, len(by_scene), figsize=(6 * len(by_scene), 4.5), squeeze=False)
-    for ax, (scene, recs) in zip(axes[0], sorted(by_scene.items())):
+    cols = min(2, len(by_scene))
+    rows = (len(by_scene) + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(6 * cols, 4.5 * rows), squeeze=False)
+    for ax in axes.flat[len(by_scene):]:
+        ax.set_visible(False)
+    for ax, (scene, recs) in zip(axes.flat, sorted(by_scene.items())):
         for r in recs:
             colour = "tab:blue" if r["anisotropic"] else "tab:orange"
             ax.scatter(frame_ms(r), r["gi_rel_rmse"], c=colour, marker=markers.get(r["voxels"], "x"), s=36)
@@ -66,7 +76,9 @@ def plot(by_scene, out_png, load_line):
         for edge, m in markers.items():
             if any(r["voxels"] == edge for r in recs):
                 ax.scatter([], [], c="grey", marker=m, label=f"{edge}^3")
-        ax.set_xscale("log")
+        times = [frame_ms(r) for r in recs]
+        if max(times) > 10 * min(times):  # a log axis within one decade has no labelled tick
+            ax.set_xscale("log")
         ax.set_xlabel("VCT time per frame, ms (all passes but voxelization)")
         ax.set_ylabel("relative RMSE of the indirect image")
         ax.set_title(f"{scene} (labels: cone count)")
@@ -96,7 +108,7 @@ def main():
     a = ap.parse_args()
     by_scene = {}
     for r in load(a.frame_json):
-        by_scene.setdefault(r["scene"], []).append(r)
+        by_scene.setdefault(group(r), []).append(r)
     os.makedirs(a.out, exist_ok=True)
     load_line = open(a.load).read().strip() if a.load else ""
     write_table(by_scene, os.path.join(a.out, "vct_pareto.md"))

@@ -79,6 +79,9 @@ TEST(Cli, BadVctFlags) {
       {"--vct-shadows voxel --gi-reference --gi-shadows none", "--gi-shadows"},
       {"--vct-shadows voxel --gi-shadows bogus", "--gi-shadows"},
       {"--no-shading", "--gi"},
+      {"--voxel-view albedo --voxel-slice v", "--voxel-slice"},
+      {"--voxel-view albedo --voxel-slice y:-1", "--voxel-slice"},
+      {"--voxel-slice x:0.5", "--voxel-slice"},
   };
   for (const auto& [flags, named] : refused) {
     SCOPED_TRACE(flags);

@@ -8,8 +8,14 @@
 // need not round correctly), except at most 1% of the pixels + 1: there a ray
 // grazes a voxel face or edge and rounding in the DDA's comparisons (fused
 // multiply-adds in the shader, not in the twin) sends it into the neighbour.
+// Slices (renderSlice) against voxelSlicePixelTwin on the same volumes,
+// isotropic and anisotropic, a random level, axis and plane (through a filled
+// voxel, or at the ends 0 and 1), every kind, odd image sizes: no pixel off
+// by more than 1e-5 relative + 1e-6 (the pixel -> voxel mapping is integer,
+// so no grazing allowance). parseVoxelSlice on good and bad text.
 // And `render --voxel-view`: its files, one-line errors (exit 2) for a bad
-// view name, a level beyond --levels, and the flags without --gi vct.
+// view name, a level beyond --levels, a bad slice, and the flags without
+// --gi vct.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,6 +32,7 @@
 #include "host/util/Error.hpp"
 #include "host/util/ImageIO.hpp"
 #include "host/vct/VctPipeline.hpp"
+#include "host/vct/VoxelSlice.hpp"
 #include "host/vct/VoxelViewTwin.hpp"
 #include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR
 #include "support/RandomSoup.hpp"
@@ -48,6 +55,22 @@ std::vector<T> downloadAll(const SharedBuffer& b, std::size_t count) {
   b.download(out.data(), count * sizeof(T));
   return out;
 }
+
+// The volume read back to the host, as the twins take it.
+struct ReadBack {
+  std::vector<F4> radiance, aniso;  // aniso: empty when isotropic
+  std::vector<gpu::VoxelAccum> accum;
+};
+ReadBack readBack(const VoxelVolume& v) {
+  const VoxelGridSettings& s = v.settings();
+  ReadBack r;
+  r.radiance = downloadAll<F4>(v.radiance(), radianceBytes(s) / sizeof(F4));
+  r.accum = downloadAll<gpu::VoxelAccum>(v.accum(), std::size_t(s.voxels) * s.voxels * s.voxels);
+  if (s.anisotropic) r.aniso = downloadAll<F4>(*v.anisotropic(), anisotropicBytes(s) / sizeof(F4));
+  return r;
+}
+
+constexpr VoxelViewKind kKinds[] = {VoxelViewKind::Albedo, VoxelViewKind::Radiance, VoxelViewKind::Opacity};
 
 // The grid's cube.
 Aabb gridBounds(const gpu::VoxelGridParams& g) {
@@ -84,11 +107,9 @@ bool close(float got, float want) {
 // Renders every view kind of `level` and compares each pixel with the twin.
 void checkAgainstTwin(VctPipeline& p, unsigned level, const VoxelViewCamera& cam) {
   const VoxelVolume& v = p.volume();
-  const VoxelGridSettings& s = v.settings();
-  const auto radiance = downloadAll<F4>(v.radiance(), radianceBytes(s) / sizeof(F4));
-  const auto accum = downloadAll<gpu::VoxelAccum>(v.accum(), std::size_t(s.voxels) * s.voxels * s.voxels);
+  const ReadBack host = readBack(v);
   VoxelViewPass pass;
-  for (VoxelViewKind kind : {VoxelViewKind::Albedo, VoxelViewKind::Radiance, VoxelViewKind::Opacity}) {
+  for (VoxelViewKind kind : kKinds) {
     SCOPED_TRACE(std::string("view ") + voxelViewName(kind) + " level " + std::to_string(level) + " size " +
                  std::to_string(cam.width) + "x" + std::to_string(cam.height));
     const std::vector<float> got = pass.render(v, kind, level, cam);
@@ -96,7 +117,7 @@ void checkAgainstTwin(VctPipeline& p, unsigned level, const VoxelViewCamera& cam
     std::string first;
     for (unsigned y = 0; y < cam.height; ++y)
       for (unsigned x = 0; x < cam.width; ++x) {
-        const glm::vec4 want = voxelViewPixelTwin(radiance, accum, v.params(), kind, level, cam, x, y);
+        const glm::vec4 want = voxelViewPixelTwin(host.radiance, host.accum, v.params(), kind, level, cam, x, y);
         const float* g = &got[4 * (std::size_t(y) * cam.width + x)];
         hits += want.w > 0;
         if (close(g[0], want.x) && close(g[1], want.y) && close(g[2], want.z) && close(g[3], want.w)) continue;
@@ -153,6 +174,106 @@ TEST(VctVoxelView, RandomSoupsEqualTheTwin) {
   checkAgainstTwin(p, level, randomCamera(rng, gridBounds(p.volume().params()), (edge >> level) >= 4));
 }
 
+// A plane of `level` through a random filled voxel (opacity > 0), or at an
+// end of the grid one time in four; z:0.5 when the level is empty.
+VoxelSlice randomSlice(std::mt19937_64& rng, const std::vector<F4>& radiance, unsigned edge, unsigned level) {
+  VoxelSlice s;
+  s.axis = unsigned(rng() % 3);
+  const unsigned e = edge >> level;
+  if (rng() % 4 == 0) {
+    s.position = rng() % 2 ? 1.0f : 0.0f;
+    return s;
+  }
+  std::vector<unsigned> filled;
+  const std::size_t first = gpu::voxel_level_offset(edge, level);
+  for (unsigned i = 0; i < e * e * e; ++i)
+    if (radiance[first + i].w > 0) filled.push_back(i);
+  if (filled.empty()) return s;
+  const unsigned i = filled[rng() % filled.size()];
+  const unsigned c[3] = {i % e, i / e % e, i / e / e};
+  s.position = (float(c[s.axis]) + uniformIn(rng, 0.05f, 0.95f)) / float(e);
+  return s;
+}
+
+// Every kind of one slice against the twin; returns the pixels that show a voxel.
+std::size_t checkSliceAgainstTwin(VctPipeline& p, unsigned level, const VoxelSlice& slice, unsigned w, unsigned h) {
+  const VoxelVolume& v = p.volume();
+  const ReadBack host = readBack(v);
+  VoxelViewPass pass;
+  std::size_t hits = 0;
+  for (VoxelViewKind kind : kKinds) {
+    SCOPED_TRACE(std::string("slice ") + voxelSliceText(slice) + " view " + voxelViewName(kind) + " level " +
+                 std::to_string(level) + " size " + std::to_string(w) + "x" + std::to_string(h));
+    const std::vector<float> got = pass.renderSlice(v, kind, level, slice, w, h);
+    std::size_t bad = 0;
+    for (unsigned y = 0; y < h; ++y)
+      for (unsigned x = 0; x < w; ++x) {
+        const glm::vec4 want =
+            voxelSlicePixelTwin(host.radiance, host.aniso, host.accum, v.params(), kind, level, slice, w, h, x, y);
+        const float* g = &got[4 * (std::size_t(y) * w + x)];
+        hits += want.w > 0;
+        if (close(g[0], want.x) && close(g[1], want.y) && close(g[2], want.z) && close(g[3], want.w)) continue;
+        if (++bad == 1)
+          ADD_FAILURE() << "pixel " << x << "," << y << ": got " << g[0] << " " << g[1] << " " << g[2] << " " << g[3]
+                        << ", want " << want.x << " " << want.y << " " << want.z << " " << want.w;
+      }
+    EXPECT_EQ(bad, 0u) << bad << " of " << std::size_t(w) * h << " pixels differ from the twin";
+  }
+  std::printf("voxel slice %s, level %u, %ux%u%s: %zu pixels (3 kinds) show a voxel\n", voxelSliceText(slice).c_str(),
+              level, w, h, v.settings().anisotropic ? ", anisotropic" : "", hits);
+  return hits;
+}
+
+TEST(VctVoxelView, SlicesEqualTheTwin) {
+  test::glContext();
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const unsigned edges[] = {1, 2, 4, 8, 16, 32};
+  const unsigned edge = edges[rng() % 6];
+  const unsigned levels = 1 + unsigned(rng() % (log2Exact(edge) + 1));
+  const bool aniso = levels > 1 && rng() % 2 == 0;
+  const bool cornell = rng() % 3 == 0;
+  SCOPED_TRACE("edge " + std::to_string(edge) + " levels " + std::to_string(levels) + " anisotropic " +
+               std::to_string(aniso) + (cornell ? " cornell" : " soup"));
+  const Scene scene = cornell ? loadGltfScene(kCornellDir + "cornell.gltf") : test::randomSoup(rng, 20 + rng() % 40);
+  SceneGpu gpu_scene(scene);
+  VctPipelineOptions o;
+  o.grid = {edge, levels, aniso};
+  VctPipeline p(test::runtime(), o, scene.bounds);
+  PassTimings t;
+  p.update(gpu_scene, test::randomLightsIn(rng, 1 + rng() % 30, scene.bounds), t);
+  const std::vector<F4> radiance = readBack(p.volume()).radiance;
+  std::size_t hits = 0;
+  for (int round = 0; round < 3; ++round) {
+    const unsigned level = unsigned(rng() % levels);
+    const unsigned w = 1 + unsigned(rng() % 70), h = 1 + unsigned(rng() % 50);
+    hits += checkSliceAgainstTwin(p, level, randomSlice(rng, radiance, edge, level), w, h);
+  }
+  EXPECT_GT(hits, 0u) << "no slice showed a voxel: the comparison would prove nothing";
+}
+
+TEST(VctVoxelView, ParsesSlices) {
+  const VoxelSlice a = parseVoxelSlice("x", "--voxel-slice");
+  EXPECT_EQ(a.axis, 0u);
+  EXPECT_EQ(a.position, 0.5f);
+  const VoxelSlice b = parseVoxelSlice("y:0", "--voxel-slice");
+  EXPECT_EQ(b.axis, 1u);
+  EXPECT_EQ(b.position, 0.0f);
+  const VoxelSlice c = parseVoxelSlice("z:1", "--voxel-slice");
+  EXPECT_EQ(c.axis, 2u);
+  EXPECT_EQ(c.position, 1.0f);
+  EXPECT_EQ(voxelSliceText(parseVoxelSlice("z:0.25", "f")), "z:0.25");
+  for (const char* bad : {"", "w", "X", "xy", "x:", "x:1.5", "x:-0.1", "x:nan", "x:0.5z", "x:0.5:1", ":0.5", "x 0.5"})
+    EXPECT_THROW(parseVoxelSlice(bad, "--voxel-slice"), UserError) << "'" << bad << "'";
+  // The plane's layer: floor(position * e), the far end in the last layer.
+  EXPECT_EQ(voxelSlicePlane({2, 0.0f}, 8), 0u);
+  EXPECT_EQ(voxelSlicePlane({2, 0.5f}, 8), 4u);
+  EXPECT_EQ(voxelSlicePlane({2, 0.99f}, 8), 7u);
+  EXPECT_EQ(voxelSlicePlane({2, 1.0f}, 8), 7u);
+  EXPECT_EQ(voxelSlicePlane({0, 1.0f}, 1), 0u);
+}
+
 TEST(VctVoxelView, RejectsABadLevelOnTheDevicePath) {
   test::glContext();
   VctPipelineOptions o;
@@ -179,6 +300,9 @@ TEST(VctVoxelView, RenderCommandBadFlagsAreOneLineExit2) {
   expectUsageError(test::runManylights("render --size 16x16 --voxel-view opacity"), "--voxel-view");
   expectUsageError(test::runManylights(vct + "--voxel-level 1"), "--voxel-level");
   expectUsageError(test::runManylights(vct + "--voxel-view opacity"), "--out");
+  expectUsageError(test::runManylights(vct + "--voxel-view opacity --voxel-slice w"), "--voxel-slice");
+  expectUsageError(test::runManylights(vct + "--voxel-view opacity --voxel-slice z:1.5"), "--voxel-slice");
+  expectUsageError(test::runManylights(vct + "--voxel-slice z"), "--voxel-slice");
 }
 
 TEST(VctVoxelView, RenderCommandWritesTheView) {
@@ -201,6 +325,34 @@ TEST(VctVoxelView, RenderCommandWritesTheView) {
     hits += exr[i + 3] == 1.0f;
   }
   EXPECT_GT(hits, exr.size() / 4 / 2) << "the Cornell camera looks into the box: most pixels see a voxel";
+}
+
+TEST(VctVoxelView, RenderCommandWritesTheSlice) {
+  test::TempDir tmp;
+  const std::string out = tmp.file("f.png");
+  const auto r = test::runManylights("render --scene " + kCornellDir + "cornell.gltf --lights " + kCornellDir +
+                                     "lights.json --camera " + kCornellDir + "camera.json --size 64x48 --frames 1 "
+                                     "--warmup 0 --gi vct --voxels 32 --levels 3 --anisotropic --voxel-view opacity "
+                                     "--voxel-level 1 --voxel-slice z:0.1 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(std::filesystem::exists(tmp.file("f_gi_vct_slice.png")));
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("f_gi_vct_voxels.png"))) << "the slice replaces the cubes";
+  unsigned w = 0, h = 0;
+  const auto exr = readImageRgba(tmp.file("f_gi_vct_slice.exr"), w, h);
+  ASSERT_EQ(w, 64u);
+  ASSERT_EQ(h, 48u);
+  // The back wall's layer (z in [-1.1, -1] of a grid from about -1.1): the
+  // 48x48 square in the middle is the plane, the 8-pixel bands beside it empty.
+  std::size_t hits = 0;
+  for (unsigned y = 0; y < h; ++y)
+    for (unsigned x = 0; x < w; ++x) {
+      const float a = exr[4 * (std::size_t(y) * w + x) + 3];
+      if (x < 8 || x >= 56) {
+        EXPECT_EQ(a, 0.0f) << x << "," << y;
+      }
+      hits += a == 1.0f;
+    }
+  EXPECT_GT(hits, 48u * 48u / 2) << "the back wall fills most of the plane";
 }
 
 }  // namespace

@@ -1,10 +1,11 @@
 // `manylights view` with voxel cone tracing, under Xvfb: a scripted session
 // turns gi vct on with settings by key (the same table as render's flags),
 // and its shaded frame, its "indirect" view and its "voxels" view (a fresh
-// random kind and level) equal `render --gi vct` of the same camera: the
-// frame, <out>_gi_vct.png and <out>_gi_vct_voxels.png, within the render
-// tests' tolerance (expectSameImage). Refused values name the action and
-// the flag, exit 2.
+// random kind and level) and its albedo slice of that level (a random
+// vertical plane) equal `render --gi vct` of the same camera: the frame,
+// <out>_gi_vct.png, <out>_gi_vct_voxels.png and (--voxel-slice)
+// <out>_gi_vct_slice.png, within the render tests' tolerance
+// (expectSameImage). Refused values name the action and the flag, exit 2.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -32,23 +33,33 @@ TEST(ViewVct, FrameIndirectAndVoxelViewsEqualRender) {
   // images, which expectSameImage refuses. Opacity at level 1, the others at 0 or 1.
   const unsigned level = kind == std::string("opacity") ? 1 : rng() % 2;
   const float yaw = std::uniform_real_distribution<float>(-30.0f, 30.0f)(rng);
-  SCOPED_TRACE("voxel view " + kind + " level " + std::to_string(level) + " yaw " + std::to_string(yaw));
+  // The slice shows albedo on a vertical plane through the middle: it cuts
+  // the floors and walls (a horizontal plane can lie between floors, and the
+  // radiance of a plane can be nearly all dark: flat images).
+  const std::string slice = std::string(1, "xz"[rng() % 2]) + ":" +
+                            std::to_string(std::uniform_real_distribution<float>(0.3f, 0.7f)(rng));
+  SCOPED_TRACE("voxel view " + kind + " level " + std::to_string(level) + " yaw " + std::to_string(yaw) + " slice " +
+               slice);
   const json script = json::array(
       {{{"technique", "tiled-deferred"}}, {{"orbit", {yaw, 0.0}}}, {{"record", "start"}}, {{"gi", "vct"}},
        {{"gi_param", {{"voxels", "32"}, {"levels", "3"}}}}, {{"wait", 1}}, {{"screenshot", dir + "/view.png"}},
        {{"view", "indirect"}}, {{"wait", 1}}, {{"screenshot", dir + "/view_indirect.png"}},
        {{"voxel_view", kind}}, {{"voxel_level", level}}, {{"view", "voxels"}}, {{"wait", 1}},
-       {{"screenshot", dir + "/view_voxels.png"}}, {{"record_save", dir + "/camera.json"}}});
+       {{"screenshot", dir + "/view_voxels.png"}}, {{"voxel_view", "albedo"}}, {{"voxel_slice", slice}}, {{"wait", 1}},
+       {{"screenshot", dir + "/view_slice.png"}}, {{"record_save", dir + "/camera.json"}}});
   const test::CommandResult v = test::runViewScript(script, "vct");
   ASSERT_EQ(v.exit_code, 0) << v.out << v.err;
-  const auto r = test::runManylights("render --technique tiled-deferred " + std::string(test::kViewFrame) +
-                                     " --camera " + dir + "/camera.json --frames 1 --gi vct --voxels 32 --levels 3"
-                                     " --voxel-view " + kind + " --voxel-level " + std::to_string(level) +
-                                     " --out " + dir + "/render.png");
+  const std::string render = "render --technique tiled-deferred " + std::string(test::kViewFrame) + " --camera " +
+                             dir + "/camera.json --frames 1 --gi vct --voxels 32 --levels 3 --voxel-level " +
+                             std::to_string(level) + " --voxel-view ";
+  const auto r = test::runManylights(render + kind + " --out " + dir + "/render.png");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto rs = test::runManylights(render + "albedo --voxel-slice " + slice + " --out " + dir + "/render_s.png");
+  ASSERT_EQ(rs.exit_code, 0) << rs.out << rs.err;
   test::expectSameImage(dir + "/view.png", dir + "/render.png");
   test::expectSameImage(dir + "/view_indirect.png", dir + "/render_gi_vct.png");
   test::expectSameImage(dir + "/view_voxels.png", dir + "/render_gi_vct_voxels.png");
+  test::expectSameImage(dir + "/view_slice.png", dir + "/render_s_gi_vct_slice.png");
 }
 
 TEST(ViewVct, RefusedSettingsNameTheActionAndTheFlag) {
@@ -61,6 +72,8 @@ TEST(ViewVct, RefusedSettingsNameTheActionAndTheFlag) {
                         {{{"gi_param", {{"cones", "many"}}}}, "--cones"},
                         {{{"gi_param", {{"bogus", "1"}}}}, "bogus"},
                         {{{"voxel_level", 4}}, "--voxel-level"},
+                        {{{"voxel_slice", "w:0.5"}}, "--voxel-slice"},
+                        {{{"voxel_slice", "z:2"}}, "--voxel-slice"},
                         {{{"gi", "path-tracing"}}, "gi"}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.action.dump());

@@ -1,6 +1,7 @@
 // The voxel view (host/vct/VoxelView.hpp): per pixel, the camera ray marched
 // through one level of the voxel grid (3D DDA) to the first voxel with
-// opacity > 0. host/vct/VoxelViewTwin.cpp repeats these operations in this
+// opacity > 0 (cubes), or the voxel of one plane of the level under the pixel
+// (slice mode). host/vct/VoxelViewTwin.cpp repeats these operations in this
 // order (keep them in step).
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -10,6 +11,7 @@ struct VoxelAccum {
 };
 layout(std430, binding = 0) readonly buffer Radiance { vec4 radiance[]; };  // every level
 layout(std430, binding = 1) readonly buffer Accum { VoxelAccum accum[]; };  // level 0
+layout(std430, binding = 2) readonly buffer Aniso { vec4 aniso[]; };        // levels >= 1, 6 directions
 layout(rgba32f, binding = 0) uniform writeonly image2D u_out;
 
 uniform mat4 u_inv_view_proj;
@@ -20,6 +22,9 @@ uniform uint u_level;
 uniform uint u_offset;             // the level's first voxel in `radiance`
 uniform uint u_kind;               // 0 albedo, 1 radiance, 2 opacity
 uniform uvec2 u_size;
+uniform uint u_slice;        // 0: cubes; 1, 2, 3: the plane normal to x, y, z
+uniform uint u_plane;        // slice: the plane's voxel layer
+uniform uint u_aniso_first;  // slice, anisotropic level >= 1: the level's first float4 in `aniso`; else ~0u
 
 // Mean albedo of the level-0 voxels under level-`u_level` voxel `cell`.
 vec3 meanAlbedo(ivec3 cell) {
@@ -78,9 +83,37 @@ vec4 march(vec3 eye, vec3 dir) {
   return vec4(0.0);
 }
 
+// Slices of anisotropic levels >= 1 show the mean of the 6 directions' values.
+vec4 sliceValue(ivec3 cell) {
+  const uint e = u_edge >> u_level;
+  const uint i = uint(cell.x) + e * (uint(cell.y) + e * uint(cell.z));
+  if (u_aniso_first == ~0u) return radiance[u_offset + i];
+  vec4 sum = vec4(0.0);
+  for (uint d = 0u; d < 6u; ++d) sum += aniso[u_aniso_first + d * e * e * e + i];
+  return sum / 6.0;
+}
+
+// The plane fills the centred square of side min(width, height); pixel ->
+// voxel in integers, so that the twin picks the same voxel.
+vec4 slice(uvec2 px) {
+  const uint e = u_edge >> u_level;
+  const uint side = min(u_size.x, u_size.y);
+  const uvec2 lo = (u_size - uvec2(side)) / 2u;
+  if (any(lessThan(px, lo)) || any(greaterThanEqual(px, lo + uvec2(side)))) return vec4(0.0);
+  const uvec2 uv = (px - lo) * e / side;
+  const int k = int(u_plane), u = int(uv.x), v = int(uv.y);
+  const ivec3 cell = u_slice == 1u ? ivec3(k, v, u) : (u_slice == 2u ? ivec3(u, k, v) : ivec3(u, v, k));
+  const vec4 value = sliceValue(cell);
+  return value.a > 0.0 ? shade(cell, value) : vec4(0.0);
+}
+
 void main() {
   const uvec2 px = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(px, u_size))) return;
+  if (u_slice != 0u) {
+    imageStore(u_out, ivec2(px), slice(px));
+    return;
+  }
   const vec2 ndc = (vec2(px) + 0.5) / vec2(u_size) * 2.0 - 1.0;
   const vec4 p = u_inv_view_proj * vec4(ndc, 0.5, 1.0);
   imageStore(u_out, ivec2(px), march(u_eye, p.xyz / p.w - u_eye));

@@ -13,6 +13,9 @@ namespace ml {
 
 namespace {
 
+// The voxel view's file: <out>_gi_vct_<this>.exr/.png.
+std::string voxelViewFile(const GiArgs& a) { return a.voxel_slice.empty() ? "voxels" : "slice"; }
+
 // From the one VCT settings table (host/vct/VctSettingsTable.hpp): parsed
 // here, checked as a whole by checkGiFlags (a flag's range can depend on another's).
 void addVctFlags(CLI::App& cmd, vct::VctGiSettings& v, bool& with_reference) {
@@ -35,11 +38,14 @@ void addVctFlags(CLI::App& cmd, vct::VctGiSettings& v, bool& with_reference) {
                "--gi vct: also trace the Embree reference (--gi-samples, --gi-seed) and report gi_rel_rmse");
 }
 
-void addVoxelViewFlags(CLI::App& cmd, std::string& view, unsigned& level) {
+void addVoxelViewFlags(CLI::App& cmd, std::string& view, unsigned& level, std::string& slice) {
   cmd.add_option("--voxel-view", view,
                  std::string("--gi vct: write the voxel volume seen from the camera as cubes (") + vct::kVoxelViewNames +
                      ") as <out>_gi_vct_voxels.exr/.png");
   cmd.add_option("--voxel-level", level, "--voxel-view: the level shown (0..--levels - 1)")->capture_default_str();
+  cmd.add_option("--voxel-slice", slice,
+                 std::string("--voxel-view: show the plane ") + vct::kVoxelSliceSyntax +
+                     " of the level (nearest voxels) instead of cubes, as <out>_gi_vct_slice.exr/.png");
 }
 
 }  // namespace
@@ -58,7 +64,7 @@ void addGiFlags(CLI::App& cmd, GiArgs& a) {
                  "or ray for --gi vct --vct-shadows voxel --gi-reference)");
   cmd.add_option("--gi-seed", a.seed, "--gi reference: seed of the hemisphere samples")->capture_default_str();
   addVctFlags(cmd, a.vct, a.with_reference);
-  addVoxelViewFlags(cmd, a.voxel_view, a.voxel_level);
+  addVoxelViewFlags(cmd, a.voxel_view, a.voxel_level, a.voxel_slice);
 }
 
 const GiDescriptor& vctGiDescriptor() {
@@ -113,10 +119,14 @@ void checkGiFlags(const GiArgs& a, const std::string& out) {
   if (!a.voxel_view.empty()) {
     vct::parseVoxelView(a.voxel_view);
     vct::checkVoxelLevel(a.voxel_level, a.vct.grid.levels);
+    if (!a.voxel_slice.empty()) vct::parseVoxelSlice(a.voxel_slice, "--voxel-slice");
     if (a.mode != "vct") throw UserError("--voxel-view: only with --gi vct");
-    if (out.empty()) throw UserError("--voxel-view: needs --out (the image is <out>_gi_vct_voxels.png)");
+    if (out.empty())
+      throw UserError("--voxel-view: needs --out (the image is <out>_gi_vct_" + voxelViewFile(a) + ".png)");
   } else if (a.voxel_level != 0) {
     throw UserError("--voxel-level: only with --voxel-view");
+  } else if (!a.voxel_slice.empty()) {
+    throw UserError("--voxel-slice: only with --voxel-view (the values shown)");
   }
   if (a.mode == "none" || out.empty()) return;
   const bool reference = a.mode == "reference" || a.with_reference;
@@ -126,7 +136,8 @@ void checkGiFlags(const GiArgs& a, const std::string& out) {
   }
   if (a.mode == "vct") requireImageFile("--out", giOutputPath(out, "vct_ao", ".png"));
   if (!a.voxel_view.empty())
-    for (const char* ext : {".exr", ".png"}) requireImageFile("--out", giOutputPath(out, "vct_voxels", ext));
+    for (const char* ext : {".exr", ".png"})
+      requireImageFile("--out", giOutputPath(out, "vct_" + voxelViewFile(a), ext));
 }
 
 std::unique_ptr<GiPass> makeGiPass(const GiArgs& a, ClRuntime& cl, const Scene& scene) {
@@ -158,15 +169,24 @@ void writeAo(const std::string& out, unsigned w, unsigned h, const std::vector<f
 void writeVoxelView(const GiArgs& a, const vct::VctGiPass& pass, const Camera& camera, unsigned w, unsigned h,
                     const std::string& out, GiResult& r) {
   const vct::VoxelViewKind kind = vct::parseVoxelView(a.voxel_view);
-  const vct::VoxelViewCamera cam{camera.view(), camera.projection(float(w) / float(h)), w, h};
-  const std::vector<float> rgba = vct::VoxelViewPass().render(pass.pipeline().volume(), kind, a.voxel_level, cam);
+  const vct::VoxelVolume& volume = pass.pipeline().volume();
+  std::vector<float> rgba;
+  if (a.voxel_slice.empty()) {
+    const vct::VoxelViewCamera cam{camera.view(), camera.projection(float(w) / float(h)), w, h};
+    rgba = vct::VoxelViewPass().render(volume, kind, a.voxel_level, cam);
+  } else {
+    const vct::VoxelSlice slice = vct::parseVoxelSlice(a.voxel_slice, "--voxel-slice");
+    rgba = vct::VoxelViewPass().renderSlice(volume, kind, a.voxel_level, slice, w, h);
+  }
   const std::vector<float> png = vct::voxelViewDisplay(rgba, kind);
-  const std::string exr = giOutputPath(out, "vct_voxels", ".exr"), png_file = giOutputPath(out, "vct_voxels", ".png");
+  const std::string file = "vct_" + voxelViewFile(a);
+  const std::string exr = giOutputPath(out, file, ".exr"), png_file = giOutputPath(out, file, ".png");
   writeImageAtomically("--voxel-view", exr, w, h, 4, rgba);
   writeImageAtomically("--voxel-view", png_file, w, h, 4, png);
   r.files.insert(r.files.end(), {exr, png_file});
-  std::printf("voxel view: %s of level %u (%u voxels per axis)\n", a.voxel_view.c_str(), a.voxel_level,
-              a.vct.grid.voxels >> a.voxel_level);
+  std::printf("voxel view: %s of level %u (%u voxels per axis)%s%s\n", a.voxel_view.c_str(), a.voxel_level,
+              a.vct.grid.voxels >> a.voxel_level, a.voxel_slice.empty() ? ", cubes" : ", slice ",
+              a.voxel_slice.c_str());
 }
 
 }  // namespace

@@ -19,7 +19,9 @@
 // chosen level of the voxel volume seen from the camera as cubes
 // (host/vct/VoxelView.hpp), as <out stem>_gi_vct_voxels.exr (linear, alpha 1
 // on hit voxels) and .png (radiance with the tone-map above, albedo and
-// opacity as they are).
+// opacity as they are). With --voxel-slice x|y|z[:position] the view shows
+// that plane of the level instead of cubes (host/vct/VoxelSlice.hpp), as
+// <out stem>_gi_vct_slice.exr/.png.
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
@@ -46,6 +48,7 @@ struct GiArgs {
   bool with_reference = false;     // --gi-reference (with --gi vct)
   std::string voxel_view;          // --voxel-view albedo|radiance|opacity (with --gi vct); empty: none
   unsigned voxel_level = 0;        // --voxel-level: the level --voxel-view shows
+  std::string voxel_slice;         // --voxel-slice x|y|z[:position]; empty: cubes
 };
 inline constexpr unsigned kMaxGiSamples = 1u << 16;
 

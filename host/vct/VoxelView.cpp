@@ -3,6 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cmath>
+#include <string>
 
 #include "gl/GlCheck.hpp"
 #include "host/util/Error.hpp"
@@ -12,6 +13,19 @@ namespace ml::vct {
 namespace {
 
 constexpr unsigned kGroup = 8;  // voxel_view.comp's local size per axis
+
+// The shader indexes each buffer whole: one larger than the GL's shader
+// storage block limit would read past it, so it is refused.
+void checkBlockLimit(const SharedBuffer& buffer) {
+  GLint64 size = 0, max_block = 0;
+  glGetNamedBufferParameteri64v(buffer.gl(), GL_BUFFER_SIZE, &size);
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  glCheck("querying the voxel volume's size");
+  if (max_block > 0 && size > max_block)
+    throw UserError("--voxel-view: a voxel volume of " + std::to_string(size >> 20) +
+                    " MiB exceeds this GL's shader storage block limit (" + std::to_string(max_block >> 20) +
+                    " MiB): use fewer --voxels");
+}
 
 }  // namespace
 
@@ -47,9 +61,34 @@ VoxelViewPass::VoxelViewPass() : program_({"voxel_view.comp"}) {}
 
 std::vector<float> VoxelViewPass::render(const VoxelVolume& volume, VoxelViewKind kind, unsigned level,
                                          const VoxelViewCamera& camera) {
+  checkVoxelLevel(level, volume.params().levels);
+  const glm::mat4 inv_vp = glm::inverse(camera.proj * camera.view);
+  const glm::vec3 eye = glm::vec3(glm::inverse(camera.view)[3]);
+  program_.use();
+  program_.set("u_inv_view_proj", glm::value_ptr(inv_vp));
+  program_.set3("u_eye", eye.x, eye.y, eye.z);
+  program_.set("u_slice", 0u);
+  return dispatch(volume, kind, level, camera.width, camera.height);
+}
+
+std::vector<float> VoxelViewPass::renderSlice(const VoxelVolume& volume, VoxelViewKind kind, unsigned level,
+                                              const VoxelSlice& slice, unsigned width, unsigned height) {
   const gpu::VoxelGridParams& grid = volume.params();
   checkVoxelLevel(level, grid.levels);
-  const unsigned w = camera.width, h = camera.height;
+  const bool aniso = volume.settings().anisotropic && level > 0;
+  program_.use();
+  program_.set("u_slice", slice.axis + 1);
+  program_.set("u_plane", voxelSlicePlane(slice, grid.edge >> level));
+  program_.set("u_aniso_first", aniso ? gpu::voxel_aniso_index(grid.edge, level, 0, 0) : ~0u);
+  return dispatch(volume, kind, level, width, height);
+}
+
+std::vector<float> VoxelViewPass::dispatch(const VoxelVolume& volume, VoxelViewKind kind, unsigned level,
+                                           unsigned w, unsigned h) {
+  const gpu::VoxelGridParams& grid = volume.params();
+  const SharedBuffer* aniso = volume.anisotropic();
+  for (const SharedBuffer* b : {&volume.radiance(), &volume.accum(), aniso})
+    if (b) checkBlockLimit(*b);
   GLuint image = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &image);
   glTextureStorage2D(image, 1, GL_RGBA32F, static_cast<GLsizei>(w), static_cast<GLsizei>(h));
@@ -57,12 +96,7 @@ std::vector<float> VoxelViewPass::render(const VoxelVolume& volume, VoxelViewKin
   const float nan[4] = {std::nanf(""), std::nanf(""), std::nanf(""), std::nanf("")};
   glClearTexImage(image, 0, GL_RGBA, GL_FLOAT, nan);
   glCheck("creating the voxel view image");
-  const glm::mat4 inv_vp = glm::inverse(camera.proj * camera.view);
-  const glm::vec3 eye = glm::vec3(glm::inverse(camera.view)[3]);
   const gpu::ml_float4& ovs = grid.origin_voxel_size;
-  program_.use();
-  program_.set("u_inv_view_proj", glm::value_ptr(inv_vp));
-  program_.set3("u_eye", eye.x, eye.y, eye.z);
   program_.set4("u_origin_voxel_size", ovs.x, ovs.y, ovs.z, ovs.w);
   program_.set("u_edge", grid.edge);
   program_.set("u_level", level);
@@ -71,13 +105,14 @@ std::vector<float> VoxelViewPass::render(const VoxelVolume& volume, VoxelViewKin
   program_.setU2("u_size", w, h);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, volume.radiance().gl());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, volume.accum().gl());
+  // Without an anisotropic volume the shader reads no binding 2; bind something valid.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, aniso ? aniso->gl() : volume.radiance().gl());
   glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute((w + kGroup - 1) / kGroup, (h + kGroup - 1) / kGroup, 1);
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
   std::vector<float> px(std::size_t(w) * h * 4);
   glGetTextureImage(image, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(px.size() * sizeof(float)), px.data());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+  for (GLuint b : {0u, 1u, 2u}) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
   glDeleteTextures(1, &image);
   glCheck("voxel view");
   return px;

@@ -9,16 +9,24 @@
 //   radiance: its radiance, un-premultiplied (rgb / opacity);
 //   opacity:  its opacity as grey.
 // The result is linear RGBA, rows bottom-up, alpha 1 where a voxel was hit and
-// 0 (black) where the ray left the grid empty. GL compute shader
+// 0 (black) where the ray left the grid empty.
+// Slices (renderSlice, host/vct/VoxelSlice.hpp): one plane of the level,
+// nearest voxels, filling the image's centred square (outside it: 0); each
+// voxel with opacity > 0 as above, an empty one 0. Anisotropic volumes at
+// levels >= 1 show the mean of the 6 directions' premultiplied values (what
+// an average cone sees; the cubes show the isotropic mips). GL compute shader
 // gl/shaders/voxel_view.comp reading the volume's SharedBuffers (GL owns them
 // between updates); voxelViewPixelTwin (VoxelViewTwin.hpp) is its C++ twin.
-// parseVoxelView / checkVoxelLevel: UserError naming --voxel-view / --voxel-level.
+// parseVoxelView / checkVoxelLevel: UserError naming --voxel-view / --voxel-level;
+// so is a volume buffer larger than the GL's shader storage block limit (the
+// shader indexes each buffer whole).
 #include <glm/glm.hpp>
 
 #include <string>
 #include <vector>
 
 #include "gl/ShaderProgram.hpp"
+#include "host/vct/VoxelSlice.hpp"
 #include "host/vct/VoxelVolume.hpp"
 
 namespace ml::vct {
@@ -45,8 +53,15 @@ class VoxelViewPass {
   // Needs the volume's GL context; level is checked (checkVoxelLevel).
   std::vector<float> render(const VoxelVolume& volume, VoxelViewKind kind, unsigned level,
                             const VoxelViewCamera& camera);
+  std::vector<float> renderSlice(const VoxelVolume& volume, VoxelViewKind kind, unsigned level,
+                                 const VoxelSlice& slice, unsigned width, unsigned height);
 
  private:
+  // Binds the volume and the level's uniforms, runs the shader over a
+  // poisoned width x height image and reads it back.
+  std::vector<float> dispatch(const VoxelVolume& volume, VoxelViewKind kind, unsigned level, unsigned width,
+                              unsigned height);
+
   ShaderProgram program_;
 };
 

@@ -20,6 +20,14 @@ glm::vec3 meanAlbedo(const std::vector<gpu::VoxelAccum>& accum, unsigned edge, u
   return glm::vec3(float(sum[0]), float(sum[1]), float(sum[2])) / (255.0f * float(sum[3]));
 }
 
+// voxel_view.comp's shade(): the kind's value of a voxel with opacity > 0.
+glm::vec4 shade(const std::vector<gpu::VoxelAccum>& accum, unsigned edge, unsigned level, VoxelViewKind kind,
+                glm::ivec3 cell, const gpu::ml_float4& v) {
+  if (kind == VoxelViewKind::Albedo) return glm::vec4(meanAlbedo(accum, edge, level, cell), 1.0f);
+  if (kind == VoxelViewKind::Radiance) return glm::vec4(v.x / v.w, v.y / v.w, v.z / v.w, 1.0f);
+  return glm::vec4(v.w, v.w, v.w, 1.0f);
+}
+
 }  // namespace
 
 PixelRay voxelViewRay(const VoxelViewCamera& camera, unsigned x, unsigned y) {
@@ -59,11 +67,7 @@ glm::vec4 voxelViewPixelTwin(const std::vector<gpu::ml_float4>& radiance, const 
   const unsigned first = tenter < 0.0f ? 1 : 0;  // the eye's own voxel is not shown
   for (unsigned i = 0; i < 3 * e + 1; ++i) {
     const gpu::ml_float4& v = radiance[offset + unsigned(cell.x) + e * (unsigned(cell.y) + e * unsigned(cell.z))];
-    if (i >= first && v.w > 0.0f) {
-      if (kind == VoxelViewKind::Albedo) return glm::vec4(meanAlbedo(accum, grid.edge, level, cell), 1.0f);
-      if (kind == VoxelViewKind::Radiance) return glm::vec4(v.x / v.w, v.y / v.w, v.z / v.w, 1.0f);
-      return glm::vec4(v.w, v.w, v.w, 1.0f);
-    }
+    if (i >= first && v.w > 0.0f) return shade(accum, grid.edge, level, kind, cell, v);
     int axis = 2;
     if (next.x < next.y && next.x < next.z)
       axis = 0;
@@ -74,6 +78,32 @@ glm::vec4 voxelViewPixelTwin(const std::vector<gpu::ml_float4>& radiance, const 
     if (cell[axis] < 0 || cell[axis] > last[axis]) break;
   }
   return glm::vec4(0.0f);
+}
+
+glm::vec4 voxelSlicePixelTwin(const std::vector<gpu::ml_float4>& radiance, const std::vector<gpu::ml_float4>& aniso,
+                              const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& grid,
+                              VoxelViewKind kind, unsigned level, const VoxelSlice& slice, unsigned width,
+                              unsigned height, unsigned x, unsigned y) {
+  const unsigned e = grid.edge >> level;
+  const unsigned side = std::min(width, height);
+  const unsigned lo_x = (width - side) / 2, lo_y = (height - side) / 2;
+  if (x < lo_x || y < lo_y || x >= lo_x + side || y >= lo_y + side) return glm::vec4(0.0f);
+  const int u = int((x - lo_x) * e / side), v = int((y - lo_y) * e / side);
+  const int k = int(voxelSlicePlane(slice, e));
+  const glm::ivec3 cell =
+      slice.axis == 0 ? glm::ivec3(k, v, u) : (slice.axis == 1 ? glm::ivec3(u, k, v) : glm::ivec3(u, v, k));
+  const unsigned i = unsigned(cell.x) + e * (unsigned(cell.y) + e * unsigned(cell.z));
+  gpu::ml_float4 value = radiance[gpu::voxel_level_offset(grid.edge, level) + i];
+  if (!aniso.empty() && level > 0) {
+    glm::vec4 sum(0.0f);
+    for (unsigned d = 0; d < ML_VOXEL_DIRECTIONS; ++d) {
+      const gpu::ml_float4& a = aniso[gpu::voxel_aniso_index(grid.edge, level, d, i)];
+      sum += glm::vec4(a.x, a.y, a.z, a.w);
+    }
+    sum /= 6.0f;
+    value = {sum.x, sum.y, sum.z, sum.w};
+  }
+  return value.w > 0.0f ? shade(accum, grid.edge, level, kind, cell, value) : glm::vec4(0.0f);
 }
 
 }  // namespace ml::vct

@@ -24,4 +24,12 @@ glm::vec4 voxelViewPixelTwin(const std::vector<gpu::ml_float4>& radiance, const 
                              const gpu::VoxelGridParams& grid, VoxelViewKind kind, unsigned level,
                              const VoxelViewCamera& camera, unsigned x, unsigned y);
 
+// Pixel (x, y) of VoxelViewPass::renderSlice's width x height image. `aniso`:
+// the anisotropic volume read back (voxel_types.h layout), empty when the
+// volume is isotropic.
+glm::vec4 voxelSlicePixelTwin(const std::vector<gpu::ml_float4>& radiance, const std::vector<gpu::ml_float4>& aniso,
+                              const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& grid,
+                              VoxelViewKind kind, unsigned level, const VoxelSlice& slice, unsigned width,
+                              unsigned height, unsigned x, unsigned y);
+
 }  // namespace ml::vct

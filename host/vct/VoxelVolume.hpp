@@ -32,6 +32,7 @@ class VoxelVolume {
   const SharedBuffer& accum() const { return *accum_; }        // read-only views (debug images)
   const SharedBuffer& radiance() const { return *radiance_; }
   SharedBuffer* anisotropic() { return aniso_.get(); }  // null unless settings().anisotropic
+  const SharedBuffer* anisotropic() const { return aniso_.get(); }
   std::size_t bytes() const { return voxelBytes(settings_); }
 
  private:

@@ -47,6 +47,13 @@ void ViewerGi::setVoxelLevel(unsigned level) {
   voxel_level_ = level;
 }
 
+void ViewerGi::setVoxelSlice(const std::string& slice) {
+  if (slice == "none")
+    voxel_slice_.reset();
+  else
+    voxel_slice_ = vct::parseVoxelSlice(slice, "--voxel-slice");
+}
+
 std::vector<float> ViewerGi::indirectImage() const {
   if (!pass_) throw UserError("view: the indirect light needs gi vct");
   return giToneMapped(pass_->indirectRgba());
@@ -55,9 +62,12 @@ std::vector<float> ViewerGi::indirectImage() const {
 std::vector<float> ViewerGi::voxelImage(const Camera& camera, unsigned width, unsigned height) {
   if (!pass_) throw UserError("view: the voxels need gi vct");
   if (!voxel_view_) voxel_view_ = std::make_unique<vct::VoxelViewPass>();
+  const vct::VoxelVolume& volume = pass_->pipeline().volume();
+  if (voxel_slice_)
+    return vct::voxelViewDisplay(
+        voxel_view_->renderSlice(volume, voxel_kind_, voxel_level_, *voxel_slice_, width, height), voxel_kind_);
   const vct::VoxelViewCamera cam{camera.view(), camera.projection(float(width) / float(height)), width, height};
-  return vct::voxelViewDisplay(voxel_view_->render(pass_->pipeline().volume(), voxel_kind_, voxel_level_, cam),
-                               voxel_kind_);
+  return vct::voxelViewDisplay(voxel_view_->render(volume, voxel_kind_, voxel_level_, cam), voxel_kind_);
 }
 
 }  // namespace ml

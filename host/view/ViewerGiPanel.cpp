@@ -5,6 +5,7 @@
 #include <string>
 
 #include "host/vct/VctSettingsTable.hpp"
+#include "host/vct/VoxelSlice.hpp"
 #include "host/view/PanelWidgets.hpp"
 #include "host/view/ViewerSession.hpp"
 
@@ -31,6 +32,19 @@ void drawVctSetting(ViewerSession& s, PanelState& state, const vct::VctSetting& 
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (render's %s)", v.help.c_str(), v.flag().c_str());
 }
 
+// Cubes, or a plane normal to x, y or z at a position (render's --voxel-slice).
+void drawVoxelSlice(ViewerSession& s, PanelState& state) {
+  const auto& slice = s.gi().voxelSlice();
+  const char* axes[] = {"cubes", "slice x", "slice y", "slice z"};
+  int axis = slice ? int(slice->axis) + 1 : 0;
+  float position = slice ? slice->position : 0.5f;
+  bool changed = ImGui::Combo("voxel shape", &axis, axes, 4);
+  if (axis > 0) changed |= ImGui::SliderFloat("slice position", &position, 0.0f, 1.0f);
+  if (!changed) return;
+  const std::string text = axis == 0 ? "none" : vct::voxelSliceText({unsigned(axis - 1), position});
+  attempt(state, [&] { s.setVoxelSlice(text); });
+}
+
 void drawVoxelView(ViewerSession& s, PanelState& state) {
   const char* current = vct::voxelViewName(s.gi().voxelView());
   if (ImGui::BeginCombo("voxel view", current)) {
@@ -41,6 +55,7 @@ void drawVoxelView(ViewerSession& s, PanelState& state) {
   int level = int(s.gi().voxelLevel());
   if (ImGui::SliderInt("voxel level", &level, 0, int(s.gi().settings().grid.levels) - 1))
     attempt(state, [&] { s.setVoxelLevel(unsigned(std::max(level, 0))); });
+  drawVoxelSlice(s, state);
 }
 
 }  // namespace

@@ -24,7 +24,7 @@ const std::map<std::string, Shape>& verbs() {
       {"panel", Shape::Bool},         {"counts", Shape::Bool},       {"record", Shape::String},
       {"record_save", Shape::String}, {"ratio_max", Shape::Number},  {"play", Shape::Bool},
       {"gi", Shape::String},          {"gi_param", Shape::Object},   {"voxel_view", Shape::String},
-      {"voxel_level", Shape::Count}};
+      {"voxel_level", Shape::Count},  {"voxel_slice", Shape::String}};
   return v;
 }
 
@@ -153,6 +153,7 @@ void ViewerScript::run(const ScriptAction& a, ViewerSession& s, ScriptWindowActi
       for (const auto& [k, x] : v.items()) s.setGiParam(k, x.get<std::string>());
     else if (a.verb == "voxel_view") s.setVoxelView(v.get<std::string>());
     else if (a.verb == "voxel_level") s.setVoxelLevel(v.get<unsigned>());
+    else if (a.verb == "voxel_slice") s.setVoxelSlice(v.get<std::string>());
   } catch (const UserError& e) {
     throw UserError(a.where + ": " + e.what());
   }

@@ -18,6 +18,7 @@
 //   {"gi": "vct"}                       {"gi_param": {"voxels": "32"}}  (render's --gi vct flags, by key)
 //   {"view": "indirect"}                {"view": "voxels"}              (with gi vct)
 //   {"voxel_view": "radiance"}          {"voxel_level": 1}
+//   {"voxel_slice": "z:0.5"}            {"voxel_slice": "none"}         (render's --voxel-slice; none: cubes)
 // Loading checks the file's shape (UserError naming the file and the action's
 // index); values are checked when they run, as the panel's are.
 #include <cstddef>

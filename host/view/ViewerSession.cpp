@@ -120,6 +120,11 @@ void ViewerSession::setVoxelLevel(unsigned level) {
   stale_ = true;
 }
 
+void ViewerSession::setVoxelSlice(const std::string& slice) {
+  gi_->setVoxelSlice(slice);
+  stale_ = true;
+}
+
 void ViewerSession::setViewMode(const std::string& name) {
   std::string names;
   for (const ViewMode& m : viewModes()) {

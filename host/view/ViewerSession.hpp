@@ -67,6 +67,7 @@ class ViewerSession {
   void setGiParam(const std::string& key, const std::string& value);
   void setVoxelView(const std::string& kind);
   void setVoxelLevel(unsigned level);
+  void setVoxelSlice(const std::string& slice);  // x|y|z[:position], or none (cubes)
   const ViewerGi& gi() const { return *gi_; }
   void setHeatmapMax(std::uint32_t max_value);  // the count heat maps' top; 0: the frame's maximum
   void setRatioMax(double max_ratio);           // the ratio map's top (above 1; UserError otherwise)
