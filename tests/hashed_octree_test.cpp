@@ -354,7 +354,8 @@ TEST(HashedOctree, GeometryMaskKeepsSurfacePointsAndSavesMemory) {
         const auto& l = lights[li];
         const glm::dvec3 d = glm::dvec3(p) - glm::dvec3(l.position_radius.x, l.position_radius.y, l.position_radius.z);
         if (glm::dot(d, d) < double(l.position_radius.w) * l.position_radius.w) {
-          ASSERT_TRUE(std::binary_search(got.begin(), got.end(), li)) << "light " << li << " missing, point " << p.x << " " << p.y << " " << p.z;
+          ASSERT_TRUE(std::binary_search(got.begin(), got.end(), li))
+              << "light " << li << " missing, point " << p.x << " " << p.y << " " << p.z;
         }
       }
     }

@@ -192,6 +192,9 @@ std::size_t floodOutsideCells(const Sphere& s, const CellBox& box, Grid& g, std:
   return std::size_t(n.x) * n.y * n.z - q.size();
 }
 
+// Fewer lights are less work than waking the worker threads.
+constexpr std::size_t kParallelOctreesMinLights = 256;
+
 }  // namespace
 
 LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, const OctreeBounds& b,
@@ -245,7 +248,7 @@ LightCells::LightCells(const gpu::PointLight& light, const OctreeBounds& b)
 std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b,
                                            const GeometryMask* geometry) {
   std::vector<LightOctree> out(lights.size());
-  if (lights.size() < 256) {  // less work than waking the worker threads
+  if (lights.size() < kParallelOctreesMinLights) {
     LightGridScratch s;
     for (std::size_t i = 0; i < lights.size(); ++i) out[i] = buildLightOctree(lights[i], std::uint32_t(i), b, s, geometry);
     return out;

@@ -49,6 +49,13 @@
 namespace ml::hashed {
 
 constexpr std::uint32_t kEmptyKeyWord = 0xFFFFFFFFu;
+// Offsets are 8 bits per axis.
+constexpr std::uint32_t kOffsetRange = 256;
+// Up to this many keys a table gets exactly n slots, beyond 1.01 n (LH06's sizing).
+constexpr double kExactSizeMaxKeys = 255;
+// Offset table growths after which a build is a bug, not bad luck (each
+// doubles the table; the hash table grows meanwhile).
+constexpr unsigned kMaxOffsetGrowths = 200;
 
 struct PshBuildParams {
   std::uint64_t seed = kThesisSeed;
@@ -304,7 +311,7 @@ bool PerfectSpatialHash<Traits>::searchFree(const glm::uvec3& h0, SplitMix64& rn
     const std::uint32_t s = free_[(start + i) % n];
     const glm::uvec3 h(s % m_.x, (s / m_.x) % m_.y, s / (m_.x * m_.y));
     const glm::uvec3 off = (h + m_ - h0) % m_;
-    if (off.x < 256 && off.y < 256 && off.z < 256 && fits(off)) {
+    if (off.x < kOffsetRange && off.y < kOffsetRange && off.z < kOffsetRange && fits(off)) {
       found = off;
       return true;
     }
@@ -326,7 +333,7 @@ bool PerfectSpatialHash<Traits>::findOffset(std::uint32_t o, const std::vector<s
                                             const std::vector<glm::uvec3>& h0, SplitMix64& rng,
                                             unsigned random_tries, F&& fits, glm::uvec3& off) const {
   if (tryNeighbours(o, assigned, fits, off)) return true;
-  const glm::uvec3 range = glm::min(m_, glm::uvec3(256));
+  const glm::uvec3 range = glm::min(m_, glm::uvec3(kOffsetRange));
   for (unsigned t = 0; t < random_tries; ++t) {
     off = glm::uvec3(rng.below(range.x), rng.below(range.y), rng.below(range.z));
     if (fits(off)) return true;
@@ -405,7 +412,7 @@ PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<E
     hi = glm::max(hi, e.key);
   }
   const glm::uvec3 extent = entries.empty() ? glm::uvec3(1) : hi - lo + 1u;
-  double m_target = std::max(1.0, (n <= 255 ? n : std::ceil(1.01 * n)) * std::max(1.0, params.slack));
+  double m_target = std::max(1.0, (n <= kExactSizeMaxKeys ? n : std::ceil(1.01 * n)) * std::max(1.0, params.slack));
   double r_target = std::max(1.0, n * std::clamp(params.sigma, 1e-3, 1.0));
   glm::uvec3 m = fitDims(m_target, extent, false);
   glm::uvec3 r = coprime(fitDims(r_target, extent, true), m);
@@ -431,7 +438,8 @@ PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<E
     }
     r = coprime(grown, m);
     ++rep.offset_growths;
-    if (rep.offset_growths > 200) throw std::logic_error("perfect spatial hash: construction does not converge");
+    if (rep.offset_growths > kMaxOffsetGrowths)
+      throw std::logic_error("perfect spatial hash: construction does not converge");
   }
   rep.attempts = failures + 1;
   rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
