@@ -12,8 +12,8 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 
 # Tests that take seeds from test::freshSeed (grep tests/ for freshSeed when adding one).
-hashed="HashedDynamic.*:HashedKeys.OwnRangesKeepCountAndCapacityThroughResizeAndCompaction:HashedMask.*"
-hashed+=":HashedOctree.*:HashedParallelEdit.*:HashedPsh.*:HashedRender.AnimatedLightsMatchAFreshBuild"
+hashed="HashedDynamic.*:HashedKeys.OwnRangesKeepCountAndCapacityThroughResizeAndCompaction:HashedMask.*:HashedMaskGeometry.*"
+hashed+=":HashedOctree.*:HashedThreads.*:HashedPsh.*:HashedRender.AnimatedLightsMatchAFreshBuild"
 rest="ClusteredAssign.BruteMatchesReferenceAndBvhMatchesBrute:ClusteredKeys.KernelMatchesReference"
 rest+=":ClusteredUnique.*:*BitonicSort*:*CompactTest.*:*UniqueTest.*:ComputeCompact.*:*RadixSort*:*ReduceTest.*"
 rest+=":*ReduceShapeTest.*:*ScanTest.*:ComputeScan.*:*SegmentedSort*:*SharedBufferTest.RoundTripGlClGl*"

@@ -99,25 +99,22 @@ Scene randomTriangles(std::mt19937_64& rng, double side) {
   return s;
 }
 
-glm::dvec3 randomSurfacePoint(std::mt19937_64& rng, const Scene& s) {
-  const std::size_t t = rng() % (s.indices.size() / 3);
-  double u = uni(rng, 0, 1), v = uni(rng, 0, 1);
-  if (u + v > 1) u = 1 - u, v = 1 - v;
-  const glm::dvec3 a(s.vertices[s.indices[3 * t]].position), p1(s.vertices[s.indices[3 * t + 1]].position),
-      p2(s.vertices[s.indices[3 * t + 2]].position);
-  return a + u * (p1 - a) + v * (p2 - a);
-}
+// A fresh seed (traced), an 8-unit octree of unit cells, random triangles
+// in it and their geometry mask.
+class HashedMaskGeometry : public ::testing::Test {
+ protected:
+  static constexpr double side = 8.0;
+  const std::uint64_t seed = test::freshSeed();
+  ::testing::ScopedTrace trace{__FILE__, __LINE__, "seed " + std::to_string(seed)};
+  std::mt19937_64 rng{seed};
+  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
+  const Scene s = randomTriangles(rng, side);
+  const GeometryMask mask{s, b, 0.01};
+};
 
 // Every point on a triangle lies in its cell's geometry box and in the box
 // of the octant that holds it (what keeps octant-tight light sets conservative).
-TEST(HashedMask, SurfacePointsLieInTheirOctantBox) {
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed " + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  const double side = 8.0;
-  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
-  const Scene s = randomTriangles(rng, side);
-  const GeometryMask mask(s, b, 0.01);
+TEST_F(HashedMaskGeometry, SurfacePointsLieInTheirOctantBox) {
   std::size_t empty_octants = 0, cells = 0;
   for (int i = 0; i < 20000; ++i) {
     const glm::dvec3 p = b.toCells(randomSurfacePoint(rng, s));
@@ -147,14 +144,7 @@ TEST(HashedMask, SurfacePointsLieInTheirOctantBox) {
 // the plain bits, bit k kept exactly when octant k's box (widened by eps) is
 // within the radius (also through the cell box's shortcuts), and every light
 // containing a surface point keeps the bit of that point's octant.
-TEST(HashedMask, GeometryOctantBitsKeepEveryLightOfASurfacePoint) {
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed " + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  const double side = 8.0;
-  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
-  const Scene s = randomTriangles(rng, side);
-  const GeometryMask mask(s, b, 0.01);
+TEST_F(HashedMaskGeometry, GeometryOctantBitsKeepEveryLightOfASurfacePoint) {
   const auto lights = randomLights(rng, 200, side, 0.2, 2.5, false);
   std::size_t plain = 0, kept = 0;
   for (const auto& l : lights) {
@@ -208,14 +198,7 @@ TEST(HashedMask, GeometryOctantBitsKeepEveryLightOfASurfacePoint) {
 // An update's octant changes with geometry (appendOctantChanges) are exactly
 // the cells where the two versions' reduced masks differ, as a build derives
 // each of them (its shortcuts for cells inside or outside a sphere included).
-TEST(HashedMask, GeometryOctantChangesEqualTheReducedMasksDifference) {
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed " + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  const double side = 8.0;
-  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
-  const Scene s = randomTriangles(rng, side);
-  const GeometryMask mask(s, b, 0.01);
+TEST_F(HashedMaskGeometry, GeometryOctantChangesEqualTheReducedMasksDifference) {
   auto reduced = [&](const gpu::PointLight* l, const glm::ivec3& cell) -> std::uint8_t {
     if (!l) return 0;
     const LightOctants o(*l, b);

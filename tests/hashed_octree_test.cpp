@@ -313,71 +313,54 @@ TEST(HashedOctree, NoLightsAndOneLight) {
   EXPECT_TRUE(one.linkless().lightsAt({1, 2, 50}).empty());
 }
 
-// With the geometry mask, points on the scene's surfaces read the same lights
-// as without it (relaxed merge only), or a subset that still holds every
-// light containing the point (tight sets), while the structure shrinks.
+// With the geometry mask, points on the scene's surfaces read a subset of the
+// lights listed without it that still holds every light containing the
+// point (geometry-tight sets), while the structure shrinks.
 TEST(HashedOctree, GeometryMaskKeepsSurfacePointsAndSavesMemory) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
   const Scene scene = loadGltfScene(dataPath("default/scene.glb"));
   const auto lights = loadLightsJson(dataPath("default/lights.json"));
-  for (const char* size : {"0.5r", "0.25r"})
-    for (const bool tight : {false, true}) {
-      SCOPED_TRACE(std::string(size) + (tight ? " tight" : " relaxed merge only"));
-      HashedConfig cfg;
-      cfg.node_size = size;
-      // Relaxed merging alone must list what the plain tree lists; octant
-      // masks would differ wherever it merged deepest leaves (they keep
-      // masks only at the deepest depth), so they are off for that check.
-      cfg.octant_masks = tight;
-      HashedStructure plain(cfg);
-      plain.build(lights);
-      cfg.geometry_mask = true;
-      cfg.geometry_tight_sets = tight;
-      HashedStructure masked(cfg, &scene);
-      masked.build(lights, plain.bounds());
-      expectTablesPerfect(masked.linkless());
-      EXPECT_LT(masked.linkless().gpuBytes(), plain.linkless().gpuBytes());
-      EXPECT_LT(masked.tree().nodeCount(), plain.tree().nodeCount());
-      const std::size_t tris = scene.indices.size() / 3;
-      std::size_t listed_masked = 0, listed_plain = 0;
-      for (int i = 0; i < 4000; ++i) {
-        const std::size_t t = rng() % tris;
-        double u = uni(rng, 0, 1), v = uni(rng, 0, 1);
-        if (u + v > 1) u = 1 - u, v = 1 - v;
-        const glm::dvec3 a(scene.vertices[scene.indices[3 * t]].position),
-            bb(scene.vertices[scene.indices[3 * t + 1]].position), c(scene.vertices[scene.indices[3 * t + 2]].position);
-        const glm::vec3 p(a + u * (bb - a) + v * (c - a));
-        const auto got = masked.linkless().lightsAt(p), all = plain.linkless().lightsAt(p);
-        listed_masked += got.size();
-        listed_plain += all.size();
-        if (!tight) {
-          ASSERT_EQ(got, all) << "triangle " << t;
-          continue;
-        }
-        // Nothing beyond the point's cell (widened by the mask's margins).
-        glm::uvec3 cell;
-        ASSERT_TRUE(cellOf(masked.bounds(), p, cell));
-        const auto& mb = masked.bounds();
-        for (const auto li : got) {
-          const auto& l = lights[li];
-          ASSERT_TRUE(sphereOverlapsCells(mb.toCells({l.position_radius.x, l.position_radius.y, l.position_radius.z}),
-                                          mb.radiusCells(l.position_radius.w), glm::ivec3(cell), glm::ivec3(cell), 0.2))
-              << "light " << li << " listed far from its reach, triangle " << t;
-        }
-        for (std::uint32_t li = 0; li < lights.size(); ++li) {
-          const auto& l = lights[li];
-          const glm::dvec3 d = glm::dvec3(p) - glm::dvec3(l.position_radius.x, l.position_radius.y, l.position_radius.z);
-          if (glm::dot(d, d) < double(l.position_radius.w) * l.position_radius.w) {
-            ASSERT_TRUE(std::binary_search(got.begin(), got.end(), li)) << "light " << li << " missing, triangle " << t;
-          }
-        }
+  for (const char* size : {"0.5r", "0.25r"}) {
+    SCOPED_TRACE(size);
+    HashedConfig cfg;
+    cfg.node_size = size;
+    HashedStructure plain(cfg);
+    plain.build(lights);
+    cfg.geometry_mask = true;
+    HashedStructure masked(cfg, &scene);
+    masked.build(lights, plain.bounds());
+    expectTablesPerfect(masked.linkless());
+    EXPECT_LT(masked.linkless().gpuBytes(), plain.linkless().gpuBytes());
+    EXPECT_LT(masked.tree().nodeCount(), plain.tree().nodeCount());
+    std::size_t listed_masked = 0, listed_plain = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const glm::vec3 p(randomSurfacePoint(rng, scene));
+      const auto got = masked.linkless().lightsAt(p), all = plain.linkless().lightsAt(p);
+      listed_masked += got.size();
+      listed_plain += all.size();
+      // Nothing beyond the point's cell (widened by the mask's margins).
+      glm::uvec3 cell;
+      ASSERT_TRUE(cellOf(masked.bounds(), p, cell));
+      const auto& mb = masked.bounds();
+      for (const auto li : got) {
+        const auto& l = lights[li];
+        ASSERT_TRUE(sphereOverlapsCells(mb.toCells({l.position_radius.x, l.position_radius.y, l.position_radius.z}),
+                                        mb.radiusCells(l.position_radius.w), glm::ivec3(cell), glm::ivec3(cell), 0.2))
+            << "light " << li << " listed far from its reach, point " << p.x << " " << p.y << " " << p.z;
       }
-      if (tight) {
-        EXPECT_LT(listed_masked, listed_plain) << "tight sets list fewer lights";
+      for (std::uint32_t li = 0; li < lights.size(); ++li) {
+        const auto& l = lights[li];
+        const glm::dvec3 d = glm::dvec3(p) - glm::dvec3(l.position_radius.x, l.position_radius.y, l.position_radius.z);
+        if (glm::dot(d, d) < double(l.position_radius.w) * l.position_radius.w) {
+          ASSERT_TRUE(std::binary_search(got.begin(), got.end(), li))
+              << "light " << li << " missing, point " << p.x << " " << p.y << " " << p.z;
+        }
       }
     }
+    EXPECT_LT(listed_masked, listed_plain) << "tight sets list fewer lights";
+  }
 }
 
 }  // namespace

@@ -17,6 +17,16 @@ inline double uni(std::mt19937_64& rng, double a, double b) {
   return a + (b - a) * double(rng() >> 11) * 0x1.0p-53;
 }
 
+// A uniform random point on a random triangle of `s`.
+inline glm::dvec3 randomSurfacePoint(std::mt19937_64& rng, const Scene& s) {
+  const std::size_t t = rng() % (s.indices.size() / 3);
+  double u = uni(rng, 0, 1), v = uni(rng, 0, 1);
+  if (u + v > 1) u = 1 - u, v = 1 - v;
+  const glm::dvec3 a(s.vertices[s.indices[3 * t]].position), p1(s.vertices[s.indices[3 * t + 1]].position),
+      p2(s.vertices[s.indices[3 * t + 2]].position);
+  return a + u * (p1 - a) + v * (p2 - a);
+}
+
 // n lights in [0, size]^3 with radii in [rmin, rmax]; some huge ones and some
 // whose spheres reach the box's faces when `extremes`.
 inline std::vector<gpu::PointLight> randomLights(std::mt19937_64& rng, std::size_t n, double size, double rmin,

@@ -170,9 +170,9 @@ std::vector<OctantRewrite> DynamicLightUpdater::findRewrites(const HashedStructu
                                                              const std::vector<std::uint32_t>& moved) {
   if (!s.linkless_->octantMasks()) return {};
   std::vector<OctantChange> changes;
-  // Where the cell test says the light is listed (geometry-tight sets list
-  // fewer cells): see there.
-  const bool both = !s.lightGeometry();
+  // Without the mask, lights are listed where the cell test says (with it,
+  // geometry-tight sets list fewer cells): look there.
+  const bool both = !s.mask();
   for (const auto i : moved) appendOctantChanges(&s.lights_[i], &lights[i], i, s.bounds_, both, s.mask(), changes);
   return s.linkless_->findOctantRewrites(changes);
 }
@@ -183,7 +183,7 @@ std::vector<std::uint64_t> DynamicLightUpdater::editTree(HashedStructure& s, con
   SceneOctree& tree = *s.tree_;
   tree.setRecording(true);
   // Geometry-tight sets need the light octrees (their cells test the geometry).
-  const double waited_ms = s.lightGeometry() ? editByOctrees(s, lights, moved) : (editByCells(s, lights, moved), 0.0);
+  const double waited_ms = s.mask() ? editByOctrees(s, lights, moved) : (editByCells(s, lights, moved), 0.0);
   tree.normalize();
   std::vector<std::uint64_t> touched = tree.takeTouched();
   tree.setRecording(false);
@@ -200,8 +200,8 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
   const std::size_t n_old = old.size(), n_new = lights.size();
   const OctreeBounds& b = s.bounds_;
   SceneOctree& tree = *s.tree_;
-  // Both versions of every changed light (no version: added or removed),
-  // then the edits per depth-2 subtree in parallel (SceneOctree::replaceAll).
+  // Both versions of every changed light (no version: added or removed,
+  // a default LightCells), built in parallel, then replaced one by one.
   std::vector<std::uint32_t> changed(moved);
   for (std::size_t i = n_new; i < n_old; ++i) changed.push_back(std::uint32_t(i));
   for (std::size_t i = n_old; i < n_new; ++i) changed.push_back(std::uint32_t(i));
@@ -213,12 +213,7 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
       if (i < n_new) versions[2 * k + 1] = LightCells(lights[i], b);
     }
   });
-  std::vector<SceneOctree::CellsReplacement> batch(changed.size());
-  for (std::size_t k = 0; k < changed.size(); ++k) {
-    const std::uint32_t i = changed[k];
-    batch[k] = {i < n_old ? &versions[2 * k] : nullptr, i < n_new ? &versions[2 * k + 1] : nullptr, i};
-  }
-  tree.replaceAll(batch);
+  for (std::size_t k = 0; k < changed.size(); ++k) tree.replace(versions[2 * k], versions[2 * k + 1], changed[k]);
 }
 
 double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
@@ -236,7 +231,7 @@ double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<
   cache.resize(n_new);
   for (std::size_t i = n_old; i < n_new; ++i) to_insert.emplace_back(std::uint32_t(i), lights[i]);
 
-  Batch batch(to_insert, replaced, s.bounds_, s.lightGeometry());
+  Batch batch(to_insert, replaced, s.bounds_, s.mask());
   auto& new_octrees = batch.octrees;
   SceneOctree& tree = *s.tree_;
   // A removed index must vanish exactly: the shader would read past the lights.

@@ -11,7 +11,7 @@
 //     8.1/8.2); removed lights are removed, added ones inserted (Table 7.1).
 //     Then what became mergeable is merged: the tree is again canonical,
 //     i.e. exactly what a fresh build would produce. Without
-//     geometry-tight sets the walk computes each version's coverage per
+//     the geometry mask the walk computes each version's coverage per
 //     node instead (LightCells), and no octree is built or cached.
 //  3. Re-derive the hash entries of the touched nodes and edit the tables in
 //     place; a table is rehashed only when an insert cannot be placed even by
@@ -19,9 +19,9 @@
 //     the octant masks of moved lights in the untouched deepest leaves
 //     (OctantMask.hpp): a moved light's masks change over its whole
 //     surface, not only where its sets did. They are found meanwhile step 2.
-//  Threads: by cells, the edits run per depth-2 subtree in parallel (large
-//  batches); by octrees they are sequential while the new octrees are built
-//  on the other threads, consumed in order. Meanwhile the previous update's
+//  Threads: the tree edits are sequential; by cells the versions' LightCells
+//  are computed in parallel first, by octrees the new octrees are built on
+//  the other threads while the edits consume them in order. Meanwhile the previous update's
 //  light index list garbage is compacted and the octant rewrites are found.
 //  Step 3 derives the touched keys in parallel, interns the light sets in
 //  key order, then edits each table in its own task. The result does not
@@ -48,14 +48,13 @@ class DynamicLightUpdater {
   // Step 2, recording the touched keys (returned sorted); timed into `stats`.
   static std::vector<std::uint64_t> editTree(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                                              const std::vector<std::uint32_t>& moved, UpdateStats& stats);
-  // Step 2 without geometry-tight sets: each changed light's old and new
+  // Step 2 without the geometry mask: each changed light's old and new
   // cells are compared per node as LightCells, so no octree is built
   // (building the new octrees and their subtree ends was ~35% of an
-  // update). The edits run per depth-2 subtree in parallel
-  // (SceneOctree::replaceAll) when the batch is large enough.
+  // update).
   static void editByCells(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                           const std::vector<std::uint32_t>& moved);
-  // Step 2 with geometry-tight sets, by light octrees (the old versions'
+  // Step 2 with the geometry mask (geometry-tight sets), by light octrees (the old versions'
   // from the cache). Returns the ms spent waiting for new octrees.
   static double editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                               const std::vector<std::uint32_t>& moved);

@@ -6,7 +6,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -159,13 +158,17 @@ bool triangleBoxOverlap(glm::dvec3 v0, glm::dvec3 v1, glm::dvec3 v2, double h) {
 
 }  // namespace
 
+// Bytes of one (triangle, cell) pair in the builder's buffers, and of one
+// cell of the final mask (key, cell box, 8 octant boxes, level bits).
+constexpr double kPairBytes = 250.0, kCellBytes = 290.0;
+
 double GeometryMask::estimateBytes(const Scene& scene, const OctreeBounds& b) {
   // Per triangle: area / cell^2 cells on its face, plus its edge cells; each
-  // (triangle, cell) pair is a key, a box and 8 octant boxes (~250 bytes) until the builder's
+  // (triangle, cell) pair is a key, a box and 8 octant boxes (kPairBytes) until the builder's
   // per-thread buffers merge equal cells, which they do whenever a buffer
   // doubles past 64Ki pairs (see the constructor). So a buffer holds at most
   // about twice the distinct cells plus 64Ki, and distinct cells are bounded
-  // by the pairs and by the grid; the final mask costs ~290 bytes per cell.
+  // by the pairs and by the grid; the final mask costs kCellBytes per cell.
   double pairs = 0.0;
   const double s = double(b.cell_scale);
   for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
@@ -182,14 +185,8 @@ double GeometryMask::estimateBytes(const Scene& scene, const OctreeBounds& b) {
   const double cells = std::min(pairs, side * side * side);
   const double threads = double(std::max(1, tbb::this_task_arena::max_concurrency()));
   const double buffers = std::min(pairs, threads * (2.0 * cells + double(kMergeBatch)));
-  return 250.0 * 2.0 * buffers + 290.0 * cells + (b.depth <= kDenseIndexMaxDepth ? 4.0 * side * side * side : 0.0);
-}
-
-GeometryMask GeometryMask::everywhere(const OctreeBounds& b) {
-  GeometryMask m(b);
-  m.everywhere_ = true;
-  m.cell_count_ = std::size_t(b.cellsPerAxis()) * b.cellsPerAxis() * b.cellsPerAxis();
-  return m;
+  const double dense_index = b.depth <= kDenseIndexMaxDepth ? 4.0 * side * side * side : 0.0;
+  return kPairBytes * 2.0 * buffers + kCellBytes * cells + dense_index;
 }
 
 bool GeometryMask::indexOf(const glm::uvec3& c, std::size_t& at) const {
@@ -208,10 +205,6 @@ bool GeometryMask::indexOf(const glm::uvec3& c, std::size_t& at) const {
 }
 
 bool GeometryMask::geometryBox(const glm::uvec3& c, Box& box) const {
-  if (everywhere_) {
-    box = {glm::dvec3(c), glm::dvec3(c) + 1.0};
-    return true;
-  }
   std::size_t at;
   if (!indexOf(c, at)) return false;
   box = cell_boxes_[at];
@@ -225,7 +218,7 @@ const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c) 
 
 const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c, const Box*& cell_box) const {
   std::size_t at;
-  if (everywhere_ || !indexOf(c, at)) return nullptr;
+  if (!indexOf(c, at)) return nullptr;
   cell_box = &cell_boxes_[at];
   return &cell_octants_[at];
 }
@@ -273,7 +266,6 @@ void voxelizeTriangle(const glm::dvec3 v[3], double margin, double n,
 }
 
 GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double margin_cells) : depth_(b.depth) {
-  const auto t0 = std::chrono::steady_clock::now();
   const double n = double(b.cellsPerAxis());
   const double margin = std::max(margin_cells, 0.0) + b.eps_cells;
   struct Local {
@@ -302,7 +294,6 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
     std::vector<std::pair<std::uint64_t, CellGeometry>>().swap(l.pairs);
   }
   setBoxes(std::move(boxes));
-  build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> boxes) {
@@ -360,7 +351,6 @@ void GeometryMask::setCells(std::vector<std::uint64_t> keys) {
 }
 
 bool GeometryMask::has(unsigned t, const glm::uvec3& c) const {
-  if (everywhere_) return true;
   const std::uint64_t side = std::uint64_t(1) << t;
   if (c.x >= side || c.y >= side || c.z >= side) return false;
   if (t <= kDenseMaxDepth) {

@@ -38,8 +38,6 @@ class GeometryMask {
   // Upper estimate of the bytes a mask of `scene` at `bounds` needs (cells
   // touched by each triangle), for the memory check before building.
   static double estimateBytes(const Scene& scene, const OctreeBounds& bounds);
-  // Every cell marked (for tests: geometry everywhere).
-  static GeometryMask everywhere(const OctreeBounds& bounds);
 
   bool has(unsigned depth, const glm::uvec3& c) const;
   struct Box {
@@ -54,7 +52,7 @@ class GeometryMask {
     }
     bool empty(unsigned k) const { return lo[k].x > hi[k].x; }
   };
-  // Null when the cell holds no geometry (or for everywhere(): no octant data).
+  // Null when the cell holds no geometry.
   const OctantBoxes* octantBoxes(const glm::uvec3& cell) const;
   // octantBoxes() with the cell's geometryBox(), which holds them.
   const OctantBoxes* octantBoxes(const glm::uvec3& cell, const Box*& cell_box) const;
@@ -62,10 +60,8 @@ class GeometryMask {
   bool geometryBox(const glm::uvec3& cell, Box& box) const;
   std::size_t cellCount() const { return cell_count_; }
   std::size_t memoryBytes() const;
-  double buildMs() const { return build_ms_; }
 
  private:
-  explicit GeometryMask(const OctreeBounds& b) : depth_(b.depth) {}
   void setCells(std::vector<std::uint64_t> keys);
   struct CellGeometry {
     Box box;
@@ -85,8 +81,6 @@ class GeometryMask {
   std::vector<OctantBoxes> cell_octants_;
   std::vector<std::uint32_t> dense_index_;
   std::size_t cell_count_ = 0;
-  double build_ms_ = 0.0;
-  bool everywhere_ = false;
 };
 
 inline std::uint64_t packCoord(const glm::uvec3& c) {

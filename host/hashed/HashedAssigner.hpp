@@ -34,7 +34,6 @@ class HashedAssigner final : public LightAssigner {
   HashedAssigner(const HashedAssigner&) = delete;
   HashedAssigner& operator=(const HashedAssigner&) = delete;
 
-  const std::string& techniqueName() const { return name_; }
   void assign(const FrameInputs& in) override;
   std::string lookupShader() const override { return "lookup_hashed.glsl"; }
   void bindForShading(const ShaderProgram& program) const override;

@@ -64,7 +64,7 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   }
 
   auto t = Clock::now();
-  octrees_ = buildLightOctrees(lights, bounds_, lightGeometry());
+  octrees_ = buildLightOctrees(lights, bounds_, mask());
   const auto& octrees = octrees_;
   st.light_octrees_ms = msSince(t);
   for (const auto& o : octrees) {
@@ -93,7 +93,7 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   st.total_ms = msSince(t0);
   build_stats_ = st;
   lights_ = lights;
-  if (!lightGeometry()) std::vector<LightOctree>().swap(octrees_);  // updates need none
+  if (!mask()) std::vector<LightOctree>().swap(octrees_);  // updates need none
   ++builds_;
 }
 

@@ -65,9 +65,9 @@ class HashedStructure {
   const LinklessOctree& linkless() const { return *linkless_; }
   LinklessOctree& linkless() { return *linkless_; }  // uploaders take its dirty records
   const SceneOctree& tree() const { return *tree_; }
+  // The geometry mask, which the light octrees test against (geometry-tight
+  // light sets), or null.
   const GeometryMask* mask() const { return mask_.get(); }
-  // The mask the light octrees test against (tight light sets), or null.
-  const GeometryMask* lightGeometry() const { return cfg_.geometry_tight_sets ? mask_.get() : nullptr; }
   const std::vector<gpu::PointLight>& lights() const { return lights_; }
   const BuildStats& lastBuild() const { return build_stats_; }
   const UpdateStats& lastUpdate() const { return update_stats_; }
@@ -82,7 +82,7 @@ class HashedStructure {
   std::unique_ptr<SceneOctree> tree_;
   std::unique_ptr<LinklessOctree> linkless_;
   std::vector<gpu::PointLight> lights_;
-  // With geometry-tight sets, each light's octree, kept (the thesis's option
+  // With the geometry mask, each light's octree, kept (the thesis's option
   // 3) so that an update only builds the octrees of the lights' new
   // versions; empty otherwise (updates compare LightCells instead).
   std::vector<LightOctree> octrees_;

@@ -127,6 +127,74 @@ bool sphereOverlapsBox(const glm::dvec3& c, double r, const GeometryMask::Box& b
   return d2 < r * r;
 }
 
+// A light's sphere in cell units, as every step below tests it.
+struct Sphere {
+  glm::dvec3 c;
+  double r, eps;
+};
+
+// Geometry-tight cells: each cell with geometry is lit (kTestedIn) when the
+// sphere reaches the cell's geometry box (finer: its octants' boxes), else
+// kOutside; cells without geometry stay kAssumedIn. Returns the lit count.
+std::size_t markGeometryCells(const Sphere& s, const CellBox& box, const GeometryMask& geometry, Grid& g) {
+  std::size_t lit = 0;
+  for (int z = box.lo.z; z <= box.hi.z; ++z)
+    for (int y = box.lo.y; y <= box.hi.y; ++y)
+      for (int x = box.lo.x; x <= box.hi.x; ++x) {
+        const glm::ivec3 p(x, y, z);
+        GeometryMask::Box gb;
+        if (!geometry.geometryBox(glm::uvec3(p), gb)) continue;
+        gb.lo -= s.eps;
+        gb.hi += s.eps;
+        bool in = sphereOverlapsBox(s.c, s.r, gb);
+        if (in) {
+          if (const auto* oct = geometry.octantBoxes(glm::uvec3(p))) {
+            in = false;
+            for (unsigned k = 0; k < 8 && !in; ++k)
+              if (!oct->empty(k))
+                in = sphereOverlapsBox(s.c, s.r, {glm::dvec3(oct->lo[k]) - s.eps, glm::dvec3(oct->hi[k]) + s.eps});
+          }
+        }
+        g.cells[g.index(p)] = in ? kTestedIn : kOutside;
+        lit += in;
+      }
+  return lit;
+}
+
+// Plain cells: the sphere is convex, so the cells it misses are reached
+// from the box's corners by a flood fill that tests each cell once, and
+// every cell the fill does not reach is lit. Returns the lit count.
+std::size_t floodOutsideCells(const Sphere& s, const CellBox& box, Grid& g, std::vector<std::uint32_t>& q) {
+  q.clear();
+  auto visit = [&](const glm::ivec3& p) {
+    std::uint8_t& v = g.cells[g.index(p)];
+    if (v != kAssumedIn) return;
+    if (!sphereOverlapsCells(s.c, s.r, p, p, s.eps)) {
+      v = kOutside;
+      q.push_back(std::uint32_t(g.index(p)));
+    } else {
+      v = kTestedIn;
+    }
+  };
+  for (int k = 0; k < 8; ++k)
+    visit({k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z});
+  const glm::uvec3 n(g.n);
+  for (std::size_t head = 0; head < q.size(); ++head) {
+    const std::uint32_t i = q[head];
+    const glm::ivec3 p = box.lo + glm::ivec3(glm::uvec3(i % n.x, (i / n.x) % n.y, i / (n.x * n.y)));
+    for (int a = 0; a < 3; ++a)
+      for (int d = -1; d <= 1; d += 2) {
+        glm::ivec3 nb = p;
+        nb[a] += d;
+        if (nb[a] >= box.lo[a] && nb[a] <= box.hi[a]) visit(nb);
+      }
+  }
+  return std::size_t(n.x) * n.y * n.z - q.size();
+}
+
+// Fewer lights are less work than waking the worker threads.
+constexpr std::size_t kParallelOctreesMinLights = 256;
+
 }  // namespace
 
 LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, const OctreeBounds& b,
@@ -135,9 +203,8 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
   lo.light = index;
   const CellBox box = lightCellBox(light, b);
   if (box.empty()) return lo;
-  const glm::dvec3 c = b.toCells({light.position_radius.x, light.position_radius.y, light.position_radius.z});
-  const double r = b.radiusCells(light.position_radius.w);
-  const double eps = b.eps_cells;
+  const Sphere s{b.toCells({light.position_radius.x, light.position_radius.y, light.position_radius.z}),
+                 b.radiusCells(light.position_radius.w), b.eps_cells};
 
   // The minimal grid: the cell box per axis (the thesis takes the enclosing
   // cube; the box holds the same filled cells with fewer empty ones).
@@ -145,70 +212,16 @@ LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, 
   const std::size_t count = std::size_t(g.n.x) * std::size_t(g.n.y) * std::size_t(g.n.z);
   scratch.grid.assign(count, kAssumedIn);
   g.cells = scratch.grid.data();
+  lo.filled_cells = geometry ? markGeometryCells(s, box, *geometry, g) : floodOutsideCells(s, box, g, scratch.queue);
+  if (lo.filled_cells == 0) return lo;
   if (geometry) {
-    // Every cell: lit when the sphere reaches the cell's geometry.
-    std::size_t lit = 0;
-    for (int z = box.lo.z; z <= box.hi.z; ++z)
-      for (int y = box.lo.y; y <= box.hi.y; ++y)
-        for (int x = box.lo.x; x <= box.hi.x; ++x) {
-          const glm::ivec3 p(x, y, z);
-          GeometryMask::Box gb;
-          std::uint8_t& v = g.cells[g.index(p)];
-          if (!geometry->geometryBox(glm::uvec3(p), gb)) continue;  // stays kAssumedIn: no geometry
-          gb.lo -= eps;
-          gb.hi += eps;
-          bool in = sphereOverlapsBox(c, r, gb);
-          if (in) {
-            if (const auto* oct = geometry->octantBoxes(glm::uvec3(p))) {
-              // Finer than the cell: the octants' geometry boxes.
-              in = false;
-              for (unsigned k = 0; k < 8 && !in; ++k)
-                if (!oct->empty(k))
-                  in = sphereOverlapsBox(c, r, {glm::dvec3(oct->lo[k]) - eps, glm::dvec3(oct->hi[k]) + eps});
-            }
-          }
-          v = in ? kTestedIn : kOutside;
-          lit += v == kTestedIn;
-        }
-    lo.filled_cells = lit;
-    if (lit == 0) return lo;
     GeometryTreeBuilder tb{g, b.depth, lo.nodes};
     forEachRoot(box, b.depth, lo, [&](const glm::ivec3& root) { tb.node(lo.root_depth, root); });
     return lo;
   }
-  auto& q = scratch.queue;
-  q.clear();
-  auto outside = [&](const glm::ivec3& p) { return !sphereOverlapsCells(c, r, p, p, eps); };
-  auto visit = [&](const glm::ivec3& p) {
-    std::uint8_t& s = g.cells[g.index(p)];
-    if (s != kAssumedIn) return;
-    if (outside(p)) {
-      s = kOutside;
-      q.push_back(std::uint32_t(g.index(p)));
-    } else {
-      s = kTestedIn;
-    }
-  };
-  for (int k = 0; k < 8; ++k)
-    visit({k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z});
-  for (std::size_t head = 0; head < q.size(); ++head) {
-    const std::uint32_t i = q[head];
-    const glm::ivec3 p(box.lo.x + int(i % std::uint32_t(g.n.x)), box.lo.y + int((i / std::uint32_t(g.n.x)) % std::uint32_t(g.n.y)),
-                       box.lo.z + int(i / (std::uint32_t(g.n.x) * std::uint32_t(g.n.y))));
-    for (int a = 0; a < 3; ++a)
-      for (int s = -1; s <= 1; s += 2) {
-        glm::ivec3 nb = p;
-        nb[a] += s;
-        if (nb[a] < box.lo[a] || nb[a] > box.hi[a]) continue;
-        visit(nb);
-      }
-  }
-  lo.filled_cells = count - q.size();
-  if (lo.filled_cells == 0) return lo;
-
   lo.nodes.reserve(count / 2 + 16);
-  const glm::ivec3 centre_cell(glm::clamp(glm::floor(c), glm::dvec3(box.lo), glm::dvec3(box.hi)));
-  TreeBuilder tb{g, centre_cell, 2.0 * c, b.depth, lo.nodes, box.hi};
+  const glm::ivec3 centre_cell(glm::clamp(glm::floor(s.c), glm::dvec3(box.lo), glm::dvec3(box.hi)));
+  TreeBuilder tb{g, centre_cell, 2.0 * s.c, b.depth, lo.nodes, box.hi};
   forEachRoot(box, b.depth, lo, [&](const glm::ivec3& root) { tb.node(lo.root_depth, root); });
   return lo;
 }
@@ -235,7 +248,7 @@ LightCells::LightCells(const gpu::PointLight& light, const OctreeBounds& b)
 std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b,
                                            const GeometryMask* geometry) {
   std::vector<LightOctree> out(lights.size());
-  if (lights.size() < 256) {  // less work than waking the worker threads
+  if (lights.size() < kParallelOctreesMinLights) {
     LightGridScratch s;
     for (std::size_t i = 0; i < lights.size(); ++i) out[i] = buildLightOctree(lights[i], std::uint32_t(i), b, s, geometry);
     return out;

@@ -425,20 +425,23 @@ LinklessOctree::Plan LinklessOctree::planEdits(const std::vector<std::uint64_t>&
 
 // One table's edits: erases first (their slots may take the inserts), then
 // updates and inserts; the thesis's criterion, a new key that collides even
-// after re-offsetting its group, rebuilds the table. True if the table's
-// size (and so the GPU layout) changed.
+// after re-offsetting its group, rebuilds the table. The slots and offsets
+// written are noted for the partial upload. True if the table's size (and
+// so the GPU layout) changed.
 template <class Hash, class Ops>
 bool LinklessOctree::editTable(Hash& table, const Ops& ops, unsigned task, SplitMix64& rng, SyncStats& ts) {
   TableEdits& edits = edits_[task];
   for (const auto& op : ops)
     if (!op.present) {
-      table.erase(op.key, &edits);
+      if (table.erase(op.key)) edits.slot(table.slot(op.key));
       ++ts.erases;
     }
   std::vector<typename Hash::Entry> failed;
+  std::vector<std::uint32_t> group;  // an insert's offset group before it
   for (const auto& op : ops) {
     if (!op.present) continue;
-    if (table.update(op.key, op.p, &edits)) {
+    if (table.update(op.key, op.p)) {
+      edits.slot(table.slot(op.key));
       ++ts.updates;
       continue;
     }
@@ -447,9 +450,19 @@ bool LinklessOctree::editTable(Hash& table, const Ops& ops, unsigned task, Split
       failed.push_back({op.key, op.p});
       continue;
     }
-    switch (table.insert(op.key, op.p, rng, &edits)) {
-      case Hash::InsertResult::InPlace: ++ts.in_place; break;
-      case Hash::InsertResult::Reoffset: ++ts.reoffsets; break;
+    table.trackGroups();
+    group = table.groupSlots(op.key);
+    switch (table.insert(op.key, op.p, rng)) {
+      case Hash::InsertResult::InPlace:
+        edits.slot(table.slot(op.key));
+        ++ts.in_place;
+        break;
+      case Hash::InsertResult::Reoffset:
+        for (const auto s : group) edits.slot(s);
+        for (const auto s : table.groupSlots(op.key)) edits.slot(s);
+        edits.offset(table.offsetIndex(op.key));
+        ++ts.reoffsets;
+        break;
       case Hash::InsertResult::Failed: failed.push_back({op.key, op.p}); break;
     }
   }

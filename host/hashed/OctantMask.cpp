@@ -38,85 +38,111 @@ OctantTables::OctantTables(const std::vector<gpu::PointLight>& lights, const Oct
   });
 }
 
+namespace {
+
+// Both versions' mask() terms per axis and half cell over the hull of their
+// cell boxes, so that each cell's two masks are 16 sums (the same doubles
+// as mask() gives); with listed_in_both also the cell test's terms per axis
+// and cell (kFarTerm outside a version's box).
+struct VersionTerms {
+  CellBox hull;
+  glm::ivec3 n, off;          // hull size; offsets of the y and z half-cell terms
+  std::vector<double> g[2], cell[2];
+  double r2[2];
+  LightOctants octants[2];
+
+  VersionTerms(const gpu::PointLight* const versions[2], const CellBox boxes[2], const CellBox& hull_box,
+               const OctreeBounds& b, bool listed_in_both)
+      : hull(hull_box), n(hull.hi - hull.lo + 1), off(0, 2 * n.x, 2 * (n.x + n.y)) {
+    for (int v = 0; v < 2; ++v) {
+      const LightOctants& o = octants[v] = versions[v] ? LightOctants(*versions[v], b) : LightOctants();
+      r2[v] = o.r2();
+      g[v].resize(std::size_t(2 * (n.x + n.y + n.z)));
+      for (int a = 0; a < 3; ++a) o.axisTerms(a, hull.lo[a], n[a], &g[v][std::size_t(off[a])]);
+      if (!listed_in_both) continue;
+      cell[v].resize(std::size_t(n.x + n.y + n.z));
+      double* ct = cell[v].data();
+      for (int a = 0; a < 3; ++a) {
+        o.cellTerms(a, hull.lo[a], n[a], ct);
+        for (int k = 0; k < n[a]; ++k)
+          if (hull.lo[a] + k < boxes[v].lo[a] || hull.lo[a] + k > boxes[v].hi[a]) ct[k] = kFarTerm;
+        ct += n[a];
+      }
+    }
+  }
+  // Version v's cell test on hull row (y, z) without the x term: sums only
+  // grow with it (rounding is monotonic), so a miss here misses every cell.
+  bool rowUnlisted(int v, int y, int z) const {
+    return (0.0 + cell[v][std::size_t(n.x + y)]) + cell[v][std::size_t(n.x + n.y + z)] >= r2[v];
+  }
+  bool unlisted(int v, int x, int y, int z) const {
+    return (cell[v][std::size_t(x)] + cell[v][std::size_t(n.x + y)]) + cell[v][std::size_t(n.x + n.y + z)] >= r2[v];
+  }
+  // Version v reaches no octant of any cell of row (y, z).
+  bool rowMisses(int v, int y, int z) const {
+    const double* gv = g[v].data();
+    const std::size_t iy = std::size_t(off.y + 2 * y), iz = std::size_t(off.z + 2 * z);
+    return std::min(gv[iy], gv[iy + 1]) + std::min(gv[iz], gv[iz + 1]) >= r2[v];
+  }
+  // Version v reaches all 8 octants of cell (x, y, z): the farthest octant's sum is below the radius.
+  bool allEight(int v, int x, int y, int z) const {
+    const double* gv = g[v].data();
+    const std::size_t ix = std::size_t(2 * x), iy = std::size_t(off.y + 2 * y), iz = std::size_t(off.z + 2 * z);
+    return (std::max(gv[ix], gv[ix + 1]) + std::max(gv[iy], gv[iy + 1])) + std::max(gv[iz], gv[iz + 1]) < r2[v];
+  }
+  std::uint8_t mask(int v, int x, int y, int z) const {
+    const double* gv = g[v].data();
+    return octantBits(gv + 2 * x, gv + off.y + 2 * y, gv + off.z + 2 * z, r2[v]);
+  }
+};
+
+// The per-cell test: version 1's mask of hull cell (x, y, z) when it
+// differs from version 0's, else none.
+bool cellChanged(const VersionTerms& vt, int x, int y, int z, const GeometryMask* geometry, std::uint8_t& new_mask) {
+  // All 8 octants in both versions: equal masks, unless geometry reduces
+  // them (each version's sphere meets the octant boxes differently) in a
+  // cell that has octant boxes.
+  const bool all8 = vt.allEight(0, x, y, z) && vt.allEight(1, x, y, z);
+  if (all8 && !geometry) return false;
+  const glm::uvec3 cell(vt.hull.lo + glm::ivec3(x, y, z));
+  const GeometryMask::Box* cell_box = nullptr;
+  const GeometryMask::OctantBoxes* boxes = geometry ? geometry->octantBoxes(cell, cell_box) : nullptr;
+  if (all8 && !boxes) return false;
+  std::uint8_t ma = vt.mask(0, x, y, z), mb = vt.mask(1, x, y, z);
+  if (boxes) {
+    ma = vt.octants[0].onGeometry(ma, *boxes, *cell_box);
+    mb = vt.octants[1].onGeometry(mb, *boxes, *cell_box);
+  }
+  new_mask = mb;
+  return ma != mb;
+}
+
+}  // namespace
+
 void appendOctantChanges(const gpu::PointLight* old_version, const gpu::PointLight* new_version,
                          std::uint32_t light, const OctreeBounds& b, bool listed_in_both,
                          const GeometryMask* geometry, std::vector<OctantChange>& out) {
-  const CellBox ba = old_version ? lightCellBox(*old_version, b) : CellBox{};
-  const CellBox bb = new_version ? lightCellBox(*new_version, b) : CellBox{};
+  const CellBox boxes[2] = {old_version ? lightCellBox(*old_version, b) : CellBox{},
+                            new_version ? lightCellBox(*new_version, b) : CellBox{}};
+  const CellBox &ba = boxes[0], &bb = boxes[1];
   if (ba.empty() && bb.empty()) return;
   const CellBox hull = ba.empty()   ? bb
                        : bb.empty() ? ba
                                     : CellBox{glm::min(ba.lo, bb.lo), glm::max(ba.hi, bb.hi)};
-  // Per version, axis and half cell of the hull, the terms of mask(): each
-  // cell's two masks are then 16 sums (the same doubles as mask() gives).
-  const glm::ivec3 n = hull.hi - hull.lo + 1;
-  const glm::ivec3 off(0, 2 * n.x, 2 * (n.x + n.y));
-  const std::size_t terms = std::size_t(2 * (n.x + n.y + n.z));
-  // With listed_in_both, also the cell test's terms (kFar outside a version's box).
-  const std::size_t cterms = listed_in_both ? std::size_t(n.x + n.y + n.z) : 0;
-  std::vector<double> g(2 * terms + 2 * cterms);
-  double r2[2];
-  LightOctants octants[2];
-  for (int v = 0; v < 2; ++v) {
-    const gpu::PointLight* version = v == 0 ? old_version : new_version;
-    const LightOctants& o = octants[v] = version ? LightOctants(*version, b) : LightOctants();
-    r2[v] = o.r2();
-    for (int a = 0; a < 3; ++a) o.axisTerms(a, hull.lo[a], n[a], &g[std::size_t(v) * terms + std::size_t(off[a])]);
-    if (!listed_in_both) continue;
-    const CellBox& box = v == 0 ? ba : bb;
-    double* ct = &g[2 * terms + std::size_t(v) * cterms];
-    for (int a = 0; a < 3; ++a) {
-      o.cellTerms(a, hull.lo[a], n[a], ct);
-      for (int k = 0; k < n[a]; ++k)
-        if (hull.lo[a] + k < box.lo[a] || hull.lo[a] + k > box.hi[a]) ct[k] = kFarTerm;
-      ct += n[a];
-    }
-  }
-  const double* ga = g.data();
-  const double* gb = g.data() + terms;
-  const double* ca = g.data() + 2 * terms;  // cell terms: x at 0, y at n.x, z at n.x + n.y
-  const double* cb = ca + cterms;
-  auto rowMisses = [](const double* gv, std::size_t iy, std::size_t iz, double r) {  // no octant of any cell
-    return std::min(gv[iy], gv[iy + 1]) + std::min(gv[iz], gv[iz + 1]) >= r;
-  };
-  const std::size_t cz0 = std::size_t(n.x + n.y);  // cell terms of y start at n.x, of z here
-  // With listed_in_both, a cell either version is not listed in (the cell
-  // test: the octant terms' sums over the whole cell) is skipped.
-  auto unlisted = [&](std::size_t cx, std::size_t cy, std::size_t cz) {
-    return (ca[cx] + ca[cy]) + ca[cz] >= r2[0] || (cb[cx] + cb[cy]) + cb[cz] >= r2[1];
-  };
+  const gpu::PointLight* const versions[2] = {old_version, new_version};
+  const VersionTerms vt(versions, boxes, hull, b, listed_in_both);
+  const glm::ivec3 n = vt.n;
   for (int z = 0; z < n.z; ++z)
     for (int y = 0; y < n.y; ++y) {
-      const std::size_t iy = std::size_t(off.y + 2 * y), iz = std::size_t(off.z + 2 * z);
-      const std::size_t cy = std::size_t(n.x + y), cz = cz0 + std::size_t(z);
-      // Sums only grow with the x term (rounding is monotonic): a row where
-      // they miss without it misses in every cell.
-      if (listed_in_both ? (0.0 + ca[cy]) + ca[cz] >= r2[0] || (0.0 + cb[cy]) + cb[cz] >= r2[1]
-                         : rowMisses(ga, iy, iz, r2[0]) && rowMisses(gb, iy, iz, r2[1]))
+      // With listed_in_both, cells either version is not listed in are skipped.
+      if (listed_in_both ? vt.rowUnlisted(0, y, z) || vt.rowUnlisted(1, y, z)
+                         : vt.rowMisses(0, y, z) && vt.rowMisses(1, y, z))
         continue;
-      // The farthest octant's sum: below the radius, every octant is reached.
-      const double fya = std::max(ga[iy], ga[iy + 1]), fza = std::max(ga[iz], ga[iz + 1]);
-      const double fyb = std::max(gb[iy], gb[iy + 1]), fzb = std::max(gb[iz], gb[iz + 1]);
       for (int x = 0; x < n.x; ++x) {
-        if (listed_in_both && unlisted(std::size_t(x), cy, cz)) continue;
-        const std::size_t ix = std::size_t(2 * x);
-        // All 8 octants in both versions: equal masks, unless geometry
-        // reduces them (each version's sphere meets the octant boxes
-        // differently) in a cell that has octant boxes.
-        const bool all8 = (std::max(ga[ix], ga[ix + 1]) + fya) + fza < r2[0] &&
-                          (std::max(gb[ix], gb[ix + 1]) + fyb) + fzb < r2[1];
-        if (all8 && !geometry) continue;
-        const glm::uvec3 cell(hull.lo + glm::ivec3(x, y, z));
-        const GeometryMask::Box* cell_box = nullptr;
-        const GeometryMask::OctantBoxes* boxes = geometry ? geometry->octantBoxes(cell, cell_box) : nullptr;
-        if (all8 && !boxes) continue;
-        std::uint8_t ma = octantBits(ga + ix, ga + iy, ga + iz, r2[0]);
-        std::uint8_t mb = octantBits(gb + ix, gb + iy, gb + iz, r2[1]);
-        if (boxes) {
-          ma = octants[0].onGeometry(ma, *boxes, *cell_box);
-          mb = octants[1].onGeometry(mb, *boxes, *cell_box);
-        }
-        if (ma != mb) out.push_back({nodeKey(b.depth, cell), light, mb});
+        if (listed_in_both && (vt.unlisted(0, x, y, z) || vt.unlisted(1, x, y, z))) continue;
+        std::uint8_t mask;
+        if (cellChanged(vt, x, y, z, geometry, mask))
+          out.push_back({nodeKey(b.depth, glm::uvec3(hull.lo + glm::ivec3(x, y, z))), light, mask});
       }
     }
 }

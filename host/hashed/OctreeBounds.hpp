@@ -62,10 +62,9 @@ struct HashedConfig {
   // Geometry mask: cells within this many cell sizes of a triangle count as
   // containing geometry, so deferred shading's reconstructed positions (off
   // the surface by depth-buffer rounding) still land in a kept cell.
+  // With the mask a light is listed for a cell only when it reaches the
+  // geometry inside the cell (beyond the thesis: tighter lists).
   double geometry_margin_cells = 0.01;
-  // With the mask, list a light for a cell only when it reaches the geometry
-  // inside the cell, not just the cell (beyond the thesis: tighter lists).
-  bool geometry_tight_sets = true;
   // Octant masks on the deepest leaves' index entries (OctantMask.hpp): the
   // lookup skips lights that miss the point's octant of its cell. Off: every
   // entry has all 8 bits (the thesis's lists), for comparison.

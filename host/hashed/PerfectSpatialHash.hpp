@@ -28,9 +28,9 @@
 //  - Dynamic edits (thesis §8.2.3): insert() writes in place when the key's
 //    slot is empty, else re-offsets the key's whole offset group (one Phi
 //    entry) into free slots, else reports Failed and the caller rebuilds the
-//    table; erase() marks the slot empty (its Phi entry stays). Edited slots
-//    and offsets are noted into the caller's TableEdits, when given (for
-//    partial uploads).
+//    table; erase() marks the slot empty (its Phi entry stays). The hash
+//    keeps no record of its edits: a caller that uploads partially reads
+//    slot() and groupSlots() around them.
 //  - Keys are < 2^15 per axis.
 #include <glm/glm.hpp>
 
@@ -43,25 +43,19 @@
 #include <stdexcept>
 #include <vector>
 
-#include "host/hashed/TableEdits.hpp"
+#include "host/util/SplitMix64.hpp"
 #include "host/util/ThesisSeed.hpp"
 
 namespace ml::hashed {
 
 constexpr std::uint32_t kEmptyKeyWord = 0xFFFFFFFFu;
-
-// Small, fast, seedable; the hash tables must not depend on the standard
-// library's generator implementations.
-struct SplitMix64 {
-  std::uint64_t s;
-  std::uint64_t next() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  std::uint32_t below(std::uint32_t n) { return std::uint32_t((next() >> 32) * n >> 32); }
-};
+// Offsets are 8 bits per axis.
+constexpr std::uint32_t kOffsetRange = 256;
+// Up to this many keys a table gets exactly n slots, beyond 1.01 n (LH06's sizing).
+constexpr double kExactSizeMaxKeys = 255;
+// Offset table growths after which a build is a bug, not bad luck (each
+// doubles the table; the hash table grows meanwhile).
+constexpr unsigned kMaxOffsetGrowths = 200;
 
 struct PshBuildParams {
   std::uint64_t seed = kThesisSeed;
@@ -119,10 +113,13 @@ class PerfectSpatialHash {
   void prefetchSlot(std::uint32_t s) const { __builtin_prefetch(&table_[std::size_t(s) * kWords]); }
 
   // --- dynamic edits ---
-  InsertResult insert(const glm::uvec3& key, const Payload& payload, SplitMix64& rng, TableEdits* edits = nullptr,
-                      unsigned random_tries = 64);
-  bool update(const glm::uvec3& key, const Payload& payload, TableEdits* edits = nullptr);
-  bool erase(const glm::uvec3& key, TableEdits* edits = nullptr);
+  InsertResult insert(const glm::uvec3& key, const Payload& payload, SplitMix64& rng, unsigned random_tries = 64);
+  bool update(const glm::uvec3& key, const Payload& payload);
+  bool erase(const glm::uvec3& key);
+  // The slots of `key`'s offset group (one Phi entry): what a Reoffset
+  // insert moves. Valid after trackGroups(), which insert() calls itself.
+  void trackGroups();
+  const std::vector<std::uint32_t>& groupSlots(const glm::uvec3& key) const { return members_[offsetIndex(key)]; }
 
   // --- contents and GPU images ---
   glm::uvec3 m() const { return m_; }  // hash table dimensions
@@ -234,7 +231,6 @@ class PerfectSpatialHash {
   enum class Assign { Ok, SharedH0, Failed };
   Assign assignAll(const std::vector<Entry>& entries, SplitMix64& rng, unsigned random_tries,
                    std::uint64_t& rejected);
-  void ensureMembers();
 
   glm::uvec3 m_{1}, r_{1};
   std::uint64_t fm_[3] = {0, 0, 0}, fr_[3] = {0, 0, 0};  // fastModConstant(m_), (r_); 0 is d = 1's
@@ -315,7 +311,7 @@ bool PerfectSpatialHash<Traits>::searchFree(const glm::uvec3& h0, SplitMix64& rn
     const std::uint32_t s = free_[(start + i) % n];
     const glm::uvec3 h(s % m_.x, (s / m_.x) % m_.y, s / (m_.x * m_.y));
     const glm::uvec3 off = (h + m_ - h0) % m_;
-    if (off.x < 256 && off.y < 256 && off.z < 256 && fits(off)) {
+    if (off.x < kOffsetRange && off.y < kOffsetRange && off.z < kOffsetRange && fits(off)) {
       found = off;
       return true;
     }
@@ -337,7 +333,7 @@ bool PerfectSpatialHash<Traits>::findOffset(std::uint32_t o, const std::vector<s
                                             const std::vector<glm::uvec3>& h0, SplitMix64& rng,
                                             unsigned random_tries, F&& fits, glm::uvec3& off) const {
   if (tryNeighbours(o, assigned, fits, off)) return true;
-  const glm::uvec3 range = glm::min(m_, glm::uvec3(256));
+  const glm::uvec3 range = glm::min(m_, glm::uvec3(kOffsetRange));
   for (unsigned t = 0; t < random_tries; ++t) {
     off = glm::uvec3(rng.below(range.x), rng.below(range.y), rng.below(range.z));
     if (fits(off)) return true;
@@ -416,7 +412,7 @@ PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<E
     hi = glm::max(hi, e.key);
   }
   const glm::uvec3 extent = entries.empty() ? glm::uvec3(1) : hi - lo + 1u;
-  double m_target = std::max(1.0, (n <= 255 ? n : std::ceil(1.01 * n)) * std::max(1.0, params.slack));
+  double m_target = std::max(1.0, (n <= kExactSizeMaxKeys ? n : std::ceil(1.01 * n)) * std::max(1.0, params.slack));
   double r_target = std::max(1.0, n * std::clamp(params.sigma, 1e-3, 1.0));
   glm::uvec3 m = fitDims(m_target, extent, false);
   glm::uvec3 r = coprime(fitDims(r_target, extent, true), m);
@@ -442,7 +438,8 @@ PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<E
     }
     r = coprime(grown, m);
     ++rep.offset_growths;
-    if (rep.offset_growths > 200) throw std::logic_error("perfect spatial hash: construction does not converge");
+    if (rep.offset_growths > kMaxOffsetGrowths)
+      throw std::logic_error("perfect spatial hash: construction does not converge");
   }
   rep.attempts = failures + 1;
   rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -451,7 +448,7 @@ PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<E
 }
 
 template <class Traits>
-void PerfectSpatialHash<Traits>::ensureMembers() {
+void PerfectSpatialHash<Traits>::trackGroups() {
   if (!members_.empty()) return;
   members_.assign(offsetCount(), {});
   for (std::uint32_t s = 0; s < slots(); ++s)
@@ -462,21 +459,17 @@ template <class Traits>
 typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::insert(const glm::uvec3& key,
                                                                                     const Payload& payload,
                                                                                     SplitMix64& rng,
-                                                                                    TableEdits* edits,
                                                                                     unsigned random_tries) {
-  TableEdits none{true, {}, {}};  // notes nothing
-  TableEdits& log = edits ? *edits : none;
-  ensureMembers();
+  trackGroups();
   const std::uint32_t s = slot(key);
   if (keyMatches(&table_[std::size_t(s) * kWords], key)) {
-    update(key, payload, edits);
+    update(key, payload);
     return InsertResult::InPlace;
   }
   const std::uint32_t o = offsetIndex(key);
   if (slotEmpty(s)) {
     writeSlot(s, key, payload);
     members_[o].push_back(s);
-    log.slot(s);
     ++size_;
     return InsertResult::InPlace;
   }
@@ -507,32 +500,27 @@ typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::in
       if (g.slot != ~0u) writeSlot(g.slot, g.key, g.payload);
     return InsertResult::Failed;
   }
-  for (const auto& g : group)
-    if (g.slot != ~0u) log.slot(g.slot);
   offsets_[o] = packOffset(off);
-  log.offset(o);
   members_[o].clear();
   for (std::size_t i = 0; i < group.size(); ++i) {
     const std::uint32_t ns = slotWith(h0[i], off);
     writeSlot(ns, group[i].key, group[i].payload);
     members_[o].push_back(ns);
-    log.slot(ns);
   }
   ++size_;
   return InsertResult::Reoffset;
 }
 
 template <class Traits>
-bool PerfectSpatialHash<Traits>::update(const glm::uvec3& key, const Payload& payload, TableEdits* edits) {
+bool PerfectSpatialHash<Traits>::update(const glm::uvec3& key, const Payload& payload) {
   const std::uint32_t s = slot(key);
   if (!keyMatches(&table_[std::size_t(s) * kWords], key)) return false;
   writeSlot(s, key, payload);
-  if (edits) edits->slot(s);
   return true;
 }
 
 template <class Traits>
-bool PerfectSpatialHash<Traits>::erase(const glm::uvec3& key, TableEdits* edits) {
+bool PerfectSpatialHash<Traits>::erase(const glm::uvec3& key) {
   const std::uint32_t s = slot(key);
   if (!keyMatches(&table_[std::size_t(s) * kWords], key)) return false;
   clearSlot(s);
@@ -540,7 +528,6 @@ bool PerfectSpatialHash<Traits>::erase(const glm::uvec3& key, TableEdits* edits)
     auto& mem = members_[offsetIndex(key)];
     mem.erase(std::find(mem.begin(), mem.end(), s));
   }
-  if (edits) edits->slot(s);
   --size_;
   return true;
 }

@@ -1,16 +1,12 @@
 // The scene octree's edits: Table 7.1 inserts, Table 8.2 removals, the
 // joint old/new walks of replace() (Tables 8.1/8.2, by light octrees or by
-// LightCells), the canonical merge, and the recording of touched keys they
-// share. The parallel scheduling of many edits is in SceneOctreeParallel.cpp,
+// LightCells) and the canonical merge. Node storage is in
+// SceneOctreeNodes.cpp, touched-key recording in SceneOctreeTouched.cpp,
 // the read-only queries in SceneOctreeView.cpp. Contract: SceneOctree.hpp.
 #include "host/hashed/SceneOctree.hpp"
 
 #include <algorithm>
 #include <bit>
-#include <stdexcept>
-
-#include "host/hashed/KeySort.hpp"
-#include "host/hashed/LightSetPool.hpp"
 
 namespace ml::hashed {
 namespace {
@@ -27,115 +23,31 @@ SceneOctree::SceneOctree(const OctreeBounds& bounds, const GeometryMask* mask) :
   sums_.push_back(0);
 }
 
-void SceneOctree::record(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c) {
-  if (!recording_) return;
-  ln.touched.push_back(nodeKey(t, c));
-  // The parent's description (its children's leaf/filled bits) changes only
-  // when the leaf's set became or stopped being empty; a set of one or none
-  // covers both. Most edits leave a set non-empty, and most touched keys
-  // would otherwise be such parents, looked up for nothing.
-  if (t > 0 && sets_[n].size() <= 1) recordParent(ln, nodeKey(t - 1, c >> 1u));
-}
-
-void SceneOctree::recordChildren(Lane& ln, unsigned t, const glm::uvec3& c) {
-  if (!recording_) return;
-  ln.touched.push_back(nodeKey(t, c));
-  if (t > 0) recordParent(ln, nodeKey(t - 1, c >> 1u));
-  for (unsigned k = 0; k < 8; ++k) ln.touched.push_back(nodeKey(t + 1, childCoord(c, k)));
-}
-
-std::vector<std::uint64_t> SceneOctree::takeTouched() {
-  std::vector<std::uint64_t> out;
-  out.swap(main_.touched);
-  main_.last_parent = ~std::uint64_t(0);
-  sortUniqueKeys(out, sort_scratch_);
-  return out;
-}
-
-std::int32_t SceneOctree::allocBlock(Lane& ln) {
-  if (ln.reserved) {
-    // Parallel edits take the blocks reserved beforehand (nodes_ must not grow).
-    const std::size_t i = reserved_taken_.fetch_add(1, std::memory_order_relaxed);
-    if (i >= free_blocks_.size()) throw std::logic_error("scene octree: parallel edits outgrew their reservation");
-    ++ln.taken;
-    return free_blocks_[free_blocks_.size() - 1 - i];
-  }
-  if (!free_blocks_.empty()) {
-    const std::int32_t b = free_blocks_.back();
-    free_blocks_.pop_back();
-    return b;
-  }
-  const std::int32_t b = std::int32_t(nodes_.size());
-  nodes_.resize(nodes_.size() + 8);
-  sets_.resize(sets_.size() + 8);
-  sums_.resize(sums_.size() + 8);
-  return b;
-}
-
-// Table 7.1, "leaf meets branch": the leaf becomes a branch whose children
-// carry its lights (children without geometry stay empty: nothing queries them).
-void SceneOctree::split(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c) {
-  const std::int32_t block = allocBlock(ln);
-  for (unsigned k = 0; k < 8; ++k) {
-    const std::int32_t ch = block + std::int32_t(k);
-    nodes_[ch] = Node{};
-    nodes_[ch].dirty = true;
-    if (care(t + 1, childCoord(c, k))) {
-      sets_[ch] = sets_[n];
-      sums_[ch] = sums_[n];
-    } else {
-      sets_[ch].clear();
-      sums_[ch] = 0;
+std::int32_t SceneOctree::descend(const LightOctree& lo, unsigned r, bool split_leaves, unsigned& t,
+                                  glm::uvec3& c) {
+  std::int32_t n = 0;
+  t = 0;
+  c = glm::uvec3(0);
+  while (t < lo.root_depth) {
+    if (!care(t, c)) return -1;
+    if (isLeaf(n)) {
+      if (!split_leaves) return n;
+      split(n, t, c);
     }
+    nodes_[n].dirty = true;
+    c = lo.roots[r] >> (lo.root_depth - t - 1);
+    n = nodes_[n].child + std::int32_t(childBit(c));
+    ++t;
   }
-  nodes_[n].child = block;
-  std::vector<std::uint32_t>().swap(sets_[n]);
-  sums_[n] = 0;
-  recordChildren(ln, t, c);
-}
-
-bool SceneOctree::addToSet(std::int32_t n, std::uint32_t l) {
-  auto& s = sets_[n];
-  if (s.empty() || s.back() < l) {
-    s.push_back(l);  // full builds insert lights in index order
-  } else {
-    const auto it = std::lower_bound(s.begin(), s.end(), l);
-    if (it != s.end() && *it == l) return false;
-    s.insert(it, l);
-  }
-  sums_[n] += LightSetPool::elementHash(l);
-  return true;
-}
-
-bool SceneOctree::eraseFromSet(std::int32_t n, std::uint32_t l) {
-  auto& s = sets_[n];
-  const auto it = std::lower_bound(s.begin(), s.end(), l);
-  if (it == s.end() || *it != l) return false;
-  s.erase(it);
-  sums_[n] -= LightSetPool::elementHash(l);
-  return true;
+  return n;
 }
 
 void SceneOctree::insert(const LightOctree& lo) {
   for (unsigned r = 0; r < lo.root_count; ++r) {
-    std::int32_t n = 0;
-    unsigned t = 0;
-    glm::uvec3 c(0);
-    bool stored = true;
-    // Descend to the root, splitting leaves on the way.
-    while (t < lo.root_depth) {
-      if (!care(t, c)) {
-        stored = false;
-        break;
-      }
-      nodes_[n].dirty = true;
-      if (isLeaf(n)) split(main_, n, t, c);
-      const glm::uvec3 cc = lo.roots[r] >> (lo.root_depth - t - 1);
-      n = nodes_[n].child + std::int32_t(childBit(cc));
-      ++t;
-      c = cc;
-    }
-    if (!stored) continue;
+    unsigned t;
+    glm::uvec3 c;
+    const std::int32_t n = descend(lo, r, true, t, c);
+    if (n < 0) continue;
     const LightNode* cur = lo.nodes.data() + lo.root_start[r];
     insertRec(n, t, c, cur, lo.light);
   }
@@ -150,59 +62,49 @@ void SceneOctree::insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, con
     return;
   }
   if (type == LightNode::Full) {
-    addFull(main_, n, t, c, l);
+    addFull(n, t, c, l);
     return;
   }
   nodes_[n].dirty = true;
-  if (isLeaf(n)) split(main_, n, t, c);
+  if (isLeaf(n)) split(n, t, c);
   const std::int32_t ch = nodes_[n].child;
   for (unsigned k = 0; k < 8; ++k) insertRec(ch + std::int32_t(k), t + 1, childCoord(c, k), cur, l);
 }
 
 // Table 7.1, full light node: added to a leaf, or to every child of a branch.
-void SceneOctree::addFull(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
+void SceneOctree::addFull(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
   if (!care(t, c)) return;
   nodes_[n].dirty = true;
   if (isLeaf(n)) {
     if (t > b_.start_depth) {
-      if (addToSet(n, l)) record(ln, n, t, c);
+      if (addToSet(n, l)) record(n, t, c);
       return;
     }
-    split(ln, n, t, c);  // no non-empty leaves at or above the start depth
+    split(n, t, c);  // no non-empty leaves at or above the start depth
   }
   const std::int32_t ch = nodes_[n].child;
-  for (unsigned k = 0; k < 8; ++k) addFull(ln, ch + std::int32_t(k), t + 1, childCoord(c, k), l);
+  for (unsigned k = 0; k < 8; ++k) addFull(ch + std::int32_t(k), t + 1, childCoord(c, k), l);
 }
 
 void SceneOctree::remove(const LightOctree& lo) {
   for (unsigned r = 0; r < lo.root_count; ++r) {
-    std::int32_t n = 0;
-    unsigned t = 0;
-    glm::uvec3 c(0);
-    bool below = true;
-    while (t < lo.root_depth) {
-      if (!care(t, c)) {
-        below = false;
-        break;
-      }
-      if (isLeaf(n)) {
-        if (eraseFromSet(n, lo.light)) {
-          nodes_[n].dirty = true;
-          record(main_, n, t, c);
-        }
-        below = false;
-        break;
-      }
-      nodes_[n].dirty = true;
-      const glm::uvec3 cc = lo.roots[r] >> (lo.root_depth - t - 1);
-      n = nodes_[n].child + std::int32_t(childBit(cc));
-      ++t;
-      c = cc;
+    unsigned t;
+    glm::uvec3 c;
+    const std::int32_t n = descend(lo, r, false, t, c);
+    if (n < 0) continue;
+    if (t < lo.root_depth) {  // a leaf above the light's root holds it for all of its cells or none
+      eraseAndRecord(n, t, c, lo.light);
+      continue;
     }
-    if (!below) continue;
     const LightNode* cur = lo.nodes.data() + lo.root_start[r];
     removeRec(n, t, c, cur, lo.light);
   }
+}
+
+void SceneOctree::eraseAndRecord(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
+  if (!eraseFromSet(n, l)) return;
+  nodes_[n].dirty = true;
+  record(n, t, c);
 }
 
 // Table 8.2: remove the index where the light's octree is non-empty; a leaf
@@ -216,33 +118,27 @@ void SceneOctree::removeRec(std::int32_t n, unsigned t, const glm::uvec3& c, con
     return;
   }
   if (isLeaf(n)) {
-    if (eraseFromSet(n, l)) {
-      nodes_[n].dirty = true;
-      record(main_, n, t, c);
-    }
+    eraseAndRecord(n, t, c, l);
     if (type == LightNode::Branch) skipChildren(cur);
     return;
   }
   nodes_[n].dirty = true;
   if (type == LightNode::Full) {
-    removeAll(main_, n, t, c, l);
+    removeAll(n, t, c, l);
     return;
   }
   const std::int32_t ch = nodes_[n].child;
   for (unsigned k = 0; k < 8; ++k) removeRec(ch + std::int32_t(k), t + 1, childCoord(c, k), cur, l);
 }
 
-void SceneOctree::removeAll(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
+void SceneOctree::removeAll(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l) {
   if (isLeaf(n)) {
-    if (eraseFromSet(n, l)) {
-      nodes_[n].dirty = true;
-      record(ln, n, t, c);
-    }
+    eraseAndRecord(n, t, c, l);
     return;
   }
   nodes_[n].dirty = true;
   const std::int32_t ch = nodes_[n].child;
-  for (unsigned k = 0; k < 8; ++k) removeAll(ln, ch + std::int32_t(k), t + 1, childCoord(c, k), l);
+  for (unsigned k = 0; k < 8; ++k) removeAll(ch + std::int32_t(k), t + 1, childCoord(c, k), l);
 }
 
 // end[i] = one past node i's preorder subtree, for every root's subtree.
@@ -312,10 +208,10 @@ void SceneOctree::replace(const LightOctree& a, const LightOctree& b, const std:
     return o.root_depth == 0 ? Cover(*s.cur++) : Cover::Above;  // depth 0: the one root is the scene root
   };
   const Cover ka = top(a, sa), kb = top(b, sb);
-  replaceRec(main_, 0, 0, glm::uvec3(0), ka, sa, kb, sb, b.light);
+  replaceRec(0, 0, glm::uvec3(0), ka, sa, kb, sb, b.light);
 }
 
-void SceneOctree::replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
+void SceneOctree::replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
                              Stream& sb, std::uint32_t l) {
   const bool pa = ka == Cover::Branch || ka == Cover::Above, pb = kb == Cover::Branch || kb == Cover::Above;
   if (!care(t, c) || (!pa && !pb && ka == kb)) {  // nothing stored here, or no change
@@ -324,8 +220,8 @@ void SceneOctree::replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uv
     return;
   }
   if (!pa && !pb) {  // whole node gained or lost the light
-    if (kb == Cover::Full) addFull(ln, n, t, c, l);
-    else removeAll(ln, n, t, c, l);
+    if (kb == Cover::Full) addFull(n, t, c, l);
+    else removeAll(n, t, c, l);
     return;
   }
   if (ka == Cover::Branch && kb == Cover::Branch) {
@@ -341,11 +237,11 @@ void SceneOctree::replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uv
   if (isLeaf(n)) {
     if (!pb) {  // the new version covers this leaf entirely or not at all
       consume(ka, sa);
-      if (kb == Cover::Full) addFull(ln, n, t, c, l);
-      else if (eraseFromSet(n, l)) record(ln, n, t, c);
+      if (kb == Cover::Full) addFull(n, t, c, l);
+      else if (eraseFromSet(n, l)) record(n, t, c);
       return;
     }
-    split(ln, n, t, c);  // Table 8.1: the new version covers part of the leaf
+    split(n, t, c);  // Table 8.1: the new version covers part of the leaf
   }
   const std::int32_t ch = nodes_[n].child;
   std::uint8_t above_a[8] = {}, above_b[8] = {};
@@ -355,33 +251,33 @@ void SceneOctree::replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uv
     const glm::uvec3 cc = childCoord(c, k);
     const Cover ca = childCover(ka, sa, above_a[k]), cb = childCover(kb, sb, above_b[k]);
     if (ca == cb && (ca == Cover::Empty || ca == Cover::Full)) continue;  // unchanged here
-    replaceRec(ln, ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
+    replaceRec(ch + std::int32_t(k), t + 1, cc, ca, sa, cb, sb, l);
   }
 }
 
 void SceneOctree::replace(const LightCells& a, const LightCells& b, std::uint32_t l) {
   const glm::uvec3 root(0);
-  replaceCellsRec(main_, 0, 0, root, a.cover(0, root), a, b.cover(0, root), b, l);
+  replaceCellsRec(0, 0, root, a.cover(0, root), a, b.cover(0, root), b, l);
 }
 
 // replaceRec() with computed coverage (Branch: partly covered).
-void SceneOctree::replaceCellsRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
+void SceneOctree::replaceCellsRec(std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
                                   LightNode kb, const LightCells& b, std::uint32_t l) {
   const bool pa = ka == LightNode::Branch, pb = kb == LightNode::Branch;
   if (!care(t, c) || (!pa && !pb && ka == kb)) return;  // nothing stored here, or no change
   if (!pa && !pb) {  // whole node gained or lost the light
-    if (kb == LightNode::Full) addFull(ln, n, t, c, l);
-    else removeAll(ln, n, t, c, l);
+    if (kb == LightNode::Full) addFull(n, t, c, l);
+    else removeAll(n, t, c, l);
     return;
   }
   nodes_[n].dirty = true;
   if (isLeaf(n)) {
     if (!pb) {  // the new version covers this leaf entirely or not at all
-      if (kb == LightNode::Full) addFull(ln, n, t, c, l);
-      else if (eraseFromSet(n, l)) record(ln, n, t, c);
+      if (kb == LightNode::Full) addFull(n, t, c, l);
+      else if (eraseFromSet(n, l)) record(n, t, c);
       return;
     }
-    split(ln, n, t, c);  // Table 8.1: the new version covers part of the leaf
+    split(n, t, c);  // Table 8.1: the new version covers part of the leaf
   }
   const std::int32_t ch = nodes_[n].child;
   if (t + 1 == b_.depth) {  // the children are cells: Full or Empty
@@ -391,8 +287,8 @@ void SceneOctree::replaceCellsRec(Lane& ln, std::int32_t n, unsigned t, const gl
       const unsigned k = unsigned(std::countr_zero(diff));
       const glm::uvec3 cc = childCoord(c, k);
       if (!care(t + 1, cc)) continue;
-      if ((mb >> k) & 1u) addFull(ln, ch + std::int32_t(k), t + 1, cc, l);
-      else removeAll(ln, ch + std::int32_t(k), t + 1, cc, l);
+      if ((mb >> k) & 1u) addFull(ch + std::int32_t(k), t + 1, cc, l);
+      else removeAll(ch + std::int32_t(k), t + 1, cc, l);
     }
     return;
   }
@@ -405,22 +301,20 @@ void SceneOctree::replaceCellsRec(Lane& ln, std::int32_t n, unsigned t, const gl
   // Children that differ, or that both versions cut through; the rest are unchanged.
   for (unsigned m = unsigned(fa ^ fb) | unsigned(ba ^ bb) | ba; m != 0; m &= m - 1) {
     const unsigned k = unsigned(std::countr_zero(m));
-    replaceCellsRec(ln, ch + std::int32_t(k), t + 1, childCoord(c, k), kind(fa, ba, k), a, kind(fb, bb, k), b, l);
+    replaceCellsRec(ch + std::int32_t(k), t + 1, childCoord(c, k), kind(fa, ba, k), a, kind(fb, bb, k), b, l);
   }
 }
 
 void SceneOctree::normalize() {
-  normalizeRec(main_, 0, 0, glm::uvec3(0));
-  free_blocks_.insert(free_blocks_.end(), main_.freed.begin(), main_.freed.end());
-  main_.freed.clear();
+  normalizeRec(0, 0, glm::uvec3(0));
 }
 
-void SceneOctree::normalizeRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c) {
+void SceneOctree::normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c) {
   if (!nodes_[n].dirty) return;
   nodes_[n].dirty = false;
   if (isLeaf(n)) return;
   const std::int32_t ch = nodes_[n].child;
-  for (unsigned k = 0; k < 8; ++k) normalizeRec(ln, ch + std::int32_t(k), t + 1, childCoord(c, k));
+  for (unsigned k = 0; k < 8; ++k) normalizeRec(ch + std::int32_t(k), t + 1, childCoord(c, k));
   // Merge when the children that matter are leaves with one light set.
   const std::vector<std::uint32_t>* common = nullptr;
   for (unsigned k = 0; k < 8; ++k) {
@@ -444,8 +338,8 @@ void SceneOctree::normalizeRec(Lane& ln, std::int32_t n, unsigned t, const glm::
     sums_[ch + std::int32_t(k)] = 0;
   }
   nodes_[n].child = -1;
-  ln.freed.push_back(ch);
-  recordChildren(ln, t, c);
+  free_blocks_.push_back(ch);
+  recordChildren(t, c);
 }
 
 }  // namespace ml::hashed

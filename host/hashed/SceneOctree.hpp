@@ -22,7 +22,6 @@
 //    must re-derive.
 #include <glm/glm.hpp>
 
-#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -62,27 +61,11 @@ class SceneOctree {
   void replace(const LightOctree& old_version, const LightOctree& new_version,
                const std::vector<std::uint32_t>* old_ends = nullptr,
                const std::vector<std::uint32_t>* new_ends = nullptr);
-  // The same for a light without geometry-tight sets, its versions given as
-  // LightCells: each node's coverage is computed instead of read from an
-  // octree, so that no octree is built (a default LightCells stands for no
-  // version: an added or removed light). The tree after normalize() is the
-  // same as with octrees.
+  // The same without a geometry mask, the versions given as LightCells:
+  // each node's coverage is computed instead of read from an octree, so
+  // that no octree is built (a default LightCells stands for no version: an
+  // added or removed light). The tree after normalize() is the same.
   void replace(const LightCells& old_version, const LightCells& new_version, std::uint32_t light);
-  // Many lights' replacements at once, with the same result as replace() on
-  // each: the subtrees at depth min(2, start depth) are disjoint, so each is
-  // edited by its own task (TBB) with the lights whose old or new version
-  // reaches it (null: no version), as their cell boxes say. The tree is the
-  // same for any thread count; only which free node blocks hold which nodes
-  // varies. A light whose worst-case splits do not fit the free node blocks
-  // left when its turn comes is edited after the parallel part, on this
-  // thread (the result is the same: edits of one subtree commute once
-  // normalized).
-  struct CellsReplacement {
-    const LightCells* old_version;
-    const LightCells* new_version;
-    std::uint32_t light;
-  };
-  void replaceAll(const std::vector<CellsReplacement>& batch);
   // Per node of `light`: one past its preorder subtree (what replace() walks by).
   static void subtreeEnds(const LightOctree& light, std::vector<std::uint32_t>& end);
   void normalize();
@@ -124,35 +107,34 @@ class SceneOctree {
   bool care(unsigned t, const glm::uvec3& c) const { return !mask_ || mask_->has(t, c); }
   bool isLeaf(std::int32_t n) const { return nodes_[n].child < 0; }
   NodeView view(std::int32_t n) const;
-  // Who is editing: the touched keys it recorded, and whether it takes node
-  // blocks from the reservation (parallel edits of disjoint subtrees) or
-  // may grow the node arrays (everyone else).
-  struct Lane {
-    std::vector<std::uint64_t> touched;
-    std::uint64_t last_parent = ~std::uint64_t(0);
-    bool reserved = false;
-    std::size_t taken = 0;                // reserved blocks taken
-    std::vector<std::int32_t> freed;      // blocks its merges freed, for free_blocks_ afterwards
-  };
-  // After leaf n's set changed.
-  void record(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c);
-  void recordChildren(Lane& ln, unsigned t, const glm::uvec3& c);
-  // Siblings change together: a parent just recorded is not pushed again
-  // (takeTouched() would drop the duplicate anyway, after sorting it).
-  void recordParent(Lane& ln, std::uint64_t key) {
-    if (key == ln.last_parent) return;
-    ln.touched.push_back(key);
-    ln.last_parent = key;
-  }
-  std::int32_t allocBlock(Lane& ln);
-  void split(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c);
-  void insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
-  void addFull(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
-  void removeRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
-  void removeAll(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
+
+  // Touched-key recording (SceneOctreeTouched.cpp), after leaf n's set changed.
+  void record(std::int32_t n, unsigned t, const glm::uvec3& c);
+  // After node (t, c) was split or merged: it, its parent and its children.
+  void recordChildren(unsigned t, const glm::uvec3& c);
+  void recordParent(std::uint64_t key);
+
+  // Node storage (SceneOctreeNodes.cpp): children come in blocks of 8;
+  // merged blocks are reused before the arrays grow.
+  std::int32_t allocBlock();
+  void split(std::int32_t n, unsigned t, const glm::uvec3& c);
   bool addToSet(std::int32_t n, std::uint32_t l);
   bool eraseFromSet(std::int32_t n, std::uint32_t l);
-  void normalizeRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c);
+
+  // Tree edits (SceneOctree.cpp).
+  // Walks from the scene root towards light octree `lo`'s root r, marking
+  // the path dirty; with `split_leaves` leaves on the way are split (insert),
+  // else the walk stops at one (remove). Returns the node reached and its
+  // (t, c), t < lo.root_depth when it stopped at a leaf; -1 when no
+  // geometry lies below (nothing is stored there).
+  std::int32_t descend(const LightOctree& lo, unsigned r, bool split_leaves, unsigned& t, glm::uvec3& c);
+  void insertRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
+  void addFull(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
+  void removeRec(std::int32_t n, unsigned t, const glm::uvec3& c, const LightNode*& cur, std::uint32_t l);
+  void removeAll(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
+  // Leaf n loses light l, if it held it.
+  void eraseAndRecord(std::int32_t n, unsigned t, const glm::uvec3& c, std::uint32_t l);
+  void normalizeRec(std::int32_t n, unsigned t, const glm::uvec3& c);
   // Coverage of a node by a light during replace(): Above = an ancestor of
   // the light octree's root (partial, no stream read yet).
   enum class Cover : std::uint8_t { Empty = 0, Full = 1, Branch = 2, Above = 3 };
@@ -170,37 +152,10 @@ class SceneOctree {
     if (k == Cover::Branch) s.cur = s.branchEnd();
   }
   std::vector<std::uint32_t> end_a_, end_b_;  // replace()'s scratch
-  void replaceRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb,
-                  Stream& sb, std::uint32_t l);
-  void replaceCellsRec(Lane& ln, std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
+  void replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb, Stream& sb,
+                  std::uint32_t l);
+  void replaceCellsRec(std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,
                        LightNode kb, const LightCells& b, std::uint32_t l);
-  // Parallel edits of the subtrees at depth P: openTop() makes every node
-  // above P a branch and returns each subtree's node (-1: nothing stored
-  // there), reserveBlocks() keeps `bound` free blocks so that nodes_ stays
-  // put, runLanes() runs edit(lane, subtree node, coord, item) per subtree
-  // over its work items (in order) and collects the lanes' touched keys. An
-  // edit that returns false is not done: it and the rest of its subtree's
-  // items are then run one by one on this thread (which may grow nodes_).
-  std::vector<std::int32_t> openTop(unsigned P);
-  static std::size_t partId(const glm::uvec3& c, unsigned P);
-  // Adds work item `item` to each subtree in `ids` that stores anything, once.
-  static void route(const std::vector<std::int32_t>& part, const std::vector<std::size_t>& ids, std::uint32_t item,
-                    std::vector<std::uint8_t>& seen, std::vector<std::vector<std::uint32_t>>& work);
-  void reserveBlocks(std::size_t bound);
-  template <class Edit>
-  void runLanes(unsigned P, const std::vector<std::int32_t>& part,
-                const std::vector<std::vector<std::uint32_t>>& work, Edit&& edit);
-  std::size_t worstSplits(const LightCells* v, unsigned P, const glm::uvec3& sub) const;
-  std::vector<std::vector<std::uint32_t>> routeCells(const std::vector<CellsReplacement>& batch,
-                                                     const std::vector<std::int32_t>& part, unsigned P) const;
-  // Fewer lights than this are edited one at a time: not worth the tasks.
-  static constexpr std::size_t kParallelEditMinLights = 32;
-  // Free node blocks kept for parallel edits: room for a few thousand splits at a time.
-  static constexpr std::size_t kReservedBlocks = 2048;
-  // Reserved blocks not yet promised to a lane's edit (replaceAll()).
-  bool claimBlocks(std::size_t n);
-  void returnBlocks(std::size_t n) { budget_.fetch_add(std::ptrdiff_t(n), std::memory_order_relaxed); }
-  std::atomic<std::ptrdiff_t> budget_{0};
 
   template <class F>
   void walk(std::int32_t n, unsigned t, const glm::uvec3& c, F& f) const {
@@ -218,9 +173,9 @@ class SceneOctree {
   std::vector<std::uint64_t> sums_;
   std::vector<std::int32_t> free_blocks_;
   bool recording_ = false;
-  Lane main_;
+  std::vector<std::uint64_t> touched_;
+  std::uint64_t last_parent_ = ~std::uint64_t(0);  // siblings change together: their parent is pushed once
   std::vector<std::uint64_t> sort_scratch_;
-  std::atomic<std::size_t> reserved_taken_{0};  // blocks taken from the back of free_blocks_
 };
 
 }  // namespace ml::hashed

@@ -2,9 +2,8 @@
 // What changed in one perfect spatial hash since its GPU copy was last
 // uploaded: the slots and offset entries that dynamic edits wrote, or `all`
 // (after a build, a rehash or a payload remap: the uploader then sends the
-// whole table). The hash itself tracks no GPU state: its edit calls take a
-// TableEdits to note into (LinklessOctree keeps one per table, the uploader
-// takes them).
+// whole table). The hash itself tracks no GPU state: LinklessOctree notes
+// what its edits of each table wrote, the uploader takes them.
 #include <cstdint>
 #include <vector>
 

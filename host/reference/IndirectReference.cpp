@@ -14,6 +14,7 @@
 
 #include "host/reference/LightSphereGrid.hpp"
 #include "host/util/Error.hpp"
+#include "host/util/SplitMix64.hpp"
 
 namespace ml {
 namespace {
@@ -55,18 +56,8 @@ class EmbreeScene {
   RTCScene scene_ = nullptr;
 };
 
-// splitmix64 (Steele et al. 2014): a per-pixel stream seeded in a few
-// instructions; the standard engines cost a full state initialisation each.
-struct PixelRng {
-  std::uint64_t s;
-  std::uint64_t next() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  float uniform() { return float(next() >> 40) * 0x1.0p-24f; }
-};
+// A per-pixel stream (SplitMix64.hpp: seeded in a few instructions).
+using PixelRng = SplitMix64;
 
 struct Surface {
   glm::vec3 p, n, albedo;
