@@ -76,12 +76,21 @@ ML_INLINE float8 cat8(float4 a, float4 b) { return (float8)(a.x, a.y, a.z, a.w, 
  * chosen axis pays for C: the filter is bound by instructions, not memory,
  * wherever the grid fits in cache. Pairs as child indices (f0, b0, ..), in
  * the twin's order. */
-#define PAIR_OVERLAP(i, j) (k[i].w * k[j].w)
-#define AXIS_OVERLAP(f0, b0, f1, b1, f2, b2, f3, b3) \
-  ((PAIR_OVERLAP(f0, b0) + PAIR_OVERLAP(f1, b1)) + (PAIR_OVERLAP(f2, b2) + PAIR_OVERLAP(f3, b3)))
-#define PAIR_CROSS(i, j) (k[j].w * k[i] + k[i].w * k[j])
-#define AXIS_CROSS(f0, b0, f1, b1, f2, b2, f3, b3) \
-  ((PAIR_CROSS(f0, b0) + PAIR_CROSS(f1, b1)) + (PAIR_CROSS(f2, b2) + PAIR_CROSS(f3, b3)))
+#define PAIR_OVERLAP(A, i, j) (A(i) * A(j))
+#define AXIS_OVERLAP(A, f0, b0, f1, b1, f2, b2, f3, b3) \
+  ((PAIR_OVERLAP(A, f0, b0) + PAIR_OVERLAP(A, f1, b1)) + (PAIR_OVERLAP(A, f2, b2) + PAIR_OVERLAP(A, f3, b3)))
+#define PAIR_CROSS(A, i, j) (A(j) * k[i] + A(i) * k[j])
+#define AXIS_CROSS(A, f0, b0, f1, b1, f2, b2, f3, b3) \
+  ((PAIR_CROSS(A, f0, b0) + PAIR_CROSS(A, f1, b1)) + (PAIR_CROSS(A, f2, b2) + PAIR_CROSS(A, f3, b3)))
+/* The pairs (f0, b0, ..) of each axis, as child indices in the twin's order;
+ * OVERLAP(A, X_PAIRS) etc. expand the list before AXIS_OVERLAP sees it. A(i):
+ * child i's opacity, a scalar (k[i].w) or broadcast over its lanes. */
+#define X_PAIRS 0, 1, 2, 3, 4, 5, 6, 7
+#define Y_PAIRS 0, 2, 1, 3, 4, 6, 5, 7
+#define Z_PAIRS 0, 4, 1, 5, 2, 6, 3, 7
+#define OVERLAP(...) AXIS_OVERLAP(__VA_ARGS__)
+#define CROSS(...) AXIS_CROSS(__VA_ARGS__)
+#define ALPHA(i) k[i].w
 
 /* Keeping the most opaque axis, not the mean of the three, holds a one-voxel
  * wall opaque at every level (the mean gives 2/3, 4/9, ..): Cornell box,
@@ -89,18 +98,71 @@ ML_INLINE float8 cat8(float4 a, float4 b) { return (float8)(a.x, a.y, a.z, a.w, 
 ML_INLINE float4 iso_parent(__global const float4* c, uint sy, uint sz) {
   float4 k[8];
   load8(c, sy, sz, k);
-  const float dx = AXIS_OVERLAP(0, 1, 2, 3, 4, 5, 6, 7), dy = AXIS_OVERLAP(0, 2, 1, 3, 4, 6, 5, 7);
-  const float dz = AXIS_OVERLAP(0, 4, 1, 5, 2, 6, 3, 7);
+  const float dx = OVERLAP(ALPHA, X_PAIRS), dy = OVERLAP(ALPHA, Y_PAIRS), dz = OVERLAP(ALPHA, Z_PAIRS);
   const float4 sum = ((k[0] + k[1]) + (k[2] + k[3])) + ((k[4] + k[5]) + (k[6] + k[7]));
   float4 cross;
   if (dz < min(dx, dy))
-    cross = AXIS_CROSS(0, 4, 1, 5, 2, 6, 3, 7);
+    cross = CROSS(ALPHA, Z_PAIRS);
   else if (dy < dx)
-    cross = AXIS_CROSS(0, 2, 1, 3, 4, 6, 5, 7);
+    cross = CROSS(ALPHA, Y_PAIRS);
   else
-    cross = AXIS_CROSS(0, 1, 2, 3, 4, 5, 6, 7);
+    cross = CROSS(ALPHA, X_PAIRS);
   return (sum - 0.5f * cross) * 0.25f;
 }
+
+#if !ML_GPU
+/* CPU shape: 4 x-adjacent parents at once, parent j in float4 lane group j
+ * of each float16. Their children are two rows of 8 float4 per (y, z) child
+ * pair, contiguous, so k[i] (child i of the 4 parents) is a shuffle of two
+ * row loads, and the 4 results are one contiguous store. Every float16
+ * operation does the work of 4 float4 ones (the filter is bound by
+ * instructions: 002's box filter ran at the copy kernel's speed). The axis
+ * choice is per lane group: select() over the three cross terms, and only the
+ * x one when no parent picks another (ties go to x: every empty or uniform
+ * block), where a branch per parent mispredicts on mixed volumes. Each lane
+ * group rounds exactly as iso_parent(). */
+#define W16(v)                                                                                                  \
+  ((float16)((v).s3, (v).s3, (v).s3, (v).s3, (v).s7, (v).s7, (v).s7, (v).s7, (v).sb, (v).sb, (v).sb, (v).sb, \
+             (v).sf, (v).sf, (v).sf, (v).sf))
+#define ALPHA16(i) w[i]
+/* A lane of each parent: any() over int16 compiled to a slow lane loop. */
+#define ANY_PARENT(m) (((m).s0 | (m).s4) | ((m).s8 | (m).sc))
+ML_INLINE void iso_parent_quad(__global const float4* c, uint sy, uint sz, __global float4* dst) {
+  float16 k[8], w[8];
+  for (uint r = 0u; r < 4u; ++r) {
+    __global const float* row = (__global const float*)(c + (r & 1u) * sy + (r >> 1u) * sz);
+    const float16 a = vload16(0u, row), b = vload16(1u, row);
+    k[2u * r] = (float16)(a.s0123, a.s89ab, b.s0123, b.s89ab);
+    k[2u * r + 1u] = (float16)(a.s4567, a.scdef, b.s4567, b.scdef);
+  }
+  for (uint i = 0u; i < 8u; ++i) w[i] = W16(k[i]);
+  const float16 dx = OVERLAP(ALPHA16, X_PAIRS), dy = OVERLAP(ALPHA16, Y_PAIRS), dz = OVERLAP(ALPHA16, Z_PAIRS);
+  const float16 sum = ((k[0] + k[1]) + (k[2] + k[3])) + ((k[4] + k[5]) + (k[6] + k[7]));
+  const int16 use_y = isless(dy, dx), use_z = isless(dz, fmin(dx, dy));
+  float16 cross = CROSS(ALPHA16, X_PAIRS);
+  if ((ANY_PARENT(use_y) | ANY_PARENT(use_z)) != 0)
+    cross = select(select(cross, CROSS(ALPHA16, Y_PAIRS), use_y), CROSS(ALPHA16, Z_PAIRS), use_z);
+  vstore16((sum - 0.5f * cross) * 0.25f, 0u, (__global float*)dst);
+}
+
+/* Level l's parents in z-slices z0 .. z1 - 1, row by row: level offsets once
+ * per level and row starts once per row, not per parent. Edges are powers of
+ * two, so rows of >= 4 parents split into quads; smaller levels are tiny. */
+ML_INLINE void iso_slices(__global float4* vol, uint edge_log2, uint l, uint z0, uint z1) {
+  const uint edge = 1u << edge_log2, ep = edge >> l, ec = 2u * ep;
+  __global const float4* child = vol + voxel_level_offset(edge, l - 1u);
+  __global float4* parent = vol + voxel_level_offset(edge, l);
+  for (uint z = z0; z < z1; ++z)
+    for (uint y = 0u; y < ep; ++y) {
+      __global const float4* c = child + 2u * ec * (y + ec * z);
+      __global float4* d = parent + ep * (y + ep * z);
+      if (ep >= 4u)
+        for (uint x = 0u; x < ep; x += 4u) iso_parent_quad(c + 2u * x, ec, ec * ec, d + x);
+      else
+        for (uint x = 0u; x < ep; ++x) d[x] = iso_parent(c + 2u * x, ec, ec * ec);
+    }
+}
+#endif
 
 /* Parent i (0 .. 8^m_log2 - 1, x fastest) of the block of 2^m_log2 parents
  * per axis under top parent t, in a level of edge 1 << (et_log2 + m_log2)
@@ -182,9 +244,16 @@ ML_INLINE void aniso_one(__global const float4* radiance, __global float4* aniso
 /* `tops`: top-level z-slices per work-item (ML_GPU=0), top parents per
  * work-group (ML_GPU=1). */
 __kernel VCT_ATTR void mip_iso(__global float4* vol, uint edge_log2, uint l0, uint depth, uint tops) {
+#if ML_GPU
 #define ISO_CALL(l, ep_log2, p) iso_one(vol, edge_log2, l, ep_log2, p)
   MIP_TREE(ISO_CALL)
 #undef ISO_CALL
+#else
+  /* MIP_TREE's walk, by rows of parent pairs (iso_slices). */
+  uint b, e;
+  item_range(1u << (edge_log2 - l0 - depth), tops, &b, &e);
+  for (uint l = l0 + 1u; l <= l0 + depth; ++l) iso_slices(vol, edge_log2, l, b << (l0 + depth - l), e << (l0 + depth - l));
+#endif
 }
 
 __kernel VCT_ATTR void mip_aniso(__global const float4* radiance, __global float4* aniso, uint edge_log2, uint l0,
