@@ -125,6 +125,15 @@ ML_INLINE float4 iso_parent(__global const float4* c, uint sy, uint sz) {
   ((float16)((v).s3, (v).s3, (v).s3, (v).s3, (v).s7, (v).s7, (v).s7, (v).s7, (v).sb, (v).sb, (v).sb, (v).sb, \
              (v).sf, (v).sf, (v).sf, (v).sf))
 #define ALPHA16(i) w[i]
+/* The even and odd children (float4 0, 2, 4, 6 and 1, 3, 5, 7) of a row of 8
+ * loaded as two float16, component by component: Oclgrind 21.10 crashed on
+ * the kernel joining float4 swizzles, and PoCL ran this form faster. */
+#define EVEN_CHILDREN(a, b)                                                                                          \
+  ((float16)((a).s0, (a).s1, (a).s2, (a).s3, (a).s8, (a).s9, (a).sa, (a).sb, (b).s0, (b).s1, (b).s2, (b).s3, (b).s8, \
+             (b).s9, (b).sa, (b).sb))
+#define ODD_CHILDREN(a, b)                                                                                           \
+  ((float16)((a).s4, (a).s5, (a).s6, (a).s7, (a).sc, (a).sd, (a).se, (a).sf, (b).s4, (b).s5, (b).s6, (b).s7, (b).sc, \
+             (b).sd, (b).se, (b).sf))
 /* A lane of each parent: any() over int16 compiled to a slow lane loop. */
 #define ANY_PARENT(m) (((m).s0 | (m).s4) | ((m).s8 | (m).sc))
 ML_INLINE void iso_parent_quad(__global const float4* c, uint sy, uint sz, __global float4* dst) {
@@ -132,8 +141,8 @@ ML_INLINE void iso_parent_quad(__global const float4* c, uint sy, uint sz, __glo
   for (uint r = 0u; r < 4u; ++r) {
     __global const float* row = (__global const float*)(c + (r & 1u) * sy + (r >> 1u) * sz);
     const float16 a = vload16(0u, row), b = vload16(1u, row);
-    k[2u * r] = (float16)(a.s0123, a.s89ab, b.s0123, b.s89ab);
-    k[2u * r + 1u] = (float16)(a.s4567, a.scdef, b.s4567, b.scdef);
+    k[2u * r] = EVEN_CHILDREN(a, b);
+    k[2u * r + 1u] = ODD_CHILDREN(a, b);
   }
   for (uint i = 0u; i < 8u; ++i) w[i] = W16(k[i]);
   const float16 dx = OVERLAP(ALPHA16, X_PAIRS), dy = OVERLAP(ALPHA16, Y_PAIRS), dz = OVERLAP(ALPHA16, Z_PAIRS);
