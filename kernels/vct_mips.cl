@@ -258,10 +258,13 @@ __kernel VCT_ATTR void mip_iso(__global float4* vol, uint edge_log2, uint l0, ui
   MIP_TREE(ISO_CALL)
 #undef ISO_CALL
 #else
-  /* MIP_TREE's walk, by rows of parent pairs (iso_slices). */
+  /* MIP_TREE's walk, row by row (iso_slices). */
   uint b, e;
   item_range(1u << (edge_log2 - l0 - depth), tops, &b, &e);
-  for (uint l = l0 + 1u; l <= l0 + depth; ++l) iso_slices(vol, edge_log2, l, b << (l0 + depth - l), e << (l0 + depth - l));
+  for (uint l = l0 + 1u; l <= l0 + depth; ++l) {
+    const uint m_log2 = l0 + depth - l;  // level l's z-slices per top-level one
+    iso_slices(vol, edge_log2, l, b << m_log2, e << m_log2);
+  }
 #endif
 }
 
