@@ -136,14 +136,18 @@ ML_INLINE float4 iso_parent(__global const float4* c, uint sy, uint sz) {
              (b).sd, (b).se, (b).sf))
 /* A lane of each parent: any() over int16 compiled to a slow lane loop. */
 #define ANY_PARENT(m) (((m).s0 | (m).s4) | ((m).s8 | (m).sc))
-ML_INLINE void iso_parent_quad(__global const float4* c, uint sy, uint sz, __global float4* dst) {
-  float16 k[8], w[8];
+/* k[i]: child i of the 4 parents whose first child is c[0]. */
+ML_INLINE void load_quad(__global const float4* c, uint sy, uint sz, float16* k) {
   for (uint r = 0u; r < 4u; ++r) {
     __global const float* row = (__global const float*)(c + (r & 1u) * sy + (r >> 1u) * sz);
     const float16 a = vload16(0u, row), b = vload16(1u, row);
     k[2u * r] = EVEN_CHILDREN(a, b);
     k[2u * r + 1u] = ODD_CHILDREN(a, b);
   }
+}
+ML_INLINE void iso_parent_quad(__global const float4* c, uint sy, uint sz, __global float4* dst) {
+  float16 k[8], w[8];
+  load_quad(c, sy, sz, k);
   for (uint i = 0u; i < 8u; ++i) w[i] = W16(k[i]);
   const float16 dx = OVERLAP(ALPHA16, X_PAIRS), dy = OVERLAP(ALPHA16, Y_PAIRS), dz = OVERLAP(ALPHA16, Z_PAIRS);
   const float16 sum = ((k[0] + k[1]) + (k[2] + k[3])) + ((k[4] + k[5]) + (k[6] + k[7]));
@@ -218,6 +222,50 @@ ML_INLINE void aniso_one(__global const float4* radiance, __global float4* aniso
 #undef ANISO_STORE
 }
 
+#if !ML_GPU
+/* CPU shape, anisotropic: 4 x-adjacent parents per float16 as in
+ * iso_parent_quad(); direction 2 axis + neg composites the pairs along the
+ * axis (stride s; u, v the other two axes' strides) with the low child in
+ * front (neg = 0) or the high one, in anisoDir()'s order. */
+ML_INLINE float16 over16(float16 f, float16 b) { return f + (1.0f - W16(f)) * b; }
+#define OVER_PAIR(i, s, neg) ((neg) ? over16(k[(i) + (s)], k[i]) : over16(k[i], k[(i) + (s)]))
+ML_INLINE float16 aniso_quad_dir(const float16* k, uint s, uint u, uint v, bool neg) {
+  return ((OVER_PAIR(0u, s, neg) + OVER_PAIR(u, s, neg)) + (OVER_PAIR(v, s, neg) + OVER_PAIR(u + v, s, neg))) * 0.25f;
+}
+
+/* Level l's parents in z-slices z0 .. z1 - 1, row by row as iso_slices():
+ * level 1 loads isotropic level 0 once for all six directions, levels >= 2
+ * direction d of the finer level; rows under 4 parents use aniso_one(). */
+ML_INLINE void aniso_slices(__global const float4* radiance, __global float4* aniso, uint edge_log2, uint l, uint z0,
+                            uint z1) {
+  const uint edge = 1u << edge_log2, ep = edge >> l, ec = 2u * ep, n = ep * ep * ep, nc = 8u * n;
+  const bool from_iso = l == 1u;
+  __global const float4* src = from_iso ? radiance : aniso + voxel_aniso_index(edge, l - 1u, 0u, 0u);
+  __global float4* dst = aniso + voxel_aniso_index(edge, l, 0u, 0u);
+  float16 k[8];
+#define ANISO_QUAD_AXIS(axis, s, u, v)                                                           \
+  for (uint neg = 0u; neg < 2u; ++neg) {                                                         \
+    const uint d = 2u * (axis) + neg;                                                            \
+    if (!from_iso) load_quad(src + d * nc + c, ec, ec * ec, k);                                  \
+    vstore16(aniso_quad_dir(k, s, u, v, neg != 0u), 0u, (__global float*)(dst + d * n + p)); \
+  }
+  for (uint z = z0; z < z1; ++z)
+    for (uint y = 0u; y < ep; ++y)
+      for (uint x = 0u; x < ep; x += ep >= 4u ? 4u : 1u) {
+        const uint c = 2u * x + 2u * ec * (y + ec * z), p = x + ep * (y + ep * z);
+        if (ep < 4u) {
+          aniso_one(radiance, aniso, edge_log2, l, edge_log2 - l, p);
+          continue;
+        }
+        if (from_iso) load_quad(src + c, ec, ec * ec, k);
+        ANISO_QUAD_AXIS(0u, 1u, 2u, 4u)
+        ANISO_QUAD_AXIS(1u, 2u, 1u, 4u)
+        ANISO_QUAD_AXIS(2u, 4u, 1u, 2u)
+      }
+#undef ANISO_QUAD_AXIS
+}
+#endif
+
 /* Levels l0 + 1 .. l0 + depth (= lt) in one launch: every parent below a top
  * parent (level lt) depends only on that top parent's subtree, so a
  * work-item or work-group that owns whole subtrees needs no other.
@@ -270,7 +318,16 @@ __kernel VCT_ATTR void mip_iso(__global float4* vol, uint edge_log2, uint l0, ui
 
 __kernel VCT_ATTR void mip_aniso(__global const float4* radiance, __global float4* aniso, uint edge_log2, uint l0,
                                  uint depth, uint tops) {
+#if ML_GPU
 #define ANISO_CALL(l, ep_log2, p) aniso_one(radiance, aniso, edge_log2, l, ep_log2, p)
   MIP_TREE(ANISO_CALL)
 #undef ANISO_CALL
+#else
+  uint b, e;
+  item_range(1u << (edge_log2 - l0 - depth), tops, &b, &e);
+  for (uint l = l0 + 1u; l <= l0 + depth; ++l) {
+    const uint m_log2 = l0 + depth - l;
+    aniso_slices(radiance, aniso, edge_log2, l, b << m_log2, e << m_log2);
+  }
+#endif
 }
