@@ -17,7 +17,9 @@
  * One launch fills levels l0 + 1 .. l0 + depth (MIP_TREE): each top parent
  * owns its subtree, so small grids are not launch-bound. Shapes
  * (vct_common.cl): ML_GPU=0, a work-item owns a range of top-level z-slices
- * (local size 1); ML_GPU=1, a work-group owns a set of top parents. Every
+ * (local size 1) and walks them row by row, 4 parents per float16
+ * (iso_parent_quad, aniso_slices); ML_GPU=1, a work-group owns a set of top
+ * parents, one parent per work-item. Every
  * child is read once per parent and value set (anisotropic level 1: once for
  * all six directions), so local memory would save nothing.
  * FP_CONTRACT is off so the sums and composites round as in the C++ twin
