@@ -17,7 +17,9 @@
  * One launch fills levels l0 + 1 .. l0 + depth (MIP_TREE): each top parent
  * owns its subtree, so small grids are not launch-bound. Shapes
  * (vct_common.cl): ML_GPU=0, a work-item owns a range of top-level z-slices
- * (local size 1); ML_GPU=1, a work-group owns a set of top parents. Every
+ * (local size 1) and walks them row by row, 4 parents per float16
+ * (iso_parent_quad, aniso_slices); ML_GPU=1, a work-group owns a set of top
+ * parents, one parent per work-item. Every
  * child is read once per parent and value set (anisotropic level 1: once for
  * all six directions), so local memory would save nothing.
  * FP_CONTRACT is off so the sums and composites round as in the C++ twin
@@ -76,12 +78,21 @@ ML_INLINE float8 cat8(float4 a, float4 b) { return (float8)(a.x, a.y, a.z, a.w, 
  * chosen axis pays for C: the filter is bound by instructions, not memory,
  * wherever the grid fits in cache. Pairs as child indices (f0, b0, ..), in
  * the twin's order. */
-#define PAIR_OVERLAP(i, j) (k[i].w * k[j].w)
-#define AXIS_OVERLAP(f0, b0, f1, b1, f2, b2, f3, b3) \
-  ((PAIR_OVERLAP(f0, b0) + PAIR_OVERLAP(f1, b1)) + (PAIR_OVERLAP(f2, b2) + PAIR_OVERLAP(f3, b3)))
-#define PAIR_CROSS(i, j) (k[j].w * k[i] + k[i].w * k[j])
-#define AXIS_CROSS(f0, b0, f1, b1, f2, b2, f3, b3) \
-  ((PAIR_CROSS(f0, b0) + PAIR_CROSS(f1, b1)) + (PAIR_CROSS(f2, b2) + PAIR_CROSS(f3, b3)))
+#define PAIR_OVERLAP(A, i, j) (A(i) * A(j))
+#define AXIS_OVERLAP(A, f0, b0, f1, b1, f2, b2, f3, b3) \
+  ((PAIR_OVERLAP(A, f0, b0) + PAIR_OVERLAP(A, f1, b1)) + (PAIR_OVERLAP(A, f2, b2) + PAIR_OVERLAP(A, f3, b3)))
+#define PAIR_CROSS(A, i, j) (A(j) * k[i] + A(i) * k[j])
+#define AXIS_CROSS(A, f0, b0, f1, b1, f2, b2, f3, b3) \
+  ((PAIR_CROSS(A, f0, b0) + PAIR_CROSS(A, f1, b1)) + (PAIR_CROSS(A, f2, b2) + PAIR_CROSS(A, f3, b3)))
+/* The pairs (f0, b0, ..) of each axis, as child indices in the twin's order;
+ * OVERLAP(A, X_PAIRS) etc. expand the list before AXIS_OVERLAP sees it. A(i):
+ * child i's opacity, a scalar (k[i].w) or broadcast over its lanes. */
+#define X_PAIRS 0, 1, 2, 3, 4, 5, 6, 7
+#define Y_PAIRS 0, 2, 1, 3, 4, 6, 5, 7
+#define Z_PAIRS 0, 4, 1, 5, 2, 6, 3, 7
+#define OVERLAP(...) AXIS_OVERLAP(__VA_ARGS__)
+#define CROSS(...) AXIS_CROSS(__VA_ARGS__)
+#define ALPHA(i) k[i].w
 
 /* Keeping the most opaque axis, not the mean of the three, holds a one-voxel
  * wall opaque at every level (the mean gives 2/3, 4/9, ..): Cornell box,
@@ -89,18 +100,84 @@ ML_INLINE float8 cat8(float4 a, float4 b) { return (float8)(a.x, a.y, a.z, a.w, 
 ML_INLINE float4 iso_parent(__global const float4* c, uint sy, uint sz) {
   float4 k[8];
   load8(c, sy, sz, k);
-  const float dx = AXIS_OVERLAP(0, 1, 2, 3, 4, 5, 6, 7), dy = AXIS_OVERLAP(0, 2, 1, 3, 4, 6, 5, 7);
-  const float dz = AXIS_OVERLAP(0, 4, 1, 5, 2, 6, 3, 7);
+  const float dx = OVERLAP(ALPHA, X_PAIRS), dy = OVERLAP(ALPHA, Y_PAIRS), dz = OVERLAP(ALPHA, Z_PAIRS);
   const float4 sum = ((k[0] + k[1]) + (k[2] + k[3])) + ((k[4] + k[5]) + (k[6] + k[7]));
   float4 cross;
   if (dz < min(dx, dy))
-    cross = AXIS_CROSS(0, 4, 1, 5, 2, 6, 3, 7);
+    cross = CROSS(ALPHA, Z_PAIRS);
   else if (dy < dx)
-    cross = AXIS_CROSS(0, 2, 1, 3, 4, 6, 5, 7);
+    cross = CROSS(ALPHA, Y_PAIRS);
   else
-    cross = AXIS_CROSS(0, 1, 2, 3, 4, 5, 6, 7);
+    cross = CROSS(ALPHA, X_PAIRS);
   return (sum - 0.5f * cross) * 0.25f;
 }
+
+#if !ML_GPU
+/* CPU shape: 4 x-adjacent parents at once, parent j in float4 lane group j
+ * of each float16. Their children are two rows of 8 float4 per (y, z) child
+ * pair, contiguous, so k[i] (child i of the 4 parents) is a shuffle of two
+ * row loads, and the 4 results are one contiguous store. Every float16
+ * operation does the work of 4 float4 ones (the filter is bound by
+ * instructions: 002's box filter ran at the copy kernel's speed). The axis
+ * choice is per lane group: select() over the three cross terms, and only the
+ * x one when no parent picks another (ties go to x: every empty or uniform
+ * block), where a branch per parent mispredicts on mixed volumes. Each lane
+ * group rounds exactly as iso_parent(). */
+#define W16(v)                                                                                                  \
+  ((float16)((v).s3, (v).s3, (v).s3, (v).s3, (v).s7, (v).s7, (v).s7, (v).s7, (v).sb, (v).sb, (v).sb, (v).sb, \
+             (v).sf, (v).sf, (v).sf, (v).sf))
+#define ALPHA16(i) w[i]
+/* The even and odd children (float4 0, 2, 4, 6 and 1, 3, 5, 7) of a row of 8
+ * loaded as two float16, component by component: Oclgrind 21.10 crashed on
+ * the kernel joining float4 swizzles, and PoCL ran this form faster. */
+#define EVEN_CHILDREN(a, b)                                                                                          \
+  ((float16)((a).s0, (a).s1, (a).s2, (a).s3, (a).s8, (a).s9, (a).sa, (a).sb, (b).s0, (b).s1, (b).s2, (b).s3, (b).s8, \
+             (b).s9, (b).sa, (b).sb))
+#define ODD_CHILDREN(a, b)                                                                                           \
+  ((float16)((a).s4, (a).s5, (a).s6, (a).s7, (a).sc, (a).sd, (a).se, (a).sf, (b).s4, (b).s5, (b).s6, (b).s7, (b).sc, \
+             (b).sd, (b).se, (b).sf))
+/* A lane of each parent: any() over int16 compiled to a slow lane loop. */
+#define ANY_PARENT(m) (((m).s0 | (m).s4) | ((m).s8 | (m).sc))
+/* k[i]: child i of the 4 parents whose first child is c[0]. */
+ML_INLINE void load_quad(__global const float4* c, uint sy, uint sz, float16* k) {
+  for (uint r = 0u; r < 4u; ++r) {
+    __global const float* row = (__global const float*)(c + (r & 1u) * sy + (r >> 1u) * sz);
+    const float16 a = vload16(0u, row), b = vload16(1u, row);
+    k[2u * r] = EVEN_CHILDREN(a, b);
+    k[2u * r + 1u] = ODD_CHILDREN(a, b);
+  }
+}
+ML_INLINE void iso_parent_quad(__global const float4* c, uint sy, uint sz, __global float4* dst) {
+  float16 k[8], w[8];
+  load_quad(c, sy, sz, k);
+  for (uint i = 0u; i < 8u; ++i) w[i] = W16(k[i]);
+  const float16 dx = OVERLAP(ALPHA16, X_PAIRS), dy = OVERLAP(ALPHA16, Y_PAIRS), dz = OVERLAP(ALPHA16, Z_PAIRS);
+  const float16 sum = ((k[0] + k[1]) + (k[2] + k[3])) + ((k[4] + k[5]) + (k[6] + k[7]));
+  const int16 use_y = isless(dy, dx), use_z = isless(dz, fmin(dx, dy));
+  float16 cross = CROSS(ALPHA16, X_PAIRS);
+  if ((ANY_PARENT(use_y) | ANY_PARENT(use_z)) != 0)
+    cross = select(select(cross, CROSS(ALPHA16, Y_PAIRS), use_y), CROSS(ALPHA16, Z_PAIRS), use_z);
+  vstore16((sum - 0.5f * cross) * 0.25f, 0u, (__global float*)dst);
+}
+
+/* Level l's parents in z-slices z0 .. z1 - 1, row by row: level offsets once
+ * per level and row starts once per row, not per parent. Edges are powers of
+ * two, so rows of >= 4 parents split into quads; smaller levels are tiny. */
+ML_INLINE void iso_slices(__global float4* vol, uint edge_log2, uint l, uint z0, uint z1) {
+  const uint edge = 1u << edge_log2, ep = edge >> l, ec = 2u * ep;
+  __global const float4* child = vol + voxel_level_offset(edge, l - 1u);
+  __global float4* parent = vol + voxel_level_offset(edge, l);
+  for (uint z = z0; z < z1; ++z)
+    for (uint y = 0u; y < ep; ++y) {
+      __global const float4* c = child + 2u * ec * (y + ec * z);
+      __global float4* d = parent + ep * (y + ep * z);
+      if (ep >= 4u)
+        for (uint x = 0u; x < ep; x += 4u) iso_parent_quad(c + 2u * x, ec, ec * ec, d + x);
+      else
+        for (uint x = 0u; x < ep; ++x) d[x] = iso_parent(c + 2u * x, ec, ec * ec);
+    }
+}
+#endif
 
 /* Parent i (0 .. 8^m_log2 - 1, x fastest) of the block of 2^m_log2 parents
  * per axis under top parent t, in a level of edge 1 << (et_log2 + m_log2)
@@ -147,6 +224,50 @@ ML_INLINE void aniso_one(__global const float4* radiance, __global float4* aniso
 #undef ANISO_STORE
 }
 
+#if !ML_GPU
+/* CPU shape, anisotropic: 4 x-adjacent parents per float16 as in
+ * iso_parent_quad(); direction 2 axis + neg composites the pairs along the
+ * axis (stride s; u, v the other two axes' strides) with the low child in
+ * front (neg = 0) or the high one, in anisoDir()'s order. */
+ML_INLINE float16 over16(float16 f, float16 b) { return f + (1.0f - W16(f)) * b; }
+#define OVER_PAIR(i, s, neg) ((neg) ? over16(k[(i) + (s)], k[i]) : over16(k[i], k[(i) + (s)]))
+ML_INLINE float16 aniso_quad_dir(const float16* k, uint s, uint u, uint v, bool neg) {
+  return ((OVER_PAIR(0u, s, neg) + OVER_PAIR(u, s, neg)) + (OVER_PAIR(v, s, neg) + OVER_PAIR(u + v, s, neg))) * 0.25f;
+}
+
+/* Level l's parents in z-slices z0 .. z1 - 1, row by row as iso_slices():
+ * level 1 loads isotropic level 0 once for all six directions, levels >= 2
+ * direction d of the finer level; rows under 4 parents use aniso_one(). */
+ML_INLINE void aniso_slices(__global const float4* radiance, __global float4* aniso, uint edge_log2, uint l, uint z0,
+                            uint z1) {
+  const uint edge = 1u << edge_log2, ep = edge >> l, ec = 2u * ep, n = ep * ep * ep, nc = 8u * n;
+  const bool from_iso = l == 1u;
+  __global const float4* src = from_iso ? radiance : aniso + voxel_aniso_index(edge, l - 1u, 0u, 0u);
+  __global float4* dst = aniso + voxel_aniso_index(edge, l, 0u, 0u);
+  float16 k[8];
+#define ANISO_QUAD_AXIS(axis, s, u, v)                                                           \
+  for (uint neg = 0u; neg < 2u; ++neg) {                                                         \
+    const uint d = 2u * (axis) + neg;                                                            \
+    if (!from_iso) load_quad(src + d * nc + c, ec, ec * ec, k);                                  \
+    vstore16(aniso_quad_dir(k, s, u, v, neg != 0u), 0u, (__global float*)(dst + d * n + p)); \
+  }
+  for (uint z = z0; z < z1; ++z)
+    for (uint y = 0u; y < ep; ++y)
+      for (uint x = 0u; x < ep; x += ep >= 4u ? 4u : 1u) {
+        const uint c = 2u * x + 2u * ec * (y + ec * z), p = x + ep * (y + ep * z);
+        if (ep < 4u) {
+          aniso_one(radiance, aniso, edge_log2, l, edge_log2 - l, p);
+          continue;
+        }
+        if (from_iso) load_quad(src + c, ec, ec * ec, k);
+        ANISO_QUAD_AXIS(0u, 1u, 2u, 4u)
+        ANISO_QUAD_AXIS(1u, 2u, 1u, 4u)
+        ANISO_QUAD_AXIS(2u, 4u, 1u, 2u)
+      }
+#undef ANISO_QUAD_AXIS
+}
+#endif
+
 /* Levels l0 + 1 .. l0 + depth (= lt) in one launch: every parent below a top
  * parent (level lt) depends only on that top parent's subtree, so a
  * work-item or work-group that owns whole subtrees needs no other.
@@ -182,14 +303,33 @@ ML_INLINE void aniso_one(__global const float4* radiance, __global float4* aniso
 /* `tops`: top-level z-slices per work-item (ML_GPU=0), top parents per
  * work-group (ML_GPU=1). */
 __kernel VCT_ATTR void mip_iso(__global float4* vol, uint edge_log2, uint l0, uint depth, uint tops) {
+#if ML_GPU
 #define ISO_CALL(l, ep_log2, p) iso_one(vol, edge_log2, l, ep_log2, p)
   MIP_TREE(ISO_CALL)
 #undef ISO_CALL
+#else
+  /* MIP_TREE's walk, row by row (iso_slices). */
+  uint b, e;
+  item_range(1u << (edge_log2 - l0 - depth), tops, &b, &e);
+  for (uint l = l0 + 1u; l <= l0 + depth; ++l) {
+    const uint m_log2 = l0 + depth - l;  // level l's z-slices per top-level one
+    iso_slices(vol, edge_log2, l, b << m_log2, e << m_log2);
+  }
+#endif
 }
 
 __kernel VCT_ATTR void mip_aniso(__global const float4* radiance, __global float4* aniso, uint edge_log2, uint l0,
                                  uint depth, uint tops) {
+#if ML_GPU
 #define ANISO_CALL(l, ep_log2, p) aniso_one(radiance, aniso, edge_log2, l, ep_log2, p)
   MIP_TREE(ANISO_CALL)
 #undef ANISO_CALL
+#else
+  uint b, e;
+  item_range(1u << (edge_log2 - l0 - depth), tops, &b, &e);
+  for (uint l = l0 + 1u; l <= l0 + depth; ++l) {
+    const uint m_log2 = l0 + depth - l;
+    aniso_slices(radiance, aniso, edge_log2, l, b << m_log2, e << m_log2);
+  }
+#endif
 }

@@ -3,11 +3,13 @@
 // isotropic and anisotropic: random volumes of edge 1 .. 64, empty, fully
 // opaque, checkerboard, one opaque black voxel among empty ones; full and
 // partial pyramids (one launch covers up to 3 levels: edge 16 and up need
-// more than one). A one-voxel wall must stay opaque at every level. Bit for bit: the kernels turn FP_CONTRACT off and do the
-// twin's additions and multiplications in its order (no division or sqrt),
-// so any difference is a bug, not rounding. Outputs are poisoned first, and
-// level 0 must come back untouched. Known values pin the filters themselves
-// (a twin sharing a kernel's bug would otherwise pass).
+// more than one). A one-voxel wall must stay opaque at every level, also
+// when the parents next to it keep other axes. Bit for bit: the kernels turn
+// FP_CONTRACT off and do the twin's additions and multiplications in its
+// order (no division or sqrt), so any difference is a bug, not rounding.
+// Outputs are poisoned first, and level 0 must come back untouched. Known
+// values pin the filters themselves (a twin sharing a kernel's bug would
+// otherwise pass).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -205,6 +207,39 @@ TEST_P(VctMips, OneVoxelWallStaysOpaqueAtEveryLevel) {
       }
     }
   }
+}
+
+// Neighbouring parents that keep different axes: the CPU shape filters 4
+// x-adjacent parents at once and chooses each one's axis by lane, so a row
+// holding a wall normal to x, to y, to z and nothing must give each parent
+// its own wall, opaque and undiluted (one axis for all 4 would give the y and
+// z walls opacity 1/2), and equal the twin.
+TEST_P(VctMips, NeighbouringParentsKeepTheirOwnAxis) {
+  auto& rt = test::runtime();
+  auto& q = rt.queue();
+  VoxelMips mips(compute::ComputeEnv(rt), compute::Options{.shape = GetParam()});
+  constexpr unsigned kEdge = 8, kLevels = 2, kNone = 3;
+  // Wall normal per parent x (0 .. 3) in parent rows y = 0 and y = 1 (z = 0).
+  const unsigned normals[2][4] = {{0, 1, 2, kNone}, {2, kNone, 1, 0}};
+  std::vector<F4> v(gpu::voxel_level_offset(kEdge, kLevels), F4{0, 0, 0, 0});
+  for (unsigned py = 0; py < 2; ++py)
+    for (unsigned px = 0; px < 4; ++px)
+      for (unsigned i = 0; i < 8 && normals[py][px] != kNone; ++i)
+        if (((i >> normals[py][px]) & 1) == 0)  // the child layer nearer the origin along the normal
+          v[(2 * px + (i & 1)) + kEdge * ((2 * py + ((i >> 1) & 1)) + kEdge * ((i >> 2) & 1))] = {0.2f, 0.4f, 0.6f, 1};
+  std::vector<F4> want = v;
+  mipIsotropicTwin(want, kEdge, kLevels);
+  cl::Buffer vol = compute::upload(rt.context(), q, v);
+  mips.isotropic(q, grid(kEdge, kLevels), vol);
+  const auto got = compute::download<F4>(q, vol, v.size());
+  EXPECT_EQ(firstDifference(got, want), "");
+  for (unsigned py = 0; py < 2; ++py)
+    for (unsigned px = 0; px < 4; ++px) {
+      const F4 p = got[kEdge * kEdge * kEdge + px + 4 * py];
+      const float a = normals[py][px] == kNone ? 0.0f : 1.0f;
+      EXPECT_EQ(p.w, a) << "parent x " << px << " y " << py;
+      EXPECT_EQ(p.x, a * 0.2f) << "parent x " << px << " y " << py;
+    }
 }
 
 TEST_P(VctMips, RejectsSmallBuffers) {
