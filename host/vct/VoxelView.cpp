@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gl/GlCheck.hpp"
+#include "gl/Texture2d.hpp"
 #include "host/shared/vct_bindings.h"
 #include "host/util/Error.hpp"
 #include "host/util/GiToneMap.hpp"
@@ -90,9 +91,7 @@ std::vector<float> VoxelViewPass::dispatch(const VoxelVolume& volume, VoxelViewK
   const SharedBuffer* aniso = volume.anisotropic();
   for (const SharedBuffer* b : {&volume.radiance(), &volume.accum(), aniso})
     if (b) checkBlockLimit(*b);
-  GLuint image = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &image);
-  glTextureStorage2D(image, 1, GL_RGBA32F, static_cast<GLsizei>(w), static_cast<GLsizei>(h));
+  const GLuint image = makeTexture2d(GL_RGBA32F, w, h);  // an image only: its filtering is never used
   // Poisoned: a pixel the shader skipped reads NaN, not whatever the storage held.
   const float nan[4] = {std::nanf(""), std::nanf(""), std::nanf(""), std::nanf("")};
   glClearTexImage(image, 0, GL_RGBA, GL_FLOAT, nan);
