@@ -2,7 +2,7 @@
 // BenchCommon.hpp, so that each bench main keeps only its own measurements:
 //   BenchArgs + addBenchArgs()   --json, --reps, --device, --light-density
 //   parseCommandLine()           argv, then --json and the bench's own checks,
-//                                before GL/CL open
+//                                before GL/CL open (the vct bench uses it too)
 //   BenchSetup::open()           GL + CL through the run layer (RunContext), the
 //                                device lines, the default scene and its camera
 //   generatedLights()            N lights in the default scene's light volumes
@@ -56,7 +56,7 @@ struct BenchSetup {
 };
 
 // `count` ("1000") lights generated in the default scene's light volumes
-// (seed 23), at constant density when `density` > 0, else of `radius` (0: the
+// (seed kThesisSeed), at constant density when `density` > 0, else of `radius` (0: the
 // volumes' default).
 std::vector<gpu::PointLight> generatedLights(const std::string& count, float density, float radius = 0.0f);
 

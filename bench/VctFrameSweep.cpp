@@ -7,6 +7,7 @@
 #include "host/reference/IndirectReference.hpp"
 #include "host/techniques/Registry.hpp"
 #include "host/util/DataPaths.hpp"
+#include "host/util/ThesisSeed.hpp"
 #include "host/vct/VctGiPass.hpp"
 
 namespace ml::benchvct {
@@ -31,7 +32,7 @@ SweepScene loadScene(const std::string& name, unsigned lights, const FrameSweepO
   }
   if (lights > 0) a.lights = std::to_string(lights);
   SweepScene s{name, loadSceneInputs(a), {}};
-  const IndirectOptions r{o.reference_samples, 23, false};
+  const IndirectOptions r{o.reference_samples, kThesisSeed, false};
   s.reference = traceIndirectReference(s.in.scene, s.in.lights, s.in.cameras.frames.front(), o.width, o.height, r).rgba;
   return s;
 }

@@ -38,6 +38,7 @@
 #include "host/vct/VoxelInjector.hpp"
 #include "host/vct/VoxelMips.hpp"
 #include "BenchCommon.hpp"
+#include "BenchSupport.hpp"
 #include "VctFrameSweep.hpp"
 
 namespace {
@@ -171,60 +172,73 @@ struct Bench {
   }
 };
 
-int run(int argc, char** argv) {
-  CLI::App app{"Voxel cone tracing, compute side: mip bandwidth vs copy, hashed vs brute-force injection"};
-  std::string json_path, edges = "32,64,128", light_counts = "1000,10000", device;
+struct Args {
+  benchutil::BenchArgs common;  // --json, --reps, --device (no --light-density here)
+  std::string edges = "32,64,128", light_counts = "1000,10000";
   unsigned levels = 4, inject_edge = 64;
   double radius = 0.1;
-  int reps = 5;
   bool frame = false;
   std::string cones = "5,9,16", frame_lights, frame_technique = "deferred";
-  app.add_flag("--frame", frame, "cone tracing in the frame instead: per pass and error vs the reference");
-  app.add_option("--cones", cones, "--frame: diffuse cone counts")->capture_default_str();
-  app.add_option("--frame-lights", frame_lights,
+};
+
+void parseArgs(CLI::App& app, Args& a) {
+  app.add_flag("--frame", a.frame, "cone tracing in the frame instead: per pass and error vs the reference");
+  app.add_option("--cones", a.cones, "--frame: diffuse cone counts")->capture_default_str();
+  app.add_option("--frame-lights", a.frame_lights,
                  "--frame: generated light counts (as render --lights N), e.g. 1000,10000; default: each scene's own");
-  app.add_option("--frame-technique", frame_technique, "--frame: the technique of the direct light")
+  app.add_option("--frame-technique", a.frame_technique, "--frame: the technique of the direct light")
       ->capture_default_str();
-  app.add_option("--json", json_path, "write records as JSON");
-  app.add_option("--edges", edges, "mip grid edges (powers of two)")->capture_default_str();
-  app.add_option("--levels", levels, "mip levels")->capture_default_str();
-  app.add_option("--lights", light_counts, "injection light counts")->capture_default_str();
-  app.add_option("--inject-edge", inject_edge, "injection grid edge")->capture_default_str();
-  app.add_option("--radius", radius, "light radius, as a fraction of the room")->capture_default_str();
-  app.add_option("--reps", reps, "timed repetitions (median reported)")->capture_default_str();
-  app.add_option("--device", device, "OpenCL device");
-  CLI11_PARSE(app, argc, argv);
-  benchutil::requireWritable("--json", json_path);
-  if (reps < 1) throw UserError("--reps: must be at least 1");
-  if (!(radius > 0)) throw UserError("--radius: must be positive");
-  const std::vector<unsigned> edge_list = parseCounts(edges, "--edges"), light_list = parseCounts(light_counts, "--lights");
-  for (unsigned e : edge_list) vct::checkVoxelGrid({e, levels, false});
-  if (frame) {
+  app.add_option("--json", a.common.json_path, "write records as JSON");
+  app.add_option("--edges", a.edges, "mip grid edges (powers of two)")->capture_default_str();
+  app.add_option("--levels", a.levels, "mip levels")->capture_default_str();
+  app.add_option("--lights", a.light_counts, "injection light counts")->capture_default_str();
+  app.add_option("--inject-edge", a.inject_edge, "injection grid edge")->capture_default_str();
+  app.add_option("--radius", a.radius, "light radius, as a fraction of the room")->capture_default_str();
+  app.add_option("--reps", a.common.reps, "timed repetitions (median reported)")->capture_default_str();
+  app.add_option("--device", a.common.device, "OpenCL device");
+}
+
+// The flags parsing leaves unchecked, checked before CL opens.
+void checkArgs(const Args& a) {
+  if (a.common.reps < 1) throw UserError("--reps: must be at least 1");
+  if (!(a.radius > 0)) throw UserError("--radius: must be positive");
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"Voxel cone tracing, compute side: mip bandwidth vs copy, hashed vs brute-force injection"};
+  Args a;
+  parseArgs(app, a);
+  if (const auto stop = benchutil::parseCommandLine(app, argc, argv, a.common, [&] { checkArgs(a); })) return *stop;
+  const std::vector<unsigned> edge_list = parseCounts(a.edges, "--edges");
+  const std::vector<unsigned> light_list = parseCounts(a.light_counts, "--lights");
+  for (unsigned e : edge_list) vct::checkVoxelGrid({e, a.levels, false});
+  if (a.frame) {
     benchvct::FrameSweepOptions o;
     o.voxels = edge_list;
-    o.cones = parseCounts(cones, "--cones");
+    o.cones = parseCounts(a.cones, "--cones");
     for (unsigned c : o.cones) vct::checkConeSettings(c, 45.0f);
-    if (!frame_lights.empty()) o.lights = parseCounts(frame_lights, "--frame-lights");
-    o.technique = findTechnique(frame_technique, "--frame-technique").name;
-    o.levels = levels;
-    o.reps = reps;
-    o.device = device;
-    benchutil::writeJson(json_path, benchvct::frameSweep(o));
+    if (!a.frame_lights.empty()) o.lights = parseCounts(a.frame_lights, "--frame-lights");
+    o.technique = findTechnique(a.frame_technique, "--frame-technique").name;
+    o.levels = a.levels;
+    o.reps = a.common.reps;
+    o.device = a.common.device;
+    benchutil::writeJson(a.common.json_path, benchvct::frameSweep(o));
     return 0;
   }
-  vct::checkVoxelGrid({inject_edge, 1, false});
-  auto rt = ClRuntime::create(DeviceChoice::resolve(device));
+  vct::checkVoxelGrid({a.inject_edge, 1, false});
+  auto rt = ClRuntime::create(DeviceChoice::resolve(a.common.device));
   std::printf("%s\n", rt->describe().c_str());
-  Bench b{*rt, reps};
-  std::printf("\nMip propagation, all levels (median of %d); GB/s = bytes read + written per second\n", reps);
+  Bench b{*rt, a.common.reps};
+  std::printf("\nMip propagation, all levels (median of %d); GB/s = bytes read + written per second\n", a.common.reps);
   std::printf("%7s %6s %-12s %-5s %10s %9s %9s %9s\n", "grid", "levels", "filter", "shape", "ms", "GB/s", "copy GB/s",
               "of copy");
-  for (unsigned e : edge_list) b.mips(e, levels);
-  std::printf("\nInjection (median of %d): hashed lists vs brute force, room of %u^3 voxels\n", reps, inject_edge);
+  for (unsigned e : edge_list) b.mips(e, a.levels);
+  std::printf("\nInjection (median of %d): hashed lists vs brute force, room of %u^3 voxels\n", a.common.reps,
+              a.inject_edge);
   std::printf("%7s %8s %7s %6s %10s %12s %12s %9s %12s\n", "grid", "lights", "filled", "radius", "build ms",
               "brute ms", "hashed ms", "speedup", "list/voxel");
-  for (unsigned n : light_list) b.inject(inject_edge, n, radius);
-  benchutil::writeJson(json_path, b.records);
+  for (unsigned n : light_list) b.inject(a.inject_edge, n, a.radius);
+  benchutil::writeJson(a.common.json_path, b.records);
   return 0;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "gl/GlCheck.hpp"
+#include "host/shared/vct_bindings.h"
 #include "host/util/Error.hpp"
 
 namespace ml {
@@ -69,11 +70,11 @@ void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, 
   program_.set4("u_origin_voxel_size", o.x, o.y, o.z, o.w);
   program_.set("u_edge", grid.edge);
   program_.set("u_dilate", options_.dilate ? 1 : 0);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, accum.gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_VOXELIZE_ACCUM, accum.gl());
   scene.draw(program_, true);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
                   GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_VOXELIZE_ACCUM, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glCheck("voxelizing the scene");
 }

@@ -8,8 +8,9 @@
 // corrected to the step's length, 1 - (1 - a)^(step / edge), before
 //   c += (1 - A) c_step,  A += (1 - A) a_step.
 // It stops at opacity 0.99 or where it leaves the grid (outside is empty).
-layout(binding = 4) uniform sampler3D u_voxels;
-layout(binding = 5) uniform sampler3D u_voxel_dirs[6];  // +X -X +Y -Y +Z -Z (direction of travel)
+#include "vct_bindings.h"
+layout(binding = ML_UNIT_VCT_VOXELS) uniform sampler3D u_voxels;
+layout(binding = ML_UNIT_VCT_VOXEL_DIRS) uniform sampler3D u_voxel_dirs[6];  // +X -X +Y -Y +Z -Z (direction of travel)
 uniform vec4 u_grid_origin_size;  // corner xyz, level-0 voxel edge w
 uniform float u_grid_edge;        // level-0 voxels per axis
 uniform float u_grid_max_lod;     // levels - 1

@@ -4,12 +4,16 @@
 #include "common.glsl"
 #include "octahedral.glsl"
 #include "vct_cones.glsl"
+#include "vct_bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 2) uniform sampler2D u_gbuffer_normal;
-layout(binding = 3) uniform sampler2D u_gbuffer_depth;
-layout(rgba16f, binding = 0) uniform writeonly image2D u_irradiance;  // irradiance / pi, ambient occlusion
-layout(rgba32f, binding = 1) uniform writeonly image2D u_geometry;    // normal, view distance (0: sky)
-layout(rgba16f, binding = 2) uniform writeonly image2D u_specular;    // the specular cone's radiance
+layout(binding = ML_UNIT_VCT_GBUFFER_NORMAL) uniform sampler2D u_gbuffer_normal;
+layout(binding = ML_UNIT_VCT_GBUFFER_DEPTH) uniform sampler2D u_gbuffer_depth;
+// irradiance / pi, ambient occlusion
+layout(rgba16f, binding = ML_IMAGE_VCT_TRACE_IRRADIANCE) uniform writeonly image2D u_irradiance;
+// normal, view distance (0: sky)
+layout(rgba32f, binding = ML_IMAGE_VCT_TRACE_GEOMETRY) uniform writeonly image2D u_geometry;
+// the specular cone's radiance
+layout(rgba16f, binding = ML_IMAGE_VCT_TRACE_SPECULAR) uniform writeonly image2D u_specular;
 uniform uvec2 u_lo_size;
 uniform float u_specular_tan;  // tan(aperture / 2) of the specular cone
 

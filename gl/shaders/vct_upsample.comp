@@ -8,16 +8,17 @@
 // u_ao, and added to the shaded image u_color.
 #include "common.glsl"
 #include "octahedral.glsl"
+#include "vct_bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 1) uniform sampler2D u_gbuffer_albedo;
-layout(binding = 2) uniform sampler2D u_gbuffer_normal;
-layout(binding = 3) uniform sampler2D u_gbuffer_depth;
-layout(binding = 4) uniform sampler2D u_lo_irradiance;
-layout(binding = 5) uniform sampler2D u_lo_geometry;
-layout(binding = 6) uniform sampler2D u_lo_specular;
-layout(rgba32f, binding = 0) uniform image2D u_color;
-layout(rgba32f, binding = 1) uniform writeonly image2D u_indirect;
-layout(r32f, binding = 2) uniform writeonly image2D u_ao;
+layout(binding = ML_UNIT_VCT_GBUFFER_ALBEDO) uniform sampler2D u_gbuffer_albedo;
+layout(binding = ML_UNIT_VCT_GBUFFER_NORMAL) uniform sampler2D u_gbuffer_normal;
+layout(binding = ML_UNIT_VCT_GBUFFER_DEPTH) uniform sampler2D u_gbuffer_depth;
+layout(binding = ML_UNIT_VCT_LO_IRRADIANCE) uniform sampler2D u_lo_irradiance;
+layout(binding = ML_UNIT_VCT_LO_GEOMETRY) uniform sampler2D u_lo_geometry;
+layout(binding = ML_UNIT_VCT_LO_SPECULAR) uniform sampler2D u_lo_specular;
+layout(rgba32f, binding = ML_IMAGE_VCT_UPSAMPLE_COLOR) uniform image2D u_color;
+layout(rgba32f, binding = ML_IMAGE_VCT_UPSAMPLE_INDIRECT) uniform writeonly image2D u_indirect;
+layout(r32f, binding = ML_IMAGE_VCT_UPSAMPLE_AO) uniform writeonly image2D u_ao;
 uniform uvec2 u_lo_size;
 uniform float u_radiance_scale;
 uniform float u_specular_weight;

@@ -3,16 +3,17 @@
 // opacity > 0 (cubes), or the voxel of one plane of the level under the pixel
 // (slice mode). host/vct/VoxelViewTwin.cpp repeats these operations in this
 // order (keep them in step).
+#include "vct_bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 
 struct VoxelAccum {
   uvec4 albedo_count;
   ivec4 normal_sum;
 };
-layout(std430, binding = 0) readonly buffer Radiance { vec4 radiance[]; };  // every level
-layout(std430, binding = 1) readonly buffer Accum { VoxelAccum accum[]; };  // level 0
-layout(std430, binding = 2) readonly buffer Aniso { vec4 aniso[]; };        // levels >= 1, 6 directions
-layout(rgba32f, binding = 0) uniform writeonly image2D u_out;
+layout(std430, binding = ML_BINDING_VOXEL_VIEW_RADIANCE) readonly buffer Radiance { vec4 radiance[]; };
+layout(std430, binding = ML_BINDING_VOXEL_VIEW_ACCUM) readonly buffer Accum { VoxelAccum accum[]; };
+layout(std430, binding = ML_BINDING_VOXEL_VIEW_ANISO) readonly buffer Aniso { vec4 aniso[]; };
+layout(rgba32f, binding = ML_IMAGE_VOXEL_VIEW_OUT) uniform writeonly image2D u_out;
 
 uniform mat4 u_inv_view_proj;
 uniform vec3 u_eye;

@@ -6,6 +6,7 @@
 // the slope is at most 1 per axis after dominant-axis projection). Sums are
 // integers (host/shared/voxel_types.h: order-independent atomicAdd).
 #include "material.glsl"
+#include "vct_bindings.h"
 in vec3 gs_normal;
 in vec2 gs_uv;
 flat in uint gs_axis;
@@ -17,7 +18,7 @@ struct VoxelAccum {
   uvec4 albedo_count;
   ivec4 normal_sum;
 };
-layout(std430, binding = 0) buffer VoxelAccumBuffer { VoxelAccum voxels[]; };
+layout(std430, binding = ML_BINDING_VOXELIZE_ACCUM) buffer VoxelAccumBuffer { VoxelAccum voxels[]; };
 uniform uint u_edge;
 
 // (plane x, plane y, depth) voxel -> grid (x, y, z): the inverse of swizzleFor.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gl/GlCheck.hpp"
+#include "host/shared/vct_bindings.h"
 #include "host/util/Error.hpp"
 
 namespace ml::vct {
@@ -35,9 +36,9 @@ std::vector<Cone> diffuseCones(unsigned count) {
 }
 
 void bindConeTracing(const ShaderProgram& p, const ConeTraceSetup& s) {
-  glBindTextureUnit(4, s.textures->radiance());
+  glBindTextureUnit(ML_UNIT_VCT_VOXELS, s.textures->radiance());
   for (unsigned d = 0; d < ML_VOXEL_DIRECTIONS; ++d)
-    glBindTextureUnit(5 + d, s.anisotropic ? s.textures->direction(d) : s.textures->radiance());
+    glBindTextureUnit(ML_UNIT_VCT_VOXEL_DIRS + d, s.anisotropic ? s.textures->direction(d) : s.textures->radiance());
   const auto& o = s.grid.origin_voxel_size;
   p.set4("u_grid_origin_size", o.x, o.y, o.z, o.w);
   p.set("u_grid_edge", float(s.grid.edge));

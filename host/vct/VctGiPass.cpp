@@ -7,6 +7,7 @@
 #include "gl/Texture2d.hpp"
 #include "gl/ViewUniforms.hpp"
 #include "host/shared/shading_model.h"
+#include "host/shared/vct_bindings.h"
 #include "host/util/Error.hpp"
 
 namespace ml::vct {
@@ -89,11 +90,11 @@ void VctGiPass::trace(const GiFrameInputs& in) {
                            s_.broken});
   trace_.setU2("u_lo_size", lo_w_, lo_h_);
   trace_.set("u_specular_tan", std::tan(kSpecularApertureDeg * 3.14159265f / 360.0f));
-  glBindTextureUnit(2, in.normal);
-  glBindTextureUnit(3, in.depth);
-  glBindImageTexture(0, lo_irradiance_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  glBindImageTexture(1, lo_geometry_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glBindImageTexture(2, lo_specular_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  glBindTextureUnit(ML_UNIT_VCT_GBUFFER_NORMAL, in.normal);
+  glBindTextureUnit(ML_UNIT_VCT_GBUFFER_DEPTH, in.depth);
+  glBindImageTexture(ML_IMAGE_VCT_TRACE_IRRADIANCE, lo_irradiance_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  glBindImageTexture(ML_IMAGE_VCT_TRACE_GEOMETRY, lo_geometry_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(ML_IMAGE_VCT_TRACE_SPECULAR, lo_specular_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   glDispatchCompute(groups(lo_w_), groups(lo_h_), 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   glCheck("vct-trace");
@@ -106,15 +107,15 @@ void VctGiPass::upsample(const GiFrameInputs& in) {
   upsample_.setU2("u_lo_size", lo_w_, lo_h_);
   upsample_.set("u_radiance_scale", 1.0f / ML_SHADE_DIRECT);
   upsample_.set("u_specular_weight", s_.specular ? kSpecularWeight : 0.0f);
-  glBindTextureUnit(1, in.albedo);
-  glBindTextureUnit(2, in.normal);
-  glBindTextureUnit(3, in.depth);
-  glBindTextureUnit(4, lo_irradiance_);
-  glBindTextureUnit(5, lo_geometry_);
-  glBindTextureUnit(6, lo_specular_);
-  glBindImageTexture(0, in.color, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  glBindImageTexture(1, indirect_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glBindImageTexture(2, ao_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  glBindTextureUnit(ML_UNIT_VCT_GBUFFER_ALBEDO, in.albedo);
+  glBindTextureUnit(ML_UNIT_VCT_GBUFFER_NORMAL, in.normal);
+  glBindTextureUnit(ML_UNIT_VCT_GBUFFER_DEPTH, in.depth);
+  glBindTextureUnit(ML_UNIT_VCT_LO_IRRADIANCE, lo_irradiance_);
+  glBindTextureUnit(ML_UNIT_VCT_LO_GEOMETRY, lo_geometry_);
+  glBindTextureUnit(ML_UNIT_VCT_LO_SPECULAR, lo_specular_);
+  glBindImageTexture(ML_IMAGE_VCT_UPSAMPLE_COLOR, in.color, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  glBindImageTexture(ML_IMAGE_VCT_UPSAMPLE_INDIRECT, indirect_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(ML_IMAGE_VCT_UPSAMPLE_AO, ao_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   glDispatchCompute(groups(width_), groups(height_), 1);
   glCheck("vct-upsample");
 }

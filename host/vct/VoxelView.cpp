@@ -6,6 +6,8 @@
 #include <string>
 
 #include "gl/GlCheck.hpp"
+#include "gl/Texture2d.hpp"
+#include "host/shared/vct_bindings.h"
 #include "host/util/Error.hpp"
 #include "host/util/GiToneMap.hpp"
 
@@ -89,9 +91,7 @@ std::vector<float> VoxelViewPass::dispatch(const VoxelVolume& volume, VoxelViewK
   const SharedBuffer* aniso = volume.anisotropic();
   for (const SharedBuffer* b : {&volume.radiance(), &volume.accum(), aniso})
     if (b) checkBlockLimit(*b);
-  GLuint image = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &image);
-  glTextureStorage2D(image, 1, GL_RGBA32F, static_cast<GLsizei>(w), static_cast<GLsizei>(h));
+  const GLuint image = makeTexture2d(GL_RGBA32F, w, h);  // an image only: its filtering is never used
   // Poisoned: a pixel the shader skipped reads NaN, not whatever the storage held.
   const float nan[4] = {std::nanf(""), std::nanf(""), std::nanf(""), std::nanf("")};
   glClearTexImage(image, 0, GL_RGBA, GL_FLOAT, nan);
@@ -103,16 +103,17 @@ std::vector<float> VoxelViewPass::dispatch(const VoxelVolume& volume, VoxelViewK
   program_.set("u_offset", gpu::voxel_level_offset(grid.edge, level));
   program_.set("u_kind", static_cast<unsigned>(kind));
   program_.setU2("u_size", w, h);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, volume.radiance().gl());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, volume.accum().gl());
-  // Without an anisotropic volume the shader reads no binding 2; bind something valid.
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, aniso ? aniso->gl() : volume.radiance().gl());
-  glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_VOXEL_VIEW_RADIANCE, volume.radiance().gl());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_VOXEL_VIEW_ACCUM, volume.accum().gl());
+  // Without an anisotropic volume the shader reads no aniso buffer; bind something valid.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_VOXEL_VIEW_ANISO, aniso ? aniso->gl() : volume.radiance().gl());
+  glBindImageTexture(ML_IMAGE_VOXEL_VIEW_OUT, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute((w + kGroup - 1) / kGroup, (h + kGroup - 1) / kGroup, 1);
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
   std::vector<float> px(std::size_t(w) * h * 4);
   glGetTextureImage(image, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(px.size() * sizeof(float)), px.data());
-  for (GLuint b : {0u, 1u, 2u}) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+  for (GLuint b : {ML_BINDING_VOXEL_VIEW_RADIANCE, ML_BINDING_VOXEL_VIEW_ACCUM, ML_BINDING_VOXEL_VIEW_ANISO})
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
   glDeleteTextures(1, &image);
   glCheck("voxel view");
   return px;

@@ -1,0 +1,45 @@
+/* Binding points of the voxel cone tracing GL passes, numbered once for C++
+ * and GLSL (as shading_bindings.h does for the shading programs):
+ * voxelize.frag, voxel_view.comp, vct_cones.glsl, vct_trace.comp and
+ * vct_upsample.comp declare their buffers, images and samplers with these
+ * names (GLSL includes this file as "vct_bindings.h"), and VoxelizePass,
+ * VoxelView, ConeTracing and VctGiPass bind with them. Each program has its
+ * own numbering; numbers repeat across programs. Plain macros: the one form
+ * that C++, OpenCL C and GLSL all read. */
+#ifndef MANYLIGHTS_VCT_BINDINGS_H
+#define MANYLIGHTS_VCT_BINDINGS_H
+
+/* Voxelization: the accumulation buffer (VoxelAccum[], voxel_types.h). */
+#define ML_BINDING_VOXELIZE_ACCUM 0
+
+/* Voxel view: the volume's buffers and the output image. */
+#define ML_BINDING_VOXEL_VIEW_RADIANCE 0 /* every level */
+#define ML_BINDING_VOXEL_VIEW_ACCUM 1    /* level 0 */
+#define ML_BINDING_VOXEL_VIEW_ANISO 2    /* levels >= 1, 6 directions */
+#define ML_IMAGE_VOXEL_VIEW_OUT 0
+
+/* Texture units of the trace and upsample passes: the G-buffer (the units
+ * deferred shading reads it from), the voxel textures of the cones (the 6
+ * direction textures take ML_UNIT_VCT_VOXEL_DIRS .. + 5) and the upsample's
+ * reduced-resolution inputs. */
+#define ML_UNIT_VCT_GBUFFER_ALBEDO 1
+#define ML_UNIT_VCT_GBUFFER_NORMAL 2
+#define ML_UNIT_VCT_GBUFFER_DEPTH 3
+#define ML_UNIT_VCT_VOXELS 4
+#define ML_UNIT_VCT_VOXEL_DIRS 5
+#define ML_UNIT_VCT_LO_IRRADIANCE 4
+#define ML_UNIT_VCT_LO_GEOMETRY 5
+#define ML_UNIT_VCT_LO_SPECULAR 6
+
+/* Images the trace writes at reduced resolution. */
+#define ML_IMAGE_VCT_TRACE_IRRADIANCE 0
+#define ML_IMAGE_VCT_TRACE_GEOMETRY 1
+#define ML_IMAGE_VCT_TRACE_SPECULAR 2
+
+/* Images of the upsample: the shaded frame (read and added to), the indirect
+ * light and the ambient occlusion. */
+#define ML_IMAGE_VCT_UPSAMPLE_COLOR 0
+#define ML_IMAGE_VCT_UPSAMPLE_INDIRECT 1
+#define ML_IMAGE_VCT_UPSAMPLE_AO 2
+
+#endif
