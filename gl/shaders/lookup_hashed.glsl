@@ -10,12 +10,13 @@
 // light | octant mask << 24 (host/hashed/OctantMask.hpp): a light is
 // evaluated only if it reaches the point's octant of its leaf cell.
 // The layer loop below runs at most hs_info.z (the layer count) times.
+#include "shading_bindings.h"
 struct LightList {
   uint offset;
   uint end;
   uint octant_bit;  // 1 << (24 + the point's octant)
 };
-layout(std430, binding = 1) readonly buffer LightIndexBuffer { uint light_indices[]; };
+layout(std430, binding = ML_BINDING_HASHED_INDICES) readonly buffer LightIndexBuffer { uint light_indices[]; };
 bool listEnded(LightList list) { return list.offset >= list.end; }
 // One entry per call, no loop (see LightAssigner.hpp): false at the end and
 // for an entry whose light does not reach the point's octant.
@@ -26,16 +27,16 @@ bool nextLight(inout LightList list, out uint light_index) {
   light_index = e & 0xFFFFFFu;
   return (e & list.octant_bit) != 0u;
 }
-layout(std430, binding = 2) readonly buffer HashedHeader {
+layout(std430, binding = ML_BINDING_HASHED_HEADER) readonly buffer HashedHeader {
   vec4 hs_origin_scale;  // octree origin (xyz), cells per world unit (w)
   uvec4 hs_info;         // depth, start depth, layer count, unused
   // Per layer i: [4i] description table (m.xyz, slot base), [4i+1] its
   // offsets (r.xyz, offset base), [4i+2] and [4i+3] the same for light data.
   uvec4 hs_tables[];
 };
-layout(std430, binding = 3) readonly buffer HashedOffsets { uint hs_offsets[]; };
-layout(std430, binding = 4) readonly buffer HashedDesc { uvec2 hs_desc[]; };
-layout(std430, binding = 5) readonly buffer HashedData { uvec4 hs_data[]; };
+layout(std430, binding = ML_BINDING_HASHED_OFFSETS) readonly buffer HashedOffsets { uint hs_offsets[]; };
+layout(std430, binding = ML_BINDING_HASHED_DESC) readonly buffer HashedDesc { uvec2 hs_desc[]; };
+layout(std430, binding = ML_BINDING_HASHED_DATA) readonly buffer HashedData { uvec4 hs_data[]; };
 
 // h(p) = (p mod m + Phi[p mod r]) mod m, flattened, plus the table's base.
 uint hsSlot(uvec3 p, uvec4 m, uvec4 r) {

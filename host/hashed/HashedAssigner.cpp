@@ -6,6 +6,7 @@
 #include "gl/GlCheck.hpp"
 #include "gl/GlPassTimer.hpp"
 #include "gl/ShaderProgram.hpp"
+#include "host/shared/shading_bindings.h"
 
 namespace ml {
 namespace {
@@ -171,11 +172,11 @@ void HashedAssigner::upload(bool rebuilt) {
 }
 
 void HashedAssigner::bindForShading(const ShaderProgram&) const {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, list_.id);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, header_.id);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, offsets_.id);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, desc_.id);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, data_.id);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_HASHED_INDICES, list_.id);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_HASHED_HEADER, header_.id);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_HASHED_OFFSETS, offsets_.id);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_HASHED_DESC, desc_.id);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_HASHED_DATA, data_.id);
 }
 
 std::size_t HashedAssigner::memoryBytes() const {

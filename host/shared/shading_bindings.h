@@ -1,9 +1,9 @@
 /* Shader-storage binding points of the shading programs, numbered once for
- * C++ and GLSL: gl/shaders/common.glsl, lookup_tiled.glsl and
- * lookup_clustered.glsl declare their buffers with these names (GLSL includes
- * this file as "shading_bindings.h"), and FrameRenderer and the assigners bind
- * with them. 0 and 7 are the frame's; 1..6 belong to the technique whose
- * lookup is compiled in, so techniques share the numbers. Plain macros: the
+ * C++ and GLSL: gl/shaders/common.glsl and the lookup_*.glsl files declare
+ * their buffers with these names (GLSL includes this file as
+ * "shading_bindings.h"), and FrameRenderer and the assigners bind with them.
+ * 0 and 7 are the frame's; 1..6 belong to the technique whose lookup is
+ * compiled in, so techniques share the numbers. Plain macros: the
  * one form that C++, OpenCL C and GLSL all read. */
 #ifndef MANYLIGHTS_SHADING_BINDINGS_H
 #define MANYLIGHTS_SHADING_BINDINGS_H
@@ -21,5 +21,13 @@
 #define ML_BINDING_CLUSTER_RANGES 2
 #define ML_BINDING_CLUSTER_MAP 3
 #define ML_BINDING_CLUSTER_LEAF_LIGHTS 4
+
+/* Hashed shading: the light index list, the octree header, and the perfect
+ * spatial hashes' offset, description and light-data tables. */
+#define ML_BINDING_HASHED_INDICES 1
+#define ML_BINDING_HASHED_HEADER 2
+#define ML_BINDING_HASHED_OFFSETS 3
+#define ML_BINDING_HASHED_DESC 4
+#define ML_BINDING_HASHED_DATA 5
 
 #endif
