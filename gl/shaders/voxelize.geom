@@ -25,6 +25,13 @@ uniform vec4 u_origin_voxel_size;
 uniform uint u_edge;            // level-0 voxels per axis = viewport edge, pixels
 uniform bool u_dilate;           // false only in tests that show dilation matters
 
+// Rasterisers snap vertices to a sub-pixel grid (8 bits on llvmpipe and most
+// GPUs: 1/256 pixel), which can move a dilated edge inward past the centre of a
+// pixel the triangle enters by less than that (a rare crossed voxel left
+// empty). The edges move out this much farther; the fragment shader's exact
+// clip drops what the extra margin lets in.
+const float kSnapMargin = 1.0 / 64.0;
+
 // Grid space -> (projection plane x, y, depth) for the dominant axis.
 vec3 swizzleFor(uint axis, vec3 g) {
   if (axis == 0u) return g.yzx;
@@ -60,7 +67,7 @@ void main() {
     vec2 e = p[(i + 1) % 3].xy - p[i].xy;
     en[i] = orient * vec2(e.y, -e.x);
     edges[i] = vec3(en[i], dot(en[i], p[i].xy));
-    ec[i] = edges[i].z + (u_dilate ? 0.5 * (abs(en[i].x) + abs(en[i].y)) : 0.0);
+    ec[i] = edges[i].z + (u_dilate ? 0.5 * (abs(en[i].x) + abs(en[i].y)) + kSnapMargin * length(en[i]) : 0.0);
   }
   for (int i = 0; i < 3; ++i) {
     // Corner i lies on edges i-1 and i.
