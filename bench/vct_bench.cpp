@@ -64,6 +64,18 @@ std::vector<unsigned> parseCounts(const std::string& list, const char* flag) {
   return out;
 }
 
+// checkVoxelGrid() names the render command's --voxels; this binary calls the
+// grid edge `flag` (--edges, --inject-edge), so its errors say that instead.
+void checkGrid(unsigned edge, unsigned levels, const std::string& flag) {
+  try {
+    vct::checkVoxelGrid({edge, levels, false});
+  } catch (const UserError& e) {
+    std::string m = e.what();
+    for (std::size_t at; (at = m.find("--voxels")) != std::string::npos;) m.replace(at, 8, flag);
+    throw UserError(m);
+  }
+}
+
 constexpr const char* kCopySource =
     "__kernel void copy4(__global const float4* restrict a, __global float4* restrict b, uint n) {\n"
     "  const uint i = get_global_id(0); if (i < n) b[i] = a[i]; }\n";
@@ -211,7 +223,7 @@ int run(int argc, char** argv) {
   if (const auto stop = benchutil::parseCommandLine(app, argc, argv, a.common, [&] { checkArgs(a); })) return *stop;
   const std::vector<unsigned> edge_list = parseCounts(a.edges, "--edges");
   const std::vector<unsigned> light_list = parseCounts(a.light_counts, "--lights");
-  for (unsigned e : edge_list) vct::checkVoxelGrid({e, a.levels, false});
+  for (unsigned e : edge_list) checkGrid(e, a.levels, "--edges");
   if (a.frame) {
     benchvct::FrameSweepOptions o;
     o.voxels = edge_list;
@@ -225,7 +237,7 @@ int run(int argc, char** argv) {
     benchutil::writeJson(a.common.json_path, benchvct::frameSweep(o));
     return 0;
   }
-  vct::checkVoxelGrid({a.inject_edge, 1, false});
+  checkGrid(a.inject_edge, 1, "--inject-edge");
   auto rt = ClRuntime::create(DeviceChoice::resolve(a.common.device));
   std::printf("%s\n", rt->describe().c_str());
   Bench b{*rt, a.common.reps};
