@@ -81,14 +81,19 @@ IndirectError vctError(const VctGiSettings& s, Pipeline pipeline = Pipeline::Def
   return e;
 }
 
+// Most pixels covered, none mismatched, and the error under `bound`.
+void expectNearTheReference(const VctGiSettings& s, double bound) {
+  const IndirectError e = vctError(s);
+  EXPECT_GT(e.pixels, kW * kH / 2);
+  EXPECT_EQ(e.mismatched, 0u);
+  EXPECT_GE(e.rel_rmse, 0.0);
+  EXPECT_LT(e.rel_rmse, bound);
+}
+
 TEST(VctCornell, IndirectImageIsNearTheReferenceAndBrokenTracesAreNot) {
   VctGiSettings s;
   s.grid.anisotropic = true;
-  const IndirectError good = vctError(s);
-  EXPECT_GT(good.pixels, kW * kH / 2);
-  EXPECT_EQ(good.mismatched, 0u);
-  EXPECT_GE(good.rel_rmse, 0.0);
-  EXPECT_LT(good.rel_rmse, kCornellBound);
+  expectNearTheReference(s, kCornellBound);
   s.broken = ConeBreak::Weights;
   EXPECT_GT(vctError(s).rel_rmse, kCornellBound) << "broken cone weights pass the bound";
   s.broken = ConeBreak::MipFilter;
@@ -106,10 +111,7 @@ TEST(VctCornell, IndirectImageIsNearTheReferenceAndBrokenTracesAreNot) {
 TEST(VctCornell, IsotropicIndirectImageIsNearTheReference) {
   VctGiSettings s;
   s.grid.anisotropic = false;
-  const IndirectError good = vctError(s);
-  EXPECT_GT(good.pixels, kW * kH / 2);
-  EXPECT_EQ(good.mismatched, 0u);
-  EXPECT_LT(good.rel_rmse, kCornellIsotropicBound);
+  expectNearTheReference(s, kCornellIsotropicBound);
   s.broken = ConeBreak::MipFilter;
   EXPECT_GT(vctError(s).rel_rmse, kCornellIsotropicBound) << "a broken mip filter passes the bound";
 }
@@ -118,10 +120,7 @@ TEST(VctCornell, VoxelShadowsAreNearTheShadowedReference) {
   VctGiSettings s;
   s.grid.anisotropic = true;
   s.shadows = "voxel";
-  const IndirectError e = vctError(s);
-  EXPECT_GT(e.pixels, kW * kH / 2);
-  EXPECT_EQ(e.mismatched, 0u);
-  EXPECT_LT(e.rel_rmse, kCornellShadowBound);
+  expectNearTheReference(s, kCornellShadowBound);
 }
 
 // Runs this build's binary on the Cornell box with --gi vct --anisotropic

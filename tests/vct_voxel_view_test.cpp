@@ -305,13 +305,17 @@ TEST(VctVoxelView, RenderCommandBadFlagsAreOneLineExit2) {
   expectUsageError(test::runManylights(vct + "--voxel-slice z"), "--voxel-slice");
 }
 
+// `render` of the Cornell box at 64x48 with VCT (32^3 x 3 levels) and `flags`, writing `out`.
+test::CommandResult renderCornellVct(const std::string& flags, const std::string& out) {
+  return test::runManylights("render --scene " + kCornellDir + "cornell.gltf --lights " + kCornellDir +
+                             "lights.json --camera " + kCornellDir + "camera.json --size 64x48 --frames 1 "
+                             "--warmup 0 --gi vct --voxels 32 --levels 3 " + flags + " --out " + out);
+}
+
 TEST(VctVoxelView, RenderCommandWritesTheView) {
   test::TempDir tmp;
   const std::string out = tmp.file("f.png");
-  const auto r = test::runManylights("render --scene " + kCornellDir + "cornell.gltf --lights " + kCornellDir +
-                                     "lights.json --camera " + kCornellDir + "camera.json --size 64x48 --frames 1 "
-                                     "--warmup 0 --gi vct --voxels 32 --levels 3 --voxel-view radiance "
-                                     "--voxel-level 1 --out " + out);
+  const auto r = renderCornellVct("--voxel-view radiance --voxel-level 1", out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(std::filesystem::exists(tmp.file("f_gi_vct_voxels.png")));
   unsigned w = 0, h = 0;
@@ -330,10 +334,7 @@ TEST(VctVoxelView, RenderCommandWritesTheView) {
 TEST(VctVoxelView, RenderCommandWritesTheSlice) {
   test::TempDir tmp;
   const std::string out = tmp.file("f.png");
-  const auto r = test::runManylights("render --scene " + kCornellDir + "cornell.gltf --lights " + kCornellDir +
-                                     "lights.json --camera " + kCornellDir + "camera.json --size 64x48 --frames 1 "
-                                     "--warmup 0 --gi vct --voxels 32 --levels 3 --anisotropic --voxel-view opacity "
-                                     "--voxel-level 1 --voxel-slice z:0.1 --out " + out);
+  const auto r = renderCornellVct("--anisotropic --voxel-view opacity --voxel-level 1 --voxel-slice z:0.1", out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(std::filesystem::exists(tmp.file("f_gi_vct_slice.png")));
   EXPECT_FALSE(std::filesystem::exists(tmp.file("f_gi_vct_voxels.png"))) << "the slice replaces the cubes";
