@@ -147,6 +147,93 @@ void poisonBoxes(ClusterLightAssigner& a, std::size_t clusters) {
   }
 }
 
+// The device's explicit boxes bit for bit against the C++ reduction: the
+// reduction is min/max only and the per-pixel math has no contraction
+// (within the stated tolerance where division and sqrt are not correctly rounded).
+void expectDeviceBoxesMatch(ClusterLightAssigner& a, const std::vector<ClusterBox>& ref_boxes) {
+  const auto got = deviceBoxes(a, ref_boxes.size());
+  const auto eq = [](float x, float y) { return test::floatsMatch(x, y); };
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    const ClusterBox& e = ref_boxes[k];
+    const ClusterBox& g = got[k];
+    ASSERT_TRUE(eq(g.x0, e.x0) && eq(g.x1, e.x1) && eq(g.y0, e.y0) && eq(g.y1, e.y1) && eq(g.z0, e.z0) &&
+                eq(g.z1, e.z1))
+        << "cluster " << k << ": got x " << g.x0 << ".." << g.x1 << " y " << g.y0 << ".." << g.y1 << " z " << g.z0
+        << ".." << g.z1 << ", expected x " << e.x0 << ".." << e.x1 << " y " << e.y0 << ".." << e.y1 << " z " << e.z0
+        << ".." << e.z1;
+  }
+}
+
+// Conservative: a light containing a pixel's surface point is in its cluster's list.
+void expectConservative(const test::ClusterCase& c, const Frame& f, const std::vector<std::vector<std::uint32_t>>& lists,
+                        unsigned w, unsigned h) {
+  const gpu::CameraParams cam = c.camera.params(w, h);
+  for (unsigned y = 0; y < h; y += 3)
+    for (unsigned x = 0; x < w; x += 3) {
+      const std::size_t p = std::size_t(y) * w + x;
+      if (gpu::is_sky_depth(c.depth[p])) continue;
+      const glm::dvec3 wp = test::pixelWorldPoint(c.camera, cam, x, y, c.depth[p]);
+      const auto& list = lists[f.cluster_of[p]];
+      for (std::uint32_t i = 0; i < c.lights.size(); ++i) {
+        const auto& l = c.lights[i].position_radius;
+        const glm::dvec3 d = wp - glm::dvec3(l.x, l.y, l.z);
+        if (glm::dot(d, d) < double(l.w) * l.w * 0.999) {
+          ASSERT_TRUE(std::binary_search(list.begin(), list.end(), i)) << "pixel " << x << "," << y << " light " << i;
+        }
+      }
+    }
+}
+
+std::size_t pairCount(const std::vector<std::vector<std::uint32_t>>& lists) {
+  std::size_t pairs = 0;
+  for (const auto& l : lists) pairs += l.size();
+  return pairs;
+}
+
+// Every assigner configuration the brute-vs-BVH test compares with the reference.
+struct AssignerSet {
+  AssignerSet(ClRuntime& rt, KernelShape shape)
+      : brute(rt, ClusterAssignMethod::Brute, 32, shape),
+        bvh(rt, ClusterAssignMethod::Bvh, 32, shape),
+        brute_rewalk(rt, ClusterAssignMethod::Brute, 32, shape),
+        bvh_rewalk(rt, ClusterAssignMethod::Bvh, 32, shape),
+        bvh8(rt, ClusterAssignMethod::Bvh, 8, shape),
+        bvh16(rt, ClusterAssignMethod::Bvh, 16, shape),
+        brute8(rt, ClusterAssignMethod::Brute, 8, shape),
+        bvh_key_order(rt, ClusterAssignMethod::Bvh, 32, shape) {
+    // One hit-leaf record per cluster: the fill pass walks again for most clusters.
+    brute_rewalk.setRecordBudget(1);
+    bvh_rewalk.setRecordBudget(1);
+    // The BVH passes in key order instead of tile-Morton order.
+    bvh_key_order.setClusterOrder(false);
+  }
+  ClusterLightAssigner brute, bvh;
+  ClusterLightAssigner brute_rewalk, bvh_rewalk;
+  // Smaller leaves: other tree shapes over the same lights (leaf 8 walks one
+  // more level at 40000 lights), and brute force over them.
+  ClusterLightAssigner bvh8, bvh16, brute8;
+  ClusterLightAssigner bvh_key_order;
+};
+
+// The other configurations against the reference (exact where division and
+// sqrt round correctly, else the stated tolerance); the walk-again path only
+// with the explicit bounds (the default). Returns the BVH's lists.
+std::vector<std::vector<std::uint32_t>> expectVariantsMatch(AssignerSet& s, ClusterUniquer& u, const test::ClusterCase& c,
+                                                            const Frame& f, const ClusterPixels* pixels,
+                                                            const std::vector<std::vector<std::uint32_t>>& ref) {
+  const auto t = assign(s.bvh, u, c, f, pixels);
+  EXPECT_TRUE(test::listsMatch(t, ref, "bvh, cluster"));
+  if (pixels) {
+    EXPECT_TRUE(test::listsMatch(assign(s.brute_rewalk, u, c, f, pixels), ref, "brute walking again, cluster"));
+    EXPECT_TRUE(test::listsMatch(assign(s.bvh_rewalk, u, c, f, pixels), ref, "bvh walking again, cluster"));
+  }
+  EXPECT_TRUE(test::listsMatch(assign(s.bvh8, u, c, f, pixels), ref, "bvh, leaf 8, cluster"));
+  EXPECT_TRUE(test::listsMatch(assign(s.bvh16, u, c, f, pixels), ref, "bvh, leaf 16, cluster"));
+  EXPECT_TRUE(test::listsMatch(assign(s.brute8, u, c, f, pixels), ref, "brute, leaf 8, cluster"));
+  EXPECT_TRUE(test::listsMatch(assign(s.bvh_key_order, u, c, f, pixels), ref, "bvh in key order, cluster"));
+  return t;
+}
+
 class ClusteredAssign : public ::testing::TestWithParam<KernelShape> {};
 
 TEST(ClusteredAssignLeaves, RejectsUnsupportedLeafSizes) {
@@ -161,20 +248,8 @@ TEST_P(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
   ClRuntime& rt = test::runtime();
   const KernelShape shape = GetParam();
   ClusterUniquer u(rt, UniqueMethod::PageTable, 6, shape);
-  ClusterLightAssigner brute(rt, ClusterAssignMethod::Brute, 32, shape), bvh(rt, ClusterAssignMethod::Bvh, 32, shape);
-  EXPECT_EQ(bvh.shape(), shape);
-  // One hit-leaf record per cluster: the fill pass walks again for most clusters.
-  ClusterLightAssigner brute_rewalk(rt, ClusterAssignMethod::Brute, 32, shape);
-  ClusterLightAssigner bvh_rewalk(rt, ClusterAssignMethod::Bvh, 32, shape);
-  brute_rewalk.setRecordBudget(1);
-  bvh_rewalk.setRecordBudget(1);
-  // Smaller leaves: other tree shapes over the same lights (leaf 8 walks one
-  // more level at 40000 lights), and brute force over them.
-  ClusterLightAssigner bvh8(rt, ClusterAssignMethod::Bvh, 8, shape), bvh16(rt, ClusterAssignMethod::Bvh, 16, shape);
-  ClusterLightAssigner brute8(rt, ClusterAssignMethod::Brute, 8, shape);
-  // The BVH passes in key order instead of tile-Morton order.
-  ClusterLightAssigner bvh_key_order(rt, ClusterAssignMethod::Bvh, 32, shape);
-  bvh_key_order.setClusterOrder(false);
+  AssignerSet s(rt, shape);
+  EXPECT_EQ(s.bvh.shape(), shape);
   // Light counts give BVHs of 1 (< 32 lights), 2 and 3 levels, and none at all.
   using Case = std::tuple<unsigned, unsigned, unsigned, unsigned>;
   const std::vector<Case> cases =
@@ -189,54 +264,25 @@ TEST_P(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
     const Frame f = clusters(u, c, depth, tile);
     ASSERT_GT(f.unique.size(), 0u);
     const ClusterPixels pixels{depth, u.clusterOf()};
-    std::vector<std::vector<std::uint32_t>> frustum_lists;
+    std::size_t frustum_pairs = 0;
     for (ClusterBounds bounds : {ClusterBounds::Frustum, ClusterBounds::Pixels}) {
       SCOPED_TRACE(clusterBoundsName(bounds));
       const bool explicit_bounds = bounds == ClusterBounds::Pixels;
+      const ClusterPixels* px = explicit_bounds ? &pixels : nullptr;
       const auto ref_boxes = explicit_bounds ? pixelBoxes(c.depth.data(), f.cluster_of, std::uint32_t(f.unique.size()), c.cam())
                                              : std::vector<ClusterBox>{};
       const auto ref = explicit_bounds ? referenceAssign(ref_boxes, c.lights, c.cam())
                                        : referenceAssign(f.unique, c.lights, c.cam(), f.grid);
       if (explicit_bounds) {
         // Sizes the box buffers; then poison them so that a box the kernel misses shows.
-        assign(brute, u, c, f, &pixels);
-        poisonBoxes(brute, f.unique.size());
+        assign(s.brute, u, c, f, px);
+        poisonBoxes(s.brute, f.unique.size());
       }
-      const auto b = assign(brute, u, c, f, explicit_bounds ? &pixels : nullptr);
-      if (explicit_bounds) {
-        // Bit for bit: the reduction is min/max only, the per-pixel math has no contraction.
-        const auto got = deviceBoxes(brute, f.unique.size());
-        for (std::size_t k = 0; k < got.size(); ++k) {
-          const ClusterBox& e = ref_boxes[k];
-          const ClusterBox& g = got[k];
-          // (Within the stated tolerance where division and sqrt are not correctly rounded.)
-          const auto eq = [](float a, float b) { return test::floatsMatch(a, b); };
-          ASSERT_TRUE(eq(g.x0, e.x0) && eq(g.x1, e.x1) && eq(g.y0, e.y0) && eq(g.y1, e.y1) && eq(g.z0, e.z0) &&
-                      eq(g.z1, e.z1))
-              << "cluster " << k << ": got x " << g.x0 << ".." << g.x1 << " y " << g.y0 << ".." << g.y1 << " z "
-              << g.z0 << ".." << g.z1 << ", expected x " << e.x0 << ".." << e.x1 << " y " << e.y0 << ".." << e.y1
-              << " z " << e.z0 << ".." << e.z1;
-        }
-      }
-      const auto t = assign(bvh, u, c, f, explicit_bounds ? &pixels : nullptr);
-      // The walk-again path once, with the explicit bounds (the default).
-      const auto br = explicit_bounds ? assign(brute_rewalk, u, c, f, &pixels) : ref;
-      const auto tr = explicit_bounds ? assign(bvh_rewalk, u, c, f, &pixels) : ref;
-      const auto t8 = assign(bvh8, u, c, f, explicit_bounds ? &pixels : nullptr);
-      const auto t16 = assign(bvh16, u, c, f, explicit_bounds ? &pixels : nullptr);
-      const auto b8 = assign(brute8, u, c, f, explicit_bounds ? &pixels : nullptr);
-      const auto tk = assign(bvh_key_order, u, c, f, explicit_bounds ? &pixels : nullptr);
-      // Exact where division and sqrt round correctly, else the stated tolerance.
-      ASSERT_TRUE(test::listsMatch(b, ref, "brute, cluster"));
-      ASSERT_TRUE(test::listsMatch(t, ref, "bvh, cluster"));
-      ASSERT_TRUE(test::listsMatch(br, ref, "brute walking again, cluster"));
-      ASSERT_TRUE(test::listsMatch(tr, ref, "bvh walking again, cluster"));
-      ASSERT_TRUE(test::listsMatch(t8, ref, "bvh, leaf 8, cluster"));
-      ASSERT_TRUE(test::listsMatch(t16, ref, "bvh, leaf 16, cluster"));
-      ASSERT_TRUE(test::listsMatch(b8, ref, "brute, leaf 8, cluster"));
-      ASSERT_TRUE(test::listsMatch(tk, ref, "bvh in key order, cluster"));
-      std::size_t pairs = 0;
-      for (const auto& list : ref) pairs += list.size();
+      ASSERT_TRUE(test::listsMatch(assign(s.brute, u, c, f, px), ref, "brute, cluster"));
+      if (explicit_bounds) expectDeviceBoxesMatch(s.brute, ref_boxes);
+      const auto t = expectVariantsMatch(s, u, c, f, px, ref);
+      ASSERT_FALSE(HasFailure());
+      const std::size_t pairs = pairCount(ref);
       // (20 lights may all miss the tight boxes of the pixels.)
       if (n > 0 && (n >= 1000 || !explicit_bounds)) {
         EXPECT_GT(pairs, 0u);
@@ -244,37 +290,14 @@ TEST_P(ClusteredAssign, BruteMatchesReferenceAndBvhMatchesBrute) {
       // Explicit bounds tighten the lists overall (a box may reach past its
       // slice by its padding, so not cluster by cluster).
       if (explicit_bounds) {
-        std::size_t frustum_pairs = 0;
-        for (const auto& l : frustum_lists) frustum_pairs += l.size();
         EXPECT_LE(pairs, frustum_pairs);
       }
-      if (n == 40000) {
-        EXPECT_EQ(bvh.bvhLevels(), 3u);
-        EXPECT_EQ(bvh8.bvhLevels(), 3u);
+      frustum_pairs = pairs;
+      if (n == 40000 || n == 20) {
+        EXPECT_EQ(s.bvh.bvhLevels(), n == 20 ? 1u : 3u);
+        EXPECT_EQ(s.bvh8.bvhLevels(), n == 20 ? 1u : 3u);
       }
-      if (n == 20) {
-        EXPECT_EQ(bvh.bvhLevels(), 1u);
-        EXPECT_EQ(bvh8.bvhLevels(), 1u);
-      }
-
-      // Conservative: a light containing a pixel's surface point is in its cluster's list.
-      const gpu::CameraParams cam = c.camera.params(w, h);
-      for (unsigned y = 0; y < h; y += 3)
-        for (unsigned x = 0; x < w; x += 3) {
-          const std::size_t p = std::size_t(y) * w + x;
-          if (gpu::is_sky_depth(c.depth[p])) continue;
-          const glm::dvec3 wp = test::pixelWorldPoint(c.camera, cam, x, y, c.depth[p]);
-          const auto& list = t[f.cluster_of[p]];
-          for (std::uint32_t i = 0; i < n; ++i) {
-            const auto& l = c.lights[i].position_radius;
-            const glm::dvec3 d = wp - glm::dvec3(l.x, l.y, l.z);
-            if (glm::dot(d, d) < double(l.w) * l.w * 0.999) {
-              ASSERT_TRUE(std::binary_search(list.begin(), list.end(), i))
-                  << "pixel " << x << "," << y << " light " << i;
-            }
-          }
-        }
-      if (!explicit_bounds) frustum_lists = t;
+      expectConservative(c, f, t, w, h);
     }
   }
 }
