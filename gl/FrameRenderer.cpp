@@ -247,9 +247,9 @@ void FrameRenderer::shade(bool deferred, bool count, const glm::mat4& view, cons
     p.use();
     setFrameUniforms(p, view, proj);
     assigner.bindForShading(p);
-    glBindTextureUnit(1, targets_->albedoTexture());
-    glBindTextureUnit(2, targets_->normalTexture());
-    glBindTextureUnit(3, targets_->gbufferDepthTexture());
+    glBindTextureUnit(ML_UNIT_GBUFFER_ALBEDO, targets_->albedoTexture());
+    glBindTextureUnit(ML_UNIT_GBUFFER_NORMAL, targets_->normalTexture());
+    glBindTextureUnit(ML_UNIT_GBUFFER_DEPTH, targets_->gbufferDepthTexture());
     glBindVertexArray(empty_vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);

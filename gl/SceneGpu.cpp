@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "gl/GlCheck.hpp"
+#include "host/shared/shading_bindings.h"
 
 namespace ml {
 
@@ -64,7 +65,7 @@ void SceneGpu::draw(const ShaderProgram& program, bool materials) const {
       program.set4("u_base_color", m.base_color.r, m.base_color.g, m.base_color.b, m.base_color.a);
       const bool has_tex = m.base_color_texture >= 0 && m.base_color_texture < static_cast<int>(textures_.size());
       program.set("u_has_texture", has_tex ? 1 : 0);
-      if (has_tex) glBindTextureUnit(0, textures_[static_cast<size_t>(m.base_color_texture)]);
+      if (has_tex) glBindTextureUnit(ML_UNIT_BASE_TEXTURE, textures_[static_cast<size_t>(m.base_color_texture)]);
     }
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(b.index_count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(static_cast<std::uintptr_t>(b.first_index) * sizeof(std::uint32_t)));

@@ -22,10 +22,11 @@ using test::lines;
 using test::readJson;
 
 // The Cornell box with its 4 lights, one frame, one technique: small enough to sweep.
-std::string cornellBench(const std::string& size = "48x32") {
+std::string cornellBench(const std::string& size = "48x32", unsigned warmup = 0) {
   const std::string dir = std::string(MANYLIGHTS_TEST_DATA_DIR) + "/cornell/";
   return "bench --scene " + dir + "cornell.gltf --lights " + dir + "lights.json --camera " + dir +
-         "camera.json --techniques deferred --size " + size + " --frames 0 --warmup 0 --progress none ";
+         "camera.json --techniques deferred --size " + size + " --frames 0 --warmup " + std::to_string(warmup) +
+         " --progress none ";
 }
 
 TEST(BenchGi, SweepOfTwoVctKeysGivesFourRecordsWithTheirSettingsAndPasses) {
@@ -68,6 +69,31 @@ TEST(BenchGi, SweepOfTwoVctKeysGivesFourRecordsWithTheirSettingsAndPasses) {
   EXPECT_EQ(rows, 4);
 }
 
+// --param revoxelize=0,1 sweeps the table's switch: after one warm-up frame,
+// the timed frames voxelize again only with revoxelize on (static geometry is
+// voxelized once per run, in the warm-up).
+TEST(BenchGi, RevoxelizeSweepVoxelizesOnlyWhereOn) {
+  test::TempDir tmp;
+  const std::string json = tmp.file("b.json");
+  const auto r = test::runManylights(cornellBench("48x32", 1) + "--repeat 2 --gi vct --param voxels=16 "
+                                     "--param revoxelize=0,1 --no-counts --json " + json);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto recs = readJson(json).at("records");
+  ASSERT_EQ(recs.size(), 2u);
+  std::set<std::string> seen;
+  for (const auto& rec : recs) {
+    const std::string on = rec.at("gi_settings").at("revoxelize");
+    seen.insert(on);
+    const auto& passes = rec.at("passes");
+    EXPECT_GT(passes.value("vct-inject", 0.0), 0.0) << "revoxelize " << on;
+    if (on == "on")
+      EXPECT_GT(passes.value("vct-voxelize", 0.0), 0.0) << "revoxelize on: the timed frames voxelize";
+    else
+      EXPECT_FALSE(passes.contains("vct-voxelize")) << "revoxelize off: voxelized after the warm-up";
+  }
+  EXPECT_EQ(seen, (std::set<std::string>{"off", "on"}));
+}
+
 // A key neither the technique's nor the GI's, a bad value, a GI key without
 // --gi vct, and combinations that cannot be measured: one line, exit 2,
 // before the devices open (nothing on stdout).
@@ -85,6 +111,7 @@ TEST(BenchGi, BadKeysAndValuesFailBeforeAnyFrame) {
            {b + "--param cone-aperture=0", "--cone-aperture"},
            {b + "--param voxels=16 --param levels=6", "--levels"},
            {b + "--param anisotropic=maybe", "--anisotropic"},
+           {b + "--param revoxelize=2", "--revoxelize"},
            {cornellBench() + "--param voxels=32", "--gi vct"},
            {cornellBench() + "--gi sh", "--gi"},
            {cornellBench() + "--gi-reference", "--gi-reference"},

@@ -117,6 +117,29 @@ TEST(CliInputs, UnwritableOutputsBeforeTheFirstFrame) {
   expectRefused(runManylights(bench + "--json " + dir.file("")), {"--json", "folder"});
 }
 
+// /proc and /sys are refused before anything is made there, as written or
+// through a link: /proc/self/root/<tmp> is a writable folder when the test
+// runs as root, /proc/foo.png is not (its refusal used to name errno only).
+TEST(CliInputs, OutputsUnderProcOrSysAreRefused) {
+  TempDir dir;
+  const std::string via_proc = "/proc/self/root" + fs::weakly_canonical(dir.file("")).string();
+  ASSERT_TRUE(fs::is_directory(via_proc)) << via_proc << ": the link the test relies on is missing";
+  const std::string render = "render --size 16x16 --lights 8 ";
+  expectRefused(runManylights(render + "--out /proc/foo.png"), {"--out", "/proc"});
+  expectRefused(runManylights(render + "--out /sys/foo.png"), {"--out", "/sys"});
+  expectRefused(runManylights(render + "--out " + via_proc + "/o.png"), {"--out", "/proc"});
+  expectRefused(runManylights(render + "--stats-json " + via_proc + "/s.json"), {"--stats-json", "/proc"});
+  const std::string bench = "bench --techniques deferred --size 16x16 --frames 0 --lights 8 --progress none ";
+  expectRefused(runManylights(bench + "--json " + via_proc + "/b.json"), {"--json", "/proc"});
+  expectRefused(runManylights(bench + "--images " + via_proc + "/images"), {"--images", "/proc"});
+  for (const char* made : {"o.png", "s.json", "b.json", "images"})
+    EXPECT_FALSE(fs::exists(dir.file(made))) << made << " was written through /proc";
+  // Links that lead out of /proc are followed: a link to /proc is refused too.
+  const std::string link = dir.file("to-proc");
+  fs::create_directory_symlink("/proc", link);
+  expectRefused(runManylights(render + "--out " + link + "/foo.png"), {"--out", "/proc"});
+}
+
 TEST(CliInputs, EmptyTechniqueListIsRefused) {
   // Used to run every registered technique.
   expectRefused(runManylights("bench --techniques '' --size 16x16 --frames 0 --lights 8"), {"--techniques"});

@@ -17,6 +17,7 @@
 
 #include "gl/GlCheck.hpp"
 #include "gl/VoxelTextures.hpp"
+#include "host/shared/vct_bindings.h"
 #include "host/vct/ConeTracing.hpp"
 #include "host/util/Error.hpp"
 #include "host/vct/VoxelGrid.hpp"
@@ -75,9 +76,9 @@ struct Furnace {
     const GLuint p = buffer(points), n = buffer(normals);
     std::vector<F4> out(points.size(), F4{-1, -1, -1, -1});
     const GLuint o = buffer(out);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, p);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, n);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, o);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_CONES_POINTS, p);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_CONES_NORMALS, n);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_CONES_RESULTS, o);
     program.set("u_count", static_cast<unsigned>(points.size()));
     glDispatchCompute(static_cast<GLuint>((points.size() + 63) / 64), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

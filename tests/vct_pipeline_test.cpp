@@ -9,11 +9,13 @@
 //    mipIsotropicTwin / mipAnisotropicTwin of the device's level 0 bit for bit;
 //  - a light move reruns inject and mips only (no `vct-voxelize` pass, one
 //    voxelization counted) and the volume follows the new lights; with
-//    `revoxelize` every update voxelizes.
+//    `revoxelize` every update voxelizes, from cleared sums: the same
+//    geometry gives the same sums and volume bit for bit (not doubled).
 // The radiance and anisotropic volumes are poisoned (NaN) before each update.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 #include <random>
 #include <string>
@@ -179,12 +181,29 @@ TEST_P(VctPipelineTest, RevoxelizeVoxelizesEveryUpdate) {
   o.revoxelize = true;
   VctPipeline p(test::runtime(), o, scene.bounds);
   const auto lights = test::randomLightsIn(rng, 9, scene.bounds);
+  const std::size_t n0 = 8 * 8 * 8;
+  std::vector<gpu::VoxelAccum> accum[2];
+  std::vector<F4> radiance[2];
   for (int i = 0; i < 2; ++i) {
     PassTimings t;
-    updateAndCheck(p, gpu_scene, lights, t);
+    radiance[i] = updateAndCheck(p, gpu_scene, lights, t);
+    accum[i] = downloadAll<gpu::VoxelAccum>(p.volume().accum(), n0);
     EXPECT_GT(t.get("vct-voxelize"), 0.0) << "update " << i;
   }
   EXPECT_EQ(p.voxelizations(), 2u);
+  // The sums restart from zero: a second voxelization adding onto the first
+  // would double every count and albedo sum (the resolved albedo, a mean,
+  // would not show it, so the raw sums are compared).
+  bool filled = false;
+  for (const gpu::VoxelAccum& a : accum[0]) filled |= a.albedo_count[3] > 0;
+  EXPECT_TRUE(filled) << "nothing voxelized: the comparison would prove nothing";
+  std::size_t first_diff = n0;
+  for (std::size_t i = 0; i < n0 && first_diff == n0; ++i)
+    if (std::memcmp(&accum[0][i], &accum[1][i], sizeof(gpu::VoxelAccum)) != 0) first_diff = i;
+  EXPECT_EQ(first_diff, n0) << "re-voxelizing the same geometry changed voxel " << first_diff << " (count "
+                            << accum[0][std::min(first_diff, n0 - 1)].albedo_count[3] << " -> "
+                            << accum[1][std::min(first_diff, n0 - 1)].albedo_count[3] << ")";
+  EXPECT_EQ(firstBitDifference(radiance[0], radiance[1]), radiance[0].size()) << "same geometry and lights";
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, VctPipelineTest,

@@ -7,11 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <random>
 #include <string>
 
 #include "host/util/Error.hpp"
 #include "host/vct/VctSettingsTable.hpp"
 #include "host/view/ViewerGi.hpp"
+#include "support/RandomSoup.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
@@ -44,6 +46,7 @@ TEST(ViewerGi, RefusedValuesKeepTheLastWorkingState) {
   expectRefused([&] { gi.setParam("gi-scale", "0"); }, "--gi-scale");
   expectRefused([&] { gi.setParam("vct-shadows", "ray"); }, "--vct-shadows");
   expectRefused([&] { gi.setParam("anisotropic", "maybe"); }, "--anisotropic");
+  expectRefused([&] { gi.setParam("revoxelize", "sometimes"); }, "--revoxelize");
   expectRefused([&] { gi.setParam("bogus", "1"); }, "bogus");
   expectRefused([&] { gi.setMode("path-tracing"); }, "gi");
   expectRefused([&] { gi.setVoxelView("normals"); }, "--voxel-view");
@@ -68,7 +71,40 @@ TEST(ViewerGi, TheTableCoversEverySettingWithItsDefault) {
     const vct::VctGiSettings again = vct::withVctSetting(defaults, s.key, s.get(defaults));
     EXPECT_EQ(s.get(again), s.get(defaults));
   }
-  EXPECT_EQ(vct::vctSettings().size(), 8u) << "a VCT setting was added: give it a row (and the viewer gets it)";
+  EXPECT_EQ(vct::vctSettings().size(), 9u) << "a VCT setting was added: give it a row (and the viewer gets it)";
+}
+
+// gi_param revoxelize (the panel's checkbox) reaches the pipeline: with it
+// every update voxelizes, without it only the first; the pass is rebuilt
+// either way, so each setting starts from its own first voxelization.
+TEST(ViewerGi, RevoxelizeReachesThePipeline) {
+  test::glContext();
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const Scene scene = test::randomSoup(rng, 12);
+  const auto lights = test::randomLightsIn(rng, 5, scene.bounds);
+  SceneGpu gpu_scene(scene);
+  ViewerGi gi(test::runtime(), scene.bounds);
+  gi.setParam("voxels", "8");
+  gi.setMode("vct");
+  for (const char* value : {"1", "0", "on"}) {
+    SCOPED_TRACE(std::string("revoxelize ") + value);
+    gi.setParam("revoxelize", value);
+    const bool on = std::string(value) != "0";
+    EXPECT_EQ(gi.settings().revoxelize, on);
+    auto* pass = dynamic_cast<vct::VctGiPass*>(gi.pass());
+    ASSERT_NE(pass, nullptr);
+    for (int frame = 0; frame < 3; ++frame) {
+      PassTimings t;
+      pass->update({gpu_scene, lights, frame == 0, t});
+      bool voxelized = false;
+      for (const auto& e : t.entries()) voxelized |= e.first == "vct-voxelize";
+      EXPECT_EQ(voxelized, on || frame == 0) << "frame " << frame;
+    }
+    EXPECT_EQ(pass->pipeline().voxelizations(), on ? 3u : 1u);
+    EXPECT_EQ(pass->pipeline().updates(), 3u);
+  }
 }
 
 }  // namespace

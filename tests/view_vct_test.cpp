@@ -5,7 +5,8 @@
 // vertical plane) equal `render --gi vct` of the same camera: the frame,
 // <out>_gi_vct.png, <out>_gi_vct_voxels.png and (--voxel-slice)
 // <out>_gi_vct_slice.png, within the render tests' tolerance
-// (expectSameImage). Refused values name the action and the flag, exit 2.
+// (expectSameImage); with gi_param revoxelize its frame equals render's with
+// and without --revoxelize. Refused values name the action and the flag, exit 2.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -62,6 +63,29 @@ TEST(ViewVct, FrameIndirectAndVoxelViewsEqualRender) {
   test::expectSameImage(dir + "/view_slice.png", dir + "/render_s_gi_vct_slice.png");
 }
 
+// gi_param revoxelize: the viewer re-voxelizes every frame, and its frame
+// equals render's, with --revoxelize and without (the geometry is static:
+// the same volume).
+TEST(ViewVct, RevoxelizingFrameEqualsRender) {
+  if (!test::haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (Debian package xvfb): the viewer cannot be tested";
+  const std::string dir = test::tempDir() + "/view_vct_revox";
+  std::filesystem::create_directories(dir);
+  const json script = json::array({{{"technique", "tiled-deferred"}}, {{"record", "start"}}, {{"gi", "vct"}},
+                                   {{"gi_param", {{"voxels", "16"}, {"levels", "3"}, {"revoxelize", "1"}}}},
+                                   {{"wait", 3}}, {{"screenshot", dir + "/view.png"}},
+                                   {{"record_save", dir + "/camera.json"}}});
+  const test::CommandResult v = test::runViewScript(script, "vct_revox");
+  ASSERT_EQ(v.exit_code, 0) << v.out << v.err;
+  const std::string render = "render --technique tiled-deferred " + std::string(test::kViewFrame) + " --camera " +
+                             dir + "/camera.json --frames 2 --gi vct --voxels 16 --levels 3 --out " + dir;
+  for (const char* flag : {" --revoxelize", ""}) {
+    const std::string out = std::string("/render") + (*flag ? "_revox" : "") + ".png";
+    const auto r = test::runManylights(render + out + flag);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    test::expectSameImage(dir + "/view.png", dir + out);
+  }
+}
+
 TEST(ViewVct, RefusedSettingsNameTheActionAndTheFlag) {
   if (!test::haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (Debian package xvfb): the viewer cannot be tested";
   struct Case {
@@ -70,6 +94,7 @@ TEST(ViewVct, RefusedSettingsNameTheActionAndTheFlag) {
   };
   const Case cases[] = {{{{"gi_param", {{"voxels", "33"}}}}, "--voxels"},
                         {{{"gi_param", {{"cones", "many"}}}}, "--cones"},
+                        {{{"gi_param", {{"revoxelize", "2"}}}}, "--revoxelize"},
                         {{{"gi_param", {{"bogus", "1"}}}}, "bogus"},
                         {{{"voxel_level", 4}}, "--voxel-level"},
                         {{{"voxel_slice", "w:0.5"}}, "--voxel-slice"},

@@ -2,9 +2,9 @@
 #include "lookup.glsl"
 #include "shading.glsl"
 #include "octahedral.glsl"
-layout(binding = 1) uniform sampler2D u_gbuffer_albedo;
-layout(binding = 2) uniform sampler2D u_gbuffer_normal;
-layout(binding = 3) uniform sampler2D u_gbuffer_depth;
+layout(binding = ML_UNIT_GBUFFER_ALBEDO) uniform sampler2D u_gbuffer_albedo;
+layout(binding = ML_UNIT_GBUFFER_NORMAL) uniform sampler2D u_gbuffer_normal;
+layout(binding = ML_UNIT_GBUFFER_DEPTH) uniform sampler2D u_gbuffer_depth;
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out uvec2 o_counts;
 void main() {

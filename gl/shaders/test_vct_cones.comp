@@ -1,9 +1,11 @@
 // Tests only: traceDiffuse (vct_cones.glsl) at given points and normals.
+#include "vct_bindings.h"
 #include "vct_cones.glsl"
 layout(local_size_x = 64) in;
-layout(std430, binding = 1) readonly buffer Points { vec4 points[]; };    // xyz
-layout(std430, binding = 2) readonly buffer Normals { vec4 normals[]; };  // xyz, unit
-layout(std430, binding = 3) writeonly buffer Results { vec4 results[]; }; // irradiance / pi, ambient occlusion
+layout(std430, binding = ML_BINDING_TEST_CONES_POINTS) readonly buffer Points { vec4 points[]; };  // xyz
+layout(std430, binding = ML_BINDING_TEST_CONES_NORMALS) readonly buffer Normals { vec4 normals[]; };  // xyz, unit
+// irradiance / pi, ambient occlusion
+layout(std430, binding = ML_BINDING_TEST_CONES_RESULTS) writeonly buffer Results { vec4 results[]; };
 uniform uint u_count;
 void main() {
   uint i = gl_GlobalInvocationID.x;

@@ -16,6 +16,25 @@ namespace {
 // The voxel view's file: <out>_gi_vct_<this>.exr/.png.
 std::string voxelViewFile(const GiArgs& a) { return a.voxel_slice.empty() ? "voxels" : "slice"; }
 
+// A switch given a value (--KEY=off): the table's words only. CLI11 turns the
+// value into a count before the flag's function sees it and aborts on words
+// it does not know, so they are refused here first (CLI11 names the flag).
+CLI::Validator switchValue(const vct::VctSetting& s) {
+  return CLI::Validator(
+      [&s](std::string& text) -> std::string {
+        if (text == "true") return "";  // CLI11's value for the bare flag
+        vct::VctGiSettings scratch;
+        try {
+          s.set(scratch, s.key, text);
+        } catch (const UserError& e) {
+          const std::string line = e.what(), prefix = s.flag() + ": ";
+          return line.rfind(prefix, 0) == 0 ? line.substr(prefix.size()) : line;
+        }
+        return "";
+      },
+      "");
+}
+
 // From the one VCT settings table (host/vct/VctSettingsTable.hpp): parsed
 // here, checked as a whole by checkGiFlags (a flag's range can depend on another's).
 void addVctFlags(CLI::App& cmd, vct::VctGiSettings& v, bool& with_reference) {
@@ -30,7 +49,8 @@ void addVctFlags(CLI::App& cmd, vct::VctGiSettings& v, bool& with_reference) {
       }
     };
     if (s.type == vct::VctSettingType::Switch)
-      cmd.add_flag_function(s.flag(), [parse](std::int64_t) { parse("on"); }, help);
+      cmd.add_flag_function(s.flag(), [parse](std::int64_t on) { parse(on > 0 ? "on" : "off"); }, help)
+          ->check(switchValue(s));
     else
       cmd.add_option_function<std::string>(s.flag(), parse, help + " (default " + s.get(defaults) + ")");
   }
@@ -200,6 +220,10 @@ GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera,
   if (const auto* v = dynamic_cast<const vct::VctGiPass*>(pass)) {
     vct_image = v->indirectRgba();
     r.voxel_bytes = vct::voxelBytes(a.vct.grid);
+    r.vct_updates = v->pipeline().updates();
+    r.vct_voxelizations = v->pipeline().voxelizations();
+    std::printf("\ngi vct: %zu voxelizations in %zu updates%s\n", r.vct_voxelizations, r.vct_updates,
+                a.vct.revoxelize ? " (--revoxelize: every frame)" : " (static geometry: the first frame only)");
     writeGiImages(out, "vct", width, height, vct_image, r);
     writeAo(out, width, height, v->ambientOcclusion(), r);
     if (!a.voxel_view.empty()) writeVoxelView(a, *v, camera, width, height, out, r);

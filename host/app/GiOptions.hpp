@@ -69,6 +69,9 @@ struct GiResult {
   bool has_reference = false;
   IndirectError error;          // vct vs the reference (with --gi-reference)
   std::size_t voxel_bytes = 0;  // vct
+  // vct: the pipeline's updates and voxelizations over the run's frames
+  // (warm-up included): one voxelization, or one per update with --revoxelize.
+  std::size_t vct_updates = 0, vct_voxelizations = 0;
   std::vector<std::string> files;
 };
 // After the frames: the reference trace (--gi reference, or vct with

@@ -230,8 +230,10 @@ void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j
     const vct::VctGiSettings& v = a.vct;
     j["gi_vct"] = {{"voxels", v.grid.voxels},  {"levels", v.grid.levels}, {"anisotropic", v.grid.anisotropic},
                    {"cones", v.cones},         {"cone_aperture", v.aperture_deg}, {"gi_scale", v.gi_scale},
-                   {"specular", v.specular},   {"vct_shadows", v.shadows}};
+                   {"specular", v.specular},   {"vct_shadows", v.shadows}, {"revoxelize", v.revoxelize}};
     j["voxel_bytes"] = gi.voxel_bytes;
+    j["vct_updates"] = gi.vct_updates;
+    j["vct_voxelizations"] = gi.vct_voxelizations;
     j["gi_transport"] = v.shadows == "voxel"
                             ? "one bounce, diffuse; visibility of the lights in the injected direct light through "
                               "level-0 voxel opacity (--vct-shadows voxel)"

@@ -37,6 +37,23 @@ fs::path tempNameFor(const fs::path& target) {
 
 fs::path folderOf(const fs::path& p) { return p.has_parent_path() ? p.parent_path() : fs::path("."); }
 
+// /proc and /sys hold kernel interfaces, not folders for results, and as root
+// the probe below can succeed there (/proc/self/root/... is any folder, and a
+// folder made under /sys/fs/cgroup is a new control group), so paths there are
+// refused as written and as resolved through links, before anything is made.
+void refuseKernelFolders(const std::string& flag, const std::string& path) {
+  std::error_code ec;
+  const fs::path as_written = fs::absolute(path, ec).lexically_normal();
+  const fs::path resolved = fs::weakly_canonical(as_written, ec);
+  for (const fs::path& p : {as_written, resolved}) {
+    auto part = p.begin();
+    if (part == p.end() || ++part == p.end()) continue;  // the root, then its first folder
+    if (*part == "proc" || *part == "sys")
+      throw UserError(flag + ": '" + path + "' is under /" + part->string() +
+                      " (kernel interfaces, not a place for output files)");
+  }
+}
+
 // Creates `dir` if missing and proves it takes a new file.
 void probeFolder(const std::string& flag, const std::string& shown, const fs::path& dir) {
   std::error_code ec;
@@ -67,6 +84,7 @@ void requireOutputFile(const std::string& flag, const std::string& path) {
   if (path.empty()) return;
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw UserError(flag + ": '" + path + "' is a folder, expected a file name");
+  refuseKernelFolders(flag, path);
   probeFolder(flag, path, folderOf(path));
 }
 
@@ -75,6 +93,7 @@ void requireOutputDir(const std::string& flag, const std::string& dir) {
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw UserError(flag + ": '" + dir + "' is a file, expected a folder");
+  refuseKernelFolders(flag, dir);
   probeFolder(flag, dir, dir);
 }
 

@@ -5,6 +5,8 @@
 //   - requireOutputFile / requireOutputDir create missing parent folders and
 //     prove the folder takes a new file (a probe file is created and removed),
 //     so an unwritable path is one line naming its flag, before the first frame;
+//     paths under /proc or /sys (as written or through links) are refused
+//     first, whoever runs the command (root can create things there);
 //   - writeFileAtomically / writeImageAtomically write a temporary file next to
 //     the target and rename it over the target only once it is complete.
 // Every failure is a UserError naming the flag and the path. Reports name

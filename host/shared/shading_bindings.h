@@ -1,10 +1,11 @@
-/* Shader-storage binding points of the shading programs, numbered once for
- * C++ and GLSL: gl/shaders/common.glsl and the lookup_*.glsl files declare
- * their buffers with these names (GLSL includes this file as
- * "shading_bindings.h"), and FrameRenderer and the assigners bind with them.
- * 0 and 7 are the frame's; 1..6 belong to the technique whose lookup is
- * compiled in, so techniques share the numbers. Plain macros: the
- * one form that C++, OpenCL C and GLSL all read. */
+/* Binding points of the shading programs, numbered once for C++ and GLSL:
+ * gl/shaders/common.glsl and the lookup_*.glsl files declare their buffers,
+ * material.glsl and deferred.frag their samplers, with these names (GLSL
+ * includes this file as "shading_bindings.h"), and FrameRenderer, SceneGpu
+ * and the assigners bind with them. Shader storage: 0 and 7 are the frame's;
+ * 1..6 belong to the technique whose lookup is compiled in, so techniques
+ * share the numbers. Plain macros: the one form that C++, OpenCL C and GLSL
+ * all read. */
 #ifndef MANYLIGHTS_SHADING_BINDINGS_H
 #define MANYLIGHTS_SHADING_BINDINGS_H
 
@@ -29,5 +30,12 @@
 #define ML_BINDING_HASHED_OFFSETS 3
 #define ML_BINDING_HASHED_DESC 4
 #define ML_BINDING_HASHED_DATA 5
+
+/* Texture units: the material's base-colour texture (every geometry pass) and
+ * the G-buffer that deferred shading reads (gl/RenderTargets). */
+#define ML_UNIT_BASE_TEXTURE 0
+#define ML_UNIT_GBUFFER_ALBEDO 1
+#define ML_UNIT_GBUFFER_NORMAL 2
+#define ML_UNIT_GBUFFER_DEPTH 3
 
 #endif

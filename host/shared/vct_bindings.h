@@ -9,6 +9,8 @@
 #ifndef MANYLIGHTS_VCT_BINDINGS_H
 #define MANYLIGHTS_VCT_BINDINGS_H
 
+#include "shading_bindings.h"
+
 /* Voxelization: the accumulation buffer (VoxelAccum[], voxel_types.h). */
 #define ML_BINDING_VOXELIZE_ACCUM 0
 
@@ -22,9 +24,9 @@
  * deferred shading reads it from), the voxel textures of the cones (the 6
  * direction textures take ML_UNIT_VCT_VOXEL_DIRS .. + 5) and the upsample's
  * reduced-resolution inputs. */
-#define ML_UNIT_VCT_GBUFFER_ALBEDO 1
-#define ML_UNIT_VCT_GBUFFER_NORMAL 2
-#define ML_UNIT_VCT_GBUFFER_DEPTH 3
+#define ML_UNIT_VCT_GBUFFER_ALBEDO ML_UNIT_GBUFFER_ALBEDO
+#define ML_UNIT_VCT_GBUFFER_NORMAL ML_UNIT_GBUFFER_NORMAL
+#define ML_UNIT_VCT_GBUFFER_DEPTH ML_UNIT_GBUFFER_DEPTH
 #define ML_UNIT_VCT_VOXELS 4
 #define ML_UNIT_VCT_VOXEL_DIRS 5
 #define ML_UNIT_VCT_LO_IRRADIANCE 4
@@ -41,5 +43,11 @@
 #define ML_IMAGE_VCT_UPSAMPLE_COLOR 0
 #define ML_IMAGE_VCT_UPSAMPLE_INDIRECT 1
 #define ML_IMAGE_VCT_UPSAMPLE_AO 2
+
+/* Tests only (gl/shaders/test_vct_cones.comp, tests/vct_furnace_test.cpp):
+ * the points and normals traceDiffuse runs at, and its results. */
+#define ML_BINDING_TEST_CONES_POINTS 1
+#define ML_BINDING_TEST_CONES_NORMALS 2
+#define ML_BINDING_TEST_CONES_RESULTS 3
 
 #endif

@@ -20,6 +20,7 @@ VctPipelineOptions pipelineOptions(const VctGiSettings& s) {
   o.grid = s.grid;
   o.brute_force = s.brute_inject;
   o.shadows = s.shadows == "voxel";
+  o.revoxelize = s.revoxelize;
   return o;
 }
 

@@ -3,7 +3,9 @@
 // technique lit the frame:
 //   update():      VctPipeline::update (voxelize once, inject from the frame's
 //                  lights, mips, 3D textures) on every frame, as if every light
-//                  moved (the many-dynamic-lights case; static geometry stays voxelized);
+//                  moved (the many-dynamic-lights case; static geometry stays
+//                  voxelized); with `revoxelize` (moving geometry) every frame
+//                  voxelizes first, and the rest follows it as on any frame;
 //   addIndirect(): `vct-trace` (gl/shaders/vct_trace.comp: diffuse cones, the
 //                  ambient occlusion and, with `specular`, a specular cone, at
 //                  gi_scale of the frame's resolution) and `vct-upsample`
@@ -37,6 +39,7 @@ struct VctGiSettings {
   float gi_scale = 0.5f;    // --gi-scale: trace resolution / frame resolution, (0, 1]
   bool specular = false;    // --specular
   std::string shadows = "none";  // --vct-shadows: none | voxel (visibility through level-0 opacity)
+  bool revoxelize = false;       // --revoxelize: voxelize every frame (moving geometry), not only the first
   bool brute_inject = false;     // inject from every light instead of the hashed lists
   ConeBreak broken = ConeBreak::None;  // tests only
 };

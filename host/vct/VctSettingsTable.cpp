@@ -76,6 +76,8 @@ const std::vector<VctSetting>& vctSettings() {
       {"vct-shadows", "visibility of the lights in the injected direct light (none, or voxel: marched through level-0 opacity)",
        T::Choice, {"none", "voxel"}, [](const S& s) { return s.shadows; },
        [](S& s, K, K t) { s.shadows = t; }},
+      {"revoxelize", "voxelize the scene every frame (moving geometry), not only the first", T::Switch, {},
+       [](const S& s) { return onOff(s.revoxelize); }, [](S& s, K k, K t) { s.revoxelize = parseSwitch(k, t); }},
   };
   return table;
 }
