@@ -156,7 +156,9 @@ TEST(ViewScripted, PathPlaybackAndAnimationMatchRender) {
   test::expectSameImage(dir + "/stopped.exr", dir + "/render_animated.exr");
   unsigned w = 0, h = 0;
   const auto a = readImageRgba(dir + "/animated.exr", w, h), b = readImageRgba(dir + "/played.exr", w, h);
-  EXPECT_GT(test::compareImages(a, b, 2.0 / 255.0).frac_over_tol, 0.01) << "the lights did not move";
+  // Unmoved lights give the same image exactly; moved ones change from 0.9%
+  // (seed 3120093997: a camera frame that sees few of them) to tens of percent of the pixels.
+  EXPECT_GT(test::compareImages(a, b, 2.0 / 255.0).frac_over_tol, 0.002) << "the lights did not move";
 }
 
 TEST(ViewScripted, RecordedPathReplaysThroughBench) {
