@@ -200,6 +200,15 @@ GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera,
   if (const auto* v = dynamic_cast<const vct::VctGiPass*>(pass)) {
     vct_image = v->indirectRgba();
     r.voxel_bytes = vct::voxelBytes(a.vct.grid);
+    const vct::VctPipeline& p = v->pipeline();
+    if (p.listBuilds() > 0) {
+      r.list_builds = p.listBuilds();
+      r.list_updates = p.listUpdates();
+      r.list_upload_bytes = p.lastListUploadBytes();
+      r.list_image_bytes = p.lists().linkless().gpuBytes();
+      std::printf("\nvct lists: %zu builds, %zu incremental updates; last upload %zu of %zu bytes\n", r.list_builds,
+                  r.list_updates, r.list_upload_bytes, r.list_image_bytes);
+    }
     writeGiImages(out, "vct", width, height, vct_image, r);
     writeAo(out, width, height, v->ambientOcclusion(), r);
     if (!a.voxel_view.empty()) writeVoxelView(a, *v, camera, width, height, out, r);

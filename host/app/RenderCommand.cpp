@@ -232,6 +232,10 @@ void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j
                    {"cones", v.cones},         {"cone_aperture", v.aperture_deg}, {"gi_scale", v.gi_scale},
                    {"specular", v.specular},   {"vct_shadows", v.shadows}};
     j["voxel_bytes"] = gi.voxel_bytes;
+    j["vct_list_builds"] = gi.list_builds;
+    j["vct_list_updates"] = gi.list_updates;
+    j["vct_list_upload_bytes"] = gi.list_upload_bytes;  // the last update's
+    j["vct_list_image_bytes"] = gi.list_image_bytes;
     j["gi_transport"] = v.shadows == "voxel"
                             ? "one bounce, diffuse; visibility of the lights in the injected direct light through "
                               "level-0 voxel opacity (--vct-shadows voxel)"
