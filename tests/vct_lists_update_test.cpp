@@ -2,7 +2,7 @@
 // incrementally through hashed::GpuUploadPlan, and vct::VctPipeline), both
 // kernel shapes:
 //  - after every update of a random edit sequence (moves, additions,
-//    removals; one batch of clustered additions that must resize a hash
+//    removals; one batch of additions quadrupling the lights, which must resize a hash
 //    table, one move out of the octree that must rebuild), the OpenCL
 //    buffers read back equal the structure's whole image word for word (a
 //    partial upload leaves no stale word), the OpenCL lookup returns the host
@@ -70,11 +70,28 @@ gpu::PointLight insideOf(const gpu::PointLight& host, std::mt19937_64& rng) {
   return l;
 }
 
+// A light whose sphere lies in the box.
+gpu::PointLight inBox(const SphereBox& box, float r, std::mt19937_64& rng) {
+  const glm::vec3 lo = box.lo + r, hi = glm::max(box.hi - r, lo);
+  return makeLight({uni(rng, lo.x, hi.x), uni(rng, lo.y, hi.y), uni(rng, lo.z, hi.z)}, r,
+                   glm::vec3(uni(rng, 0, 1), uni(rng, 0, 1), uni(rng, 0, 1)));
+}
+
+// Lights in [0, 10]^3, radii 0.2-1: room between them for new cells.
+std::vector<gpu::PointLight> sparseLights(std::size_t n, std::mt19937_64& rng) {
+  SphereBox box(std::vector<gpu::PointLight>{});
+  box.lo = glm::vec3(0.0f);
+  box.hi = glm::vec3(10.0f);
+  std::vector<gpu::PointLight> out;
+  for (std::size_t i = 0; i < n; ++i) out.push_back(inBox(box, uni(rng, 0.2f, 1.0f), rng));
+  return out;
+}
+
 enum class Batch { Small, Cluster, Leave };
 
 // Small: ~5% of the lights move toward the centre, 1-3 added, 1-3 removed.
-// Cluster: as many small lights added as there are, each inside another
-// (new deepest cells: a table must grow). Leave: one light far outside.
+// Cluster: three times as many small lights added as there are, anywhere in
+// the box (new cells: a table must grow). Leave: one light far outside.
 void edit(std::vector<gpu::PointLight>& lights, Batch batch, std::mt19937_64& rng) {
   const SphereBox box(lights);
   if (batch == Batch::Leave) {
@@ -83,7 +100,7 @@ void edit(std::vector<gpu::PointLight>& lights, Batch batch, std::mt19937_64& rn
   }
   const std::size_t n = lights.size();
   if (batch == Batch::Cluster) {
-    for (std::size_t i = 0; i < n; ++i) lights.push_back(insideOf(lights[rng() % n], rng));
+    for (std::size_t i = 0; i < 3 * n; ++i) lights.push_back(inBox(box, uni(rng, 0.1f, 0.4f), rng));
     return;
   }
   for (std::size_t i = 0; i < std::max<std::size_t>(1, n / 20); ++i)
@@ -152,14 +169,13 @@ TEST_P(VctListsUpdate, RandomEditsKeepTheOpenClCopyExact) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  gpu::VoxelGridParams g = randomGrid(8, rng);
-  auto lights = randomLights(test::smallTests() ? 60 : 300, g, rng);
+  auto lights = sparseLights(test::smallTests() ? 60 : 300, rng);
   hashed::HashedConfig cfg;
-  cfg.max_incremental_fraction = 1.0;  // the cluster batch doubles the lights: still an update
+  cfg.max_incremental_fraction = 1.0;  // the cluster batch quadruples the lights: still an update
   hashed::HashedStructure hs(cfg);
   auto& q = test::runtime().queue();
-  const Batch plan[] = {Batch::Small, Batch::Small, Batch::Cluster, Batch::Small, Batch::Leave, Batch::Small,
-                        Batch::Small};
+  const Batch plan[] = {Batch::Small, Batch::Small, Batch::Cluster, Batch::Small, Batch::Small,
+                        Batch::Leave, Batch::Small, Batch::Small, Batch::Small};
   std::size_t partial = 0, resized = 0, rebuilt = 0;
   for (int round = -1; round < int(std::size(plan)); ++round) {
     SCOPED_TRACE("round " + std::to_string(round) + ", " + std::to_string(lights.size()) + " lights");
@@ -182,7 +198,9 @@ TEST_P(VctListsUpdate, RandomEditsKeepTheOpenClCopyExact) {
     checkInjection(lights, rng);
     if (HasFailure()) return;
   }
-  EXPECT_GE(partial, 4u);
+  // Small batches mostly fit the tables; the first after a build often
+  // resizes one (the build sizes them tight).
+  EXPECT_GE(partial, 3u);
   EXPECT_GE(resized, 1u);
   EXPECT_EQ(rebuilt, 2u);  // the first build and the light that left
 }

@@ -2,8 +2,10 @@
 // Voxel cone tracing as the frame's GI pass (gl/GiPass.hpp), whatever
 // technique lit the frame:
 //   update():      VctPipeline::update (voxelize once, inject from the frame's
-//                  lights, mips, 3D textures) on every frame, as if every light
-//                  moved (the many-dynamic-lights case; static geometry stays voxelized);
+//                  lights, mips, 3D textures) on every frame (the many-dynamic-
+//                  lights case; static geometry stays voxelized); the hashed
+//                  lists follow the lights incrementally, so unchanged lights
+//                  cost them only a comparison;
 //   addIndirect(): `vct-trace` (gl/shaders/vct_trace.comp: diffuse cones, the
 //                  ambient occlusion and, with `specular`, a specular cone, at
 //                  gi_scale of the frame's resolution) and `vct-upsample`
