@@ -204,10 +204,10 @@ GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera,
     if (p.listBuilds() > 0) {
       r.list_builds = p.listBuilds();
       r.list_updates = p.listUpdates();
-      r.list_upload_bytes = p.lastListUploadBytes();
+      r.list_update_bytes = r.list_updates ? p.listUpdateBytes() / r.list_updates : 0;
       r.list_image_bytes = p.lists().linkless().gpuBytes();
-      std::printf("\nvct lists: %zu builds, %zu incremental updates; last upload %zu of %zu bytes\n", r.list_builds,
-                  r.list_updates, r.list_upload_bytes, r.list_image_bytes);
+      std::printf("\nvct lists: %zu builds, %zu incremental updates uploading %zu bytes each (mean) of %zu\n",
+                  r.list_builds, r.list_updates, r.list_update_bytes, r.list_image_bytes);
     }
     writeGiImages(out, "vct", width, height, vct_image, r);
     writeAo(out, width, height, v->ambientOcclusion(), r);

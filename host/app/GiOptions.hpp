@@ -69,8 +69,8 @@ struct GiResult {
   bool has_reference = false;
   IndirectError error;          // vct vs the reference (with --gi-reference)
   std::size_t voxel_bytes = 0;  // vct
-  // vct's hashed lists: full builds, incremental updates, the last upload and the whole image, bytes
-  std::size_t list_builds = 0, list_updates = 0, list_upload_bytes = 0, list_image_bytes = 0;
+  // vct's hashed lists: full builds, incremental updates, bytes uploaded per update (mean) and the whole image
+  std::size_t list_builds = 0, list_updates = 0, list_update_bytes = 0, list_image_bytes = 0;
   std::vector<std::string> files;
 };
 // After the frames: the reference trace (--gi reference, or vct with

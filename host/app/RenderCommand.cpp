@@ -234,7 +234,7 @@ void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j
     j["voxel_bytes"] = gi.voxel_bytes;
     j["vct_list_builds"] = gi.list_builds;
     j["vct_list_updates"] = gi.list_updates;
-    j["vct_list_upload_bytes"] = gi.list_upload_bytes;  // the last update's
+    j["vct_list_update_bytes"] = gi.list_update_bytes;  // uploaded per incremental update, mean
     j["vct_list_image_bytes"] = gi.list_image_bytes;
     j["gi_transport"] = v.shadows == "voxel"
                             ? "one bounce, diffuse; visibility of the lights in the injected direct light through "

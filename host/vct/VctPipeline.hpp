@@ -55,10 +55,12 @@ class VctPipeline {
   const VoxelTextures& textures() const { return textures_; }
   std::size_t voxelizations() const { return voxelizations_; }  // tests: static geometry once
   std::size_t updates() const { return updates_; }
-  // The hashed lists: full builds, incremental updates, and the last upload's bytes.
+  // The hashed lists: full builds, incremental updates, the last upload's
+  // bytes and the bytes uploaded by all incremental updates.
   std::size_t listBuilds() const { return list_builds_; }
   std::size_t listUpdates() const { return list_updates_; }
   std::size_t lastListUploadBytes() const { return lists_.lastUploadBytes(); }
+  std::size_t listUpdateBytes() const { return list_update_bytes_; }
   const hashed::HashedStructure& lists() const { return hashed_; }
 
  private:
@@ -77,7 +79,7 @@ class VctPipeline {
   hashed::HashedStructure hashed_;
   cl::Buffer lights_;
   std::size_t lights_capacity_ = 0;
-  std::size_t voxelizations_ = 0, updates_ = 0, list_builds_ = 0, list_updates_ = 0;
+  std::size_t voxelizations_ = 0, updates_ = 0, list_builds_ = 0, list_updates_ = 0, list_update_bytes_ = 0;
 };
 
 }  // namespace ml::vct
