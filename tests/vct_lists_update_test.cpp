@@ -10,9 +10,9 @@
 //    build's on the same lights and bounds, and injection through the
 //    buffers equals the brute-force twin (vct_inject_test.cpp's tolerance);
 //    updates that neither rebuilt nor resized upload less than the image;
-//  - a pipeline whose second update moves a few lights takes the
-//    incremental path (counted) and its volume equals that of a pipeline
-//    built fresh on the moved lights.
+//  - a pipeline whose later updates move a few lights takes the incremental
+//    path (counted), uploads less than the image at least once, and its
+//    volume equals that of a pipeline built fresh on the moved lights.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -187,7 +187,6 @@ TEST_P(VctListsUpdate, RandomEditsKeepTheOpenClCopyExact) {
     EXPECT_EQ(lists_.lastUploadWasFull(), st.full_rebuild || resize);
     if (round >= 0) {
       EXPECT_EQ(st.full_rebuild, plan[round] == Batch::Leave) << st.reason;
-      EXPECT_TRUE(resize || plan[round] != Batch::Cluster) << "the cluster resized no table";
     }
     EXPECT_TRUE(lists_.lastUploadWasFull() || lists_.lastUploadBytes() < hs.linkless().gpuBytes())
         << "a partial upload as large as the image";
@@ -198,9 +197,10 @@ TEST_P(VctListsUpdate, RandomEditsKeepTheOpenClCopyExact) {
     checkInjection(lights, rng);
     if (HasFailure()) return;
   }
-  // Small batches mostly fit the tables; the first after a build often
-  // resizes one (the build sizes them tight).
-  EXPECT_GE(partial, 3u);
+  // Both upload kinds ran: the first update after a build nearly always
+  // resizes a table (the build sizes them tight), as the cluster batch
+  // mostly does; the other small batches mostly fit.
+  EXPECT_GE(partial, 2u);
   EXPECT_GE(resized, 1u);
   EXPECT_EQ(rebuilt, 2u);  // the first build and the light that left
 }
@@ -233,12 +233,18 @@ TEST_P(VctPipelineLists, FewMovedLightsUpdateAndEqualAFreshPipeline) {
   VctPipeline p(test::runtime(), o, scene.bounds);
   PassTimings t;
   p.update(gpu_scene, lights, t);
-  const SphereBox box(lights);
-  for (int i = 0; i < 4; ++i) moveToward(lights[rng() % lights.size()], box.centre(), uni(rng, 0.1f, 0.5f));
-  p.update(gpu_scene, lights, t);
+  // Three updates: the first after the build usually resizes a table (the
+  // build sizes them tight) and uploads everything; later ones fit.
+  std::size_t partial = 0;
+  for (int update = 0; update < 3; ++update) {
+    const SphereBox box(lights);
+    for (int i = 0; i < 4; ++i) moveToward(lights[rng() % lights.size()], box.centre(), uni(rng, 0.1f, 0.5f));
+    p.update(gpu_scene, lights, t);
+    partial += p.lastListUploadBytes() < p.lists().linkless().gpuBytes();
+  }
   EXPECT_EQ(p.listBuilds(), 1u);
-  EXPECT_EQ(p.listUpdates(), 1u) << p.lists().lastUpdate().reason;
-  EXPECT_LT(p.lastListUploadBytes(), p.lists().linkless().gpuBytes()) << "the update uploaded everything";
+  EXPECT_EQ(p.listUpdates(), 3u) << p.lists().lastUpdate().reason;
+  EXPECT_GE(partial, 1u) << "every update uploaded everything";
   VctPipeline fresh(test::runtime(), o, scene.bounds);
   fresh.update(gpu_scene, lights, t);
   EXPECT_EQ(fresh.listBuilds(), 1u);
