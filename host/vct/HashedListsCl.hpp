@@ -5,10 +5,11 @@
 // rules of the GL copy, HashedAssigner): the whole image
 // (LinklessOctree::packGpuImage() and the light index list) after a build or a
 // layout change, else only what an update edited; buffers grow and never
-// truncate. One structure per HashedListsCl: upload() takes the octree's edit
-// records. Camera-independent: a lookup works anywhere in the
-// octree's bounds, on screen or not, which is why voxel injection can use
-// these lists and not the view-space tiled/clustered ones.
+// truncate. upload() takes the octree's edit records, so one structure feeds
+// one HashedListsCl at a time (another one is uploaded with `rebuilt`).
+// Camera-independent: a lookup works anywhere in the octree's bounds, on
+// screen or not, which is why voxel injection can use these lists and not
+// the view-space tiled/clustered ones.
 #include <CL/opencl.hpp>
 
 #include <cstdint>
