@@ -164,7 +164,7 @@ struct Bench {
     hs.build(lights);
     const compute::ComputeEnv env(rt);
     vct::HashedListsCl lists(env);
-    lists.upload(q, hs.linkless());
+    lists.upload(q, hs.linkless(), true);
     double entries = 0;  // list entries the hashed kernel walks
     for (std::size_t i = 0; i < accum.size(); ++i)
       if (accum[i].albedo_count[3]) {

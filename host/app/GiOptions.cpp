@@ -224,6 +224,15 @@ GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera,
     r.vct_voxelizations = v->pipeline().voxelizations();
     std::printf("\ngi vct: %zu voxelizations in %zu updates%s\n", r.vct_voxelizations, r.vct_updates,
                 a.vct.revoxelize ? " (--revoxelize: every frame)" : " (static geometry: the first frame only)");
+    const vct::VctPipeline& p = v->pipeline();
+    if (p.listBuilds() > 0) {
+      r.list_builds = p.listBuilds();
+      r.list_updates = p.listUpdates();
+      r.list_update_bytes = r.list_updates ? p.listUpdateBytes() / r.list_updates : 0;
+      r.list_image_bytes = p.lists().linkless().gpuBytes();
+      std::printf("\nvct lists: %zu builds, %zu incremental updates uploading %zu bytes each (mean) of %zu\n",
+                  r.list_builds, r.list_updates, r.list_update_bytes, r.list_image_bytes);
+    }
     writeGiImages(out, "vct", width, height, vct_image, r);
     writeAo(out, width, height, v->ambientOcclusion(), r);
     if (!a.voxel_view.empty()) writeVoxelView(a, *v, camera, width, height, out, r);

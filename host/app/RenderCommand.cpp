@@ -234,6 +234,10 @@ void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j
     j["voxel_bytes"] = gi.voxel_bytes;
     j["vct_updates"] = gi.vct_updates;
     j["vct_voxelizations"] = gi.vct_voxelizations;
+    j["vct_list_builds"] = gi.list_builds;
+    j["vct_list_updates"] = gi.list_updates;
+    j["vct_list_update_bytes"] = gi.list_update_bytes;  // uploaded per incremental update, mean
+    j["vct_list_image_bytes"] = gi.list_image_bytes;
     j["gi_transport"] = v.shadows == "voxel"
                             ? "one bounce, diffuse; visibility of the lights in the injected direct light through "
                               "level-0 voxel opacity (--vct-shadows voxel)"

@@ -9,7 +9,8 @@
 //    list, 2 header, 3 offset tables, 4 description slots, 5 light-data slots
 //    (layout: LinklessOctree.hpp, lookup_hashed.glsl). After an update only
 //    the edited slots, offsets, list entries and the list's new tail are uploaded, unless a
-//    table was rehashed to a new size (then everything is).
+//    table was rehashed to a new size (then everything is): hashed::GpuUploadPlan's rules,
+//    which the OpenCL copy of the lists (vct::HashedListsCl) applies too.
 //  - The geometry mask needs the scene's triangles: setScene() before the
 //    first frame (the descriptor's factory passes the run's scene). The
 //    descriptor turns it on by default (`--no-geometry-mask` turns it off);
@@ -23,6 +24,7 @@
 
 #include "host/assign/LightAssigner.hpp"
 #include "host/assign/TechniqueDescriptor.hpp"
+#include "host/hashed/GpuUploadPlan.hpp"
 #include "host/hashed/HashedStructure.hpp"
 
 namespace ml {
@@ -56,19 +58,13 @@ class HashedAssigner final : public LightAssigner {
     std::size_t capacity = 0;  // bytes
   };
   void upload(bool rebuilt);  // rebuilt: the structure was built anew (everything is uploaded)
-  void uploadAll();
-  void uploadWholeList();
-  template <class Hash>
-  void uploadTable(const Hash& h, const hashed::TableEdits& edits, GLuint slots_buf, std::size_t slot_base,
-                   std::size_t offset_base);
-  static void ensure(Buffer& b, std::size_t bytes, bool keep_headroom);
 
   std::string name_;
   hashed::HashedConfig config_;
   const Scene* scene_ = nullptr;
   std::unique_ptr<hashed::HashedStructure> structure_;
   Buffer list_, header_, offsets_, desc_, data_;
-  std::uint64_t uploaded_layout_ = ~0ull;
+  hashed::GpuUploadPlanner planner_;  // what each upload writes (shared with the OpenCL copy in host/vct)
   double upload_ms_ = 0.0;
   std::size_t upload_bytes_ = 0;
   std::size_t full_rebuilds_ = 0, incremental_updates_ = 0;

@@ -11,26 +11,39 @@ namespace ml::vct {
 
 HashedListsCl::HashedListsCl(const compute::ComputeEnv& env) : env_(env) {}
 
-void HashedListsCl::put(cl::CommandQueue& q, Grown& g, const std::vector<std::uint32_t>& words) {
-  const std::size_t bytes = std::max<std::size_t>(words.size() * 4, 16);
-  if (bytes > g.capacity) {
-    if (bytes > env_.info().max_alloc_size)
-      throw UserError("hashed light lists need " + std::to_string(bytes) +
-                      " bytes in one buffer, more than the device's max allocation");
-    g.buf = cl::Buffer(env_.context(), CL_MEM_READ_ONLY, bytes);
-    g.capacity = bytes;
-  }
-  if (!words.empty()) q.enqueueWriteBuffer(g.buf, CL_TRUE, 0, words.size() * 4, words.data());
+void HashedListsCl::grow(Grown& g, std::size_t words) {
+  const std::size_t bytes = words * 4;
+  if (bytes > env_.info().max_alloc_size)
+    throw UserError("hashed light lists need " + std::to_string(bytes) +
+                    " bytes in one buffer, more than the device's max allocation");
+  g.buf = cl::Buffer(env_.context(), CL_MEM_READ_ONLY, bytes);
+  g.capacity = bytes;
 }
 
-void HashedListsCl::upload(cl::CommandQueue& q, const hashed::LinklessOctree& octree) {
-  const auto im = octree.packGpuImage();
-  put(q, header_, im.header);
-  put(q, offsets_, im.offsets);
-  put(q, desc_, im.desc);
-  put(q, data_, im.data);
-  put(q, list_, octree.pool().list());
+// Non-blocking writes from the plan's sources (the octree and the plan's
+// image), which live until the queue has finished with them below.
+void HashedListsCl::upload(cl::CommandQueue& q, hashed::LinklessOctree& octree, bool rebuilt) {
+  Grown* buffers[hashed::kGpuArrayCount] = {&header_, &offsets_, &desc_, &data_, &list_};  // GpuArray order
+  hashed::GpuArrayWords capacity{};
+  for (unsigned i = 0; i < hashed::kGpuArrayCount; ++i) capacity[i] = buffers[i]->capacity / 4;
+  const hashed::GpuUploadPlan plan = planner_.plan(octree, rebuilt || !uploaded_, capacity);
+  for (unsigned i = 0; i < hashed::kGpuArrayCount; ++i)
+    if (plan.grow[i]) grow(*buffers[i], plan.grow[i]);
+  for (const hashed::GpuWrite& w : plan.writes)
+    q.enqueueWriteBuffer(buffers[unsigned(w.array)]->buf, CL_FALSE, w.word * 4, w.count * 4, w.src);
+  q.finish();
   uploaded_ = true;
+  upload_full_ = plan.full;
+  upload_bytes_ = plan.bytes();
+}
+
+std::string HashedListsCl::staleArray(cl::CommandQueue& q, const hashed::LinklessOctree& octree) const {
+  const Grown* buffers[hashed::kGpuArrayCount] = {&header_, &offsets_, &desc_, &data_, &list_};
+  return hashed::firstStaleArray(octree, [&](hashed::GpuArray a, std::size_t words) {
+    const Grown& g = *buffers[unsigned(a)];
+    if (words * 4 > g.capacity) return std::vector<std::uint32_t>{};  // cannot hold the image: stale
+    return compute::download<std::uint32_t>(q, g.buf, words);
+  });
 }
 
 void HashedListsCl::setArgs(cl::Kernel& k, cl_uint first) const {

@@ -4,8 +4,10 @@
 //   update():      VctPipeline::update (voxelize once, inject from the frame's
 //                  lights, mips, 3D textures) on every frame, as if every light
 //                  moved (the many-dynamic-lights case; static geometry stays
-//                  voxelized); with `revoxelize` (moving geometry) every frame
-//                  voxelizes first, and the rest follows it as on any frame;
+//                  voxelized; the hashed lists follow the lights incrementally,
+//                  so unchanged lights cost them only a comparison); with
+//                  `revoxelize` (moving geometry) every frame voxelizes first,
+//                  and the rest follows it as on any frame;
 //   addIndirect(): `vct-trace` (gl/shaders/vct_trace.comp: diffuse cones, the
 //                  ambient occlusion and, with `specular`, a specular cone, at
 //                  gi_scale of the frame's resolution) and `vct-upsample`

@@ -61,9 +61,14 @@ void VctPipeline::inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>
     injector_.brute(q, g, volume_.accum().cl(), lights_, lights.size(), volume_.radiance().cl(), &timer);
     return;
   }
+  // The first update builds; later ones update incrementally
+  // (HashedStructure::update, which rebuilds by itself when that is cheaper
+  // or the lights left the octree) and upload only what changed.
   const auto start = std::chrono::steady_clock::now();
-  hashed_.build(lights);
-  lists_.upload(q, hashed_.linkless());
+  const hashed::UpdateStats& st = hashed_.update(lights);
+  lists_.upload(q, hashed_.linkless(), st.full_rebuild);
+  ++(st.full_rebuild ? list_builds_ : list_updates_);
+  if (!st.full_rebuild) list_update_bytes_ += lists_.lastUploadBytes();
   timings.add("vct-lists", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   injector_.hashed(q, g, volume_.accum().cl(), lights_, lights.size(), lists_, volume_.radiance().cl(), &timer);
 }

@@ -5,8 +5,11 @@
 // Static geometry is voxelized on the first update only; `revoxelize` redoes
 // it every update (moving geometry). Inject and mips rerun every update, so a
 // light move costs only those two. Injection looks lights up in the hashed
-// structure's lists (built here over the frame's lights, host time
-// `vct-lists`) unless `brute_force` is set.
+// structure's lists unless `brute_force` is set: this pipeline's own
+// HashedStructure (no geometry mask), built over the first update's lights,
+// then updated incrementally (DynamicLightUpdater) with each update's lights,
+// and copied to OpenCL buffers by HashedListsCl, which after an update writes
+// only what it changed (hashed::GpuUploadPlan); host time `vct-lists`.
 // Hand-overs: the volume's SharedBuffers are acquired for CL after the GL
 // voxelization and released to GL after the mips (GL owns them between
 // updates), then unpacked into mip-mapped 3D textures for sampling
@@ -52,6 +55,13 @@ class VctPipeline {
   const VoxelTextures& textures() const { return textures_; }
   std::size_t voxelizations() const { return voxelizations_; }  // tests: static geometry once
   std::size_t updates() const { return updates_; }
+  // The hashed lists: full builds, incremental updates, the last upload's
+  // bytes and the bytes uploaded by all incremental updates.
+  std::size_t listBuilds() const { return list_builds_; }
+  std::size_t listUpdates() const { return list_updates_; }
+  std::size_t lastListUploadBytes() const { return lists_.lastUploadBytes(); }
+  std::size_t listUpdateBytes() const { return list_update_bytes_; }
+  const hashed::HashedStructure& lists() const { return hashed_; }
 
  private:
   void inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>& lights, PassTimings& timings,
@@ -69,7 +79,7 @@ class VctPipeline {
   hashed::HashedStructure hashed_;
   cl::Buffer lights_;
   std::size_t lights_capacity_ = 0;
-  std::size_t voxelizations_ = 0, updates_ = 0;
+  std::size_t voxelizations_ = 0, updates_ = 0, list_builds_ = 0, list_updates_ = 0, list_update_bytes_ = 0;
 };
 
 }  // namespace ml::vct
