@@ -11,11 +11,16 @@
  * order. Shapes as in vct_common.cl. The C++ twin is host/vct/InjectTwin.hpp.
  * VCT_SHADOWS=1 (--vct-shadows voxel): each light's term is multiplied by its
  * visibility through level-0 opacity (voxel_visibility()); 0 or undefined
- * compiles none of it, so the option costs nothing when off. */
+ * compiles none of it, so the option costs nothing when off.
+ * VCT_SHADOW_SKIP=1: the march skips runs of samples in empty bricks and
+ * outside the grid, read from the occupancy hierarchy `occ`
+ * (vct_occupancy.cl), and decides exactly as the plain march (0: every
+ * sample loads its voxel; the bench's peer and what the twin does). */
 #pragma OPENCL FP_CONTRACT OFF
 #include "vct_common.cl"
 #include "gpu_types.h"
 #include "voxel_types.h"
+#include "voxel_occupancy.h"
 #include "shading_model.h"
 #include "hashed_lookup.cl"
 
@@ -41,48 +46,188 @@ ML_INLINE bool resolve_voxel(__global const VoxelAccum* accum, uint i, float4 or
   return true;
 }
 
-/* The level-0 grid the visibility march reads: filled voxels are opaque. */
-typedef struct VoxelOccupancy {
+/* The level-0 grid the visibility march reads: filled voxels are opaque.
+ * occ: its occupancy hierarchy (voxel_occupancy.h), read by the skipping
+ * march only. */
+typedef struct ShadowGrid {
   __global const VoxelAccum* accum;
+  __global const uint* occ;
   float4 origin_size;
   uint edge_log2;
-} VoxelOccupancy;
+  uint occ_edge[ML_OCC_LEVELS], occ_offset[ML_OCC_LEVELS];  /* per occupancy level */
+} ShadowGrid;
+
+ML_INLINE ShadowGrid shadow_grid(__global const VoxelAccum* accum, __global const uint* occ, float4 origin_size,
+                                 uint edge_log2) {
+  ShadowGrid g;
+  g.accum = accum;
+  g.occ = occ;
+  g.origin_size = origin_size;
+  g.edge_log2 = edge_log2;
+  for (uint l = 0; l < ML_OCC_LEVELS; ++l) {
+    g.occ_edge[l] = occupancy_level_edge(1u << edge_log2, l);
+    g.occ_offset[l] = occupancy_level_offset(1u << edge_log2, l);
+  }
+  return g;
+}
 
 #if VCT_SHADOWS
+/* The march from a = p + n * voxel size (one voxel off the surface, so the
+ * voxel does not shadow itself) to the light: d = light - a, `steps` equal
+ * parts, steps = ceil(2 * dominant-axis span / voxel size), sample k at the
+ * midpoint t = (k + 0.5) / steps of part k. */
+typedef struct March {
+  float ax, ay, az, dx, dy, dz;
+  uint steps;
+} March;
+
+ML_INLINE March march_to(const ShadowGrid* g, const Surfel* s, float3 lp) {
+  const float h = g->origin_size.w;
+  March m;
+  m.ax = s->p.x + s->n.x * h;
+  m.ay = s->p.y + s->n.y * h;
+  m.az = s->p.z + s->n.z * h;
+  m.dx = lp.x - m.ax;
+  m.dy = lp.y - m.ay;
+  m.dz = lp.z - m.az;
+  const float span = fmax(fabs(m.dx), fmax(fabs(m.dy), fabs(m.dz)));
+  m.steps = (uint)ceil(2.0f * span / h);
+  return m;
+}
+
+/* Voxel coordinates of sample k, floored but kept in float (no int
+ * overflow for far samples). Each is a monotone function of k (t, then
+ * a + d * t, then the subtraction, division and floor are all monotone in
+ * IEEE arithmetic): non-decreasing along an axis with d > 0, non-increasing
+ * with d < 0, constant with d = 0. The skipping march rests on this. */
+ML_INLINE float3 march_cell(const ShadowGrid* g, const March* m, uint k) {
+  const float t = ((float)k + 0.5f) / (float)m->steps;
+  const float h = g->origin_size.w;
+  return (float3)(floor((m->ax + m->dx * t - g->origin_size.x) / h), floor((m->ay + m->dy * t - g->origin_size.y) / h),
+                  floor((m->az + m->dz * t - g->origin_size.z) / h));
+}
+
+ML_INLINE bool cell_outside(float3 v, float edge) {
+  return v.x < 0.0f || v.y < 0.0f || v.z < 0.0f || v.x >= edge || v.y >= edge || v.z >= edge;
+}
+
+ML_INLINE uint cell_index(float3 v, uint edge_log2) {
+  return ((uint)v.z << (2u * edge_log2)) | ((uint)v.y << edge_log2) | (uint)v.x;
+}
+
+#if VCT_SHADOW_SKIP
+/* The bit of occupancy level `level` over in-grid voxel v. */
+ML_INLINE bool occ_bit(const ShadowGrid* g, uint level, float3 v) {
+  const uint shift = level * ML_OCC_BLOCK_LOG2, e = g->occ_edge[level];
+  const uint c = ((uint)v.x >> shift) + e * (((uint)v.y >> shift) + e * ((uint)v.z >> shift));
+  return (g->occ[g->occ_offset[level] + (c >> 5)] >> (c & 31u)) & 1u;
+}
+
+/* The last sample index j >= k (a float) whose cell can still lie in
+ * [lo, hi] along one axis, by solving a + d * (j + 0.5) / steps for the
+ * region's exit face, one sample short as margin; any rounding in it is
+ * caught by the caller's check of sample j itself. */
+ML_INLINE float axis_last(float a, float d, float o, float h, float lo, float hi, float steps) {
+  if (d == 0.0f) return INFINITY;
+  const float face = d > 0.0f ? hi + 1.0f : lo;
+  if (isinf(face)) return INFINITY;
+  return floor((o + face * h - a) / d * steps - 0.5f) - 1.0f;
+}
+
+/* Next sample to test after sample k, whose cell v lies in the empty box
+ * [lo, hi] (voxel coordinates, infinite bounds allowed): j + 1 for the
+ * farthest j whose cell is checked to lie in the box too, since each
+ * coordinate is monotone in the sample index, every sample between k and j
+ * then lies in the box; k + 1 when no such j is found. */
+ML_INLINE uint skip_box(const ShadowGrid* g, const March* m, uint k, float3 lo, float3 hi) {
+  const float4 o = g->origin_size;
+  const float h = o.w, steps = (float)m->steps;
+  float j = fmin(axis_last(m->ax, m->dx, o.x, h, lo.x, hi.x, steps),
+                 fmin(axis_last(m->ay, m->dy, o.y, h, lo.y, hi.y, steps), axis_last(m->az, m->dz, o.z, h, lo.z, hi.z, steps)));
+  if (!(j > (float)k)) return k + 1u;
+  /* j is a whole number here; clamped to the last sample before the cast. */
+  const uint jj = j >= (float)(m->steps - 1u) ? m->steps - 1u : (uint)j;
+  if (jj <= k) return k + 1u;
+  const float3 v = march_cell(g, m, jj);
+  const bool in = v.x >= lo.x && v.y >= lo.y && v.z >= lo.z && v.x <= hi.x && v.y <= hi.y && v.z <= hi.z;
+  return in ? jj + 1u : k + 1u;
+}
+
+/* Where the march goes after sample k outside the grid: `steps` when every
+ * later sample stays outside (beyond a face and moving away from it), else
+ * past the samples beyond that face. */
+ML_INLINE uint skip_outside(const ShadowGrid* g, const March* m, uint k, float3 v) {
+  const float edge = (float)(1u << g->edge_log2);
+  float3 lo = (float3)(-INFINITY), hi = (float3)(INFINITY);
+  if (v.x < 0.0f) { if (!(m->dx > 0.0f)) return m->steps; hi.x = -1.0f; }
+  else if (v.x >= edge) { if (!(m->dx < 0.0f)) return m->steps; lo.x = edge; }
+  else if (v.y < 0.0f) { if (!(m->dy > 0.0f)) return m->steps; hi.y = -1.0f; }
+  else if (v.y >= edge) { if (!(m->dy < 0.0f)) return m->steps; lo.y = edge; }
+  else if (v.z < 0.0f) { if (!(m->dz > 0.0f)) return m->steps; hi.z = -1.0f; }
+  else { if (!(m->dz < 0.0f)) return m->steps; lo.z = edge; }
+  return skip_box(g, m, k, lo, hi);
+}
+
+/* The empty box holding in-grid cell v: its 16^3 brick, else its 4^3 brick;
+ * returns false (box untouched) when both hold a filled voxel. */
+ML_INLINE bool empty_brick(const ShadowGrid* g, float3 v, float3* lo, float3* hi) {
+  for (uint level = ML_OCC_LEVELS - 1u; level > 0u; --level) {
+    if (occ_bit(g, level, v)) continue;
+    const float size = (float)(1u << (level * ML_OCC_BLOCK_LOG2));
+    *lo = floor(v / size) * size;
+    *hi = *lo + (size - 1.0f);
+    return true;
+  }
+  return false;
+}
+
+/* The plain march's decision, testing fewer samples: a sample whose cell
+ * lies in an empty brick or outside the grid is skipped together with the
+ * run of samples after it proven to lie there too, and the rest test a bit
+ * instead of loading the voxel. *tested counts the samples it looked at. */
+ML_INLINE float voxel_visibility(const ShadowGrid* g, const Surfel* s, float3 lp, uint* tested) {
+  const March m = march_to(g, s, lp);
+  const float edge = (float)(1u << g->edge_log2);
+  uint k = 0;
+  while (k < m.steps) {
+    ++*tested;
+    const float3 v = march_cell(g, &m, k);
+    float3 lo, hi;
+    if (cell_outside(v, edge)) k = skip_outside(g, &m, k, v);
+    else if (empty_brick(g, v, &lo, &hi)) k = skip_box(g, &m, k, lo, hi);
+    else if (occ_bit(g, 0u, v)) return 0.0f;
+    else ++k;
+  }
+  return 1.0f;
+}
+#else
 /* Hard visibility of light position `lp` from surfel `s`: 0 when a filled
  * level-0 voxel (opacity 1, so a soft product of (1 - opacity) would give the
- * same) lies on the segment from a = p + n * voxel size (one voxel off the
- * surface, so the voxel does not shadow itself) to the light, sampled at the
- * midpoints of `steps` equal parts, steps = ceil(2 * dominant-axis span /
- * voxel size): at most half a voxel apart along every axis, so no voxel the
- * segment crosses deeply is skipped, and the last sample stops within half a
- * voxel of the light. Samples outside the grid are empty. Same operations as
- * the twin's voxelVisibility(). */
-ML_INLINE float voxel_visibility(const VoxelOccupancy* g, const Surfel* s, float3 lp) {
-  const float h = g->origin_size.w;
-  const float ax = s->p.x + s->n.x * h, ay = s->p.y + s->n.y * h, az = s->p.z + s->n.z * h;
-  const float dx = lp.x - ax, dy = lp.y - ay, dz = lp.z - az;
-  const float span = fmax(fabs(dx), fmax(fabs(dy), fabs(dz)));
-  const uint steps = (uint)ceil(2.0f * span / h);
-  const int edge = 1 << g->edge_log2;
-  for (uint k = 0; k < steps; ++k) {
-    const float t = ((float)k + 0.5f) / (float)steps;
-    const int x = (int)floor((ax + dx * t - g->origin_size.x) / h);
-    const int y = (int)floor((ay + dy * t - g->origin_size.y) / h);
-    const int z = (int)floor((az + dz * t - g->origin_size.z) / h);
-    if (x < 0 || y < 0 || z < 0 || x >= edge || y >= edge || z >= edge) continue;
-    const uint i = ((uint)z << (2u * g->edge_log2)) | ((uint)y << g->edge_log2) | (uint)x;
-    if (g->accum[i].albedo_count[3] != 0u) return 0.0f;
+ * same) lies on a sample of the march (march_to()): samples at most half a
+ * voxel apart along every axis, so no voxel the segment crosses deeply is
+ * skipped, and the last stops within half a voxel of the light. Samples
+ * outside the grid are empty. The plain march: every sample loads its voxel.
+ * Same operations as the twin's voxelVisibility(). */
+ML_INLINE float voxel_visibility(const ShadowGrid* g, const Surfel* s, float3 lp, uint* tested) {
+  const March m = march_to(g, s, lp);
+  const float edge = (float)(1u << g->edge_log2);
+  for (uint k = 0; k < m.steps; ++k) {
+    ++*tested;
+    const float3 v = march_cell(g, &m, k);
+    if (cell_outside(v, edge)) continue;
+    if (g->accum[cell_index(v, g->edge_log2)].albedo_count[3] != 0u) return 0.0f;
   }
   return 1.0f;
 }
 #endif
+#endif
 
-ML_INLINE float3 add_light(float3 acc, const Surfel* s, __global const PointLight* l, const VoxelOccupancy* g) {
+ML_INLINE float3 add_light(float3 acc, const Surfel* s, __global const PointLight* l, const ShadowGrid* g) {
   const float4 pr = l->position_radius, c = l->color;
   float w = ml_light_weight(pr.x, pr.y, pr.z, pr.w, s->p.x, s->p.y, s->p.z, s->n.x, s->n.y, s->n.z);
 #if VCT_SHADOWS
-  if (w > 0.0f) w = w * voxel_visibility(g, s, pr.xyz);
+  uint tested = 0;
+  if (w > 0.0f) w = w * voxel_visibility(g, s, pr.xyz, &tested);
 #else
   (void)g;
 #endif
@@ -97,11 +242,11 @@ ML_INLINE float4 lit(const Surfel* s, float3 acc) {
 /* One voxel's injected radiance: summed over every light (hb null: brute
  * force) or over the hashed list at the voxel centre, in list order. Both
  * kernels go through here so that the two sums differ only in their lights. */
-ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, uint i, float4 origin_size, uint edge_log2,
-                              __global const PointLight* lights, uint n_lights, const HsBuffers* hb) {
+ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, __global const uint* occ, uint i, float4 origin_size,
+                              uint edge_log2, __global const PointLight* lights, uint n_lights, const HsBuffers* hb) {
   Surfel s;
   if (!resolve_voxel(accum, i, origin_size, edge_log2, &s)) return (float4)(0.0f);
-  const VoxelOccupancy g = {accum, origin_size, edge_log2};
+  const ShadowGrid g = shadow_grid(accum, occ, origin_size, edge_log2);
   float3 acc = (float3)(0.0f);
   if (hb) {
     HsList hl = hs_list_for(hb, s.p);
@@ -115,23 +260,25 @@ ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, uint i, float4 o
   return lit(&s, acc);
 }
 
-__kernel VCT_ATTR void inject_brute(__global const VoxelAccum* accum, __global float4* out, float4 origin_size,
-                                    uint edge_log2, uint n, uint chunk, __global const PointLight* lights,
-                                    uint n_lights) {
+/* occ: the occupancy hierarchy of accum (read with VCT_SHADOW_SKIP only). */
+__kernel VCT_ATTR void inject_brute(__global const VoxelAccum* accum, __global const uint* occ, __global float4* out,
+                                    float4 origin_size, uint edge_log2, uint n, uint chunk,
+                                    __global const PointLight* lights, uint n_lights) {
   uint b, e;
   item_range(n, chunk, &b, &e);
-  for (uint i = b; i < e; ++i) out[i] = inject_voxel(accum, i, origin_size, edge_log2, lights, n_lights, 0);
+  for (uint i = b; i < e; ++i) out[i] = inject_voxel(accum, occ, i, origin_size, edge_log2, lights, n_lights, 0);
 }
 
-__kernel VCT_ATTR void inject_hashed(__global const VoxelAccum* accum, __global float4* out, float4 origin_size,
-                                     uint edge_log2, uint n, uint chunk, __global const PointLight* lights,
+__kernel VCT_ATTR void inject_hashed(__global const VoxelAccum* accum, __global const uint* occ, __global float4* out,
+                                     float4 origin_size, uint edge_log2, uint n, uint chunk,
+                                     __global const PointLight* lights,
                                      __global const uint* header, __global const uint* offsets,
                                      __global const uint2* desc, __global const uint4* data,
                                      __global const uint* list) {
   const HsBuffers hb = {header, offsets, desc, data, list};
   uint b, e;
   item_range(n, chunk, &b, &e);
-  for (uint i = b; i < e; ++i) out[i] = inject_voxel(accum, i, origin_size, edge_log2, lights, 0u, &hb);
+  for (uint i = b; i < e; ++i) out[i] = inject_voxel(accum, occ, i, origin_size, edge_log2, lights, 0u, &hb);
 }
 
 /* Tests: the lookup's range (offset, count) and octant for each point. */
@@ -145,3 +292,23 @@ __kernel void hashed_lookup_probe(__global const float4* points, uint n, __globa
   const uint octant = l.octant_bit ? 31u - clz(l.octant_bit) - 24u : 0u;
   out[i] = (uint4)(l.offset, l.end - l.offset, octant, 0u);
 }
+
+#if VCT_SHADOWS
+/* Tests: per query q, the march from surfel (position pn[2q].xyz, unit
+ * normal pn[2q + 1].xyz) to light position lp[q].xyz: (visible, samples
+ * tested). One query per work-item. */
+__kernel void visibility_probe(__global const VoxelAccum* accum, __global const uint* occ, float4 origin_size,
+                               uint edge_log2, __global const float4* pn, __global const float4* lp, uint n,
+                               __global uint2* out) {
+  const uint q = get_global_id(0);
+  if (q >= n) return;
+  const ShadowGrid g = shadow_grid(accum, occ, origin_size, edge_log2);
+  Surfel s;
+  s.albedo = (float3)(0.0f);
+  s.p = pn[2u * q].xyz;
+  s.n = pn[2u * q + 1u].xyz;
+  uint tested = 0;
+  const float v = voxel_visibility(&g, &s, lp[q].xyz, &tested);
+  out[q] = (uint2)(v > 0.0f ? 1u : 0u, tested);
+}
+#endif

@@ -3,7 +3,9 @@
 //   voxelize (GL, gl/VoxelizePass) -> inject (OpenCL, VoxelInjector) -> mips
 //   (OpenCL, VoxelMips: isotropic, plus anisotropic when the settings ask).
 // Static geometry is voxelized on the first update only; `revoxelize` redoes
-// it every update (moving geometry). Inject and mips rerun every update, so a
+// it every update (moving geometry). With shadows, each voxelization is
+// followed by the occupancy hierarchy the shadow march skips empty space
+// with (VoxelOccupancy, CL device time `vct-occupancy`). Inject and mips rerun every update, so a
 // light move costs only those two. Injection looks lights up in the hashed
 // structure's lists (built here over the frame's lights, host time
 // `vct-lists`) unless `brute_force` is set.
@@ -27,6 +29,7 @@
 #include "host/vct/VoxelGrid.hpp"
 #include "host/vct/VoxelInjector.hpp"
 #include "host/vct/VoxelMips.hpp"
+#include "host/vct/VoxelOccupancy.hpp"
 #include "host/vct/VoxelVolume.hpp"
 
 namespace ml::vct {
@@ -56,6 +59,8 @@ class VctPipeline {
  private:
   void inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>& lights, PassTimings& timings,
               ClPassTimer& timer);
+  const VoxelOccupancy* occupancy() const { return options_.shadows ? &occupancy_ : nullptr; }
+  bool occupancy_stale_ = true;  // voxelized since the occupancy was built
 
   ClRuntime& rt_;
   VctPipelineOptions options_;
@@ -64,6 +69,7 @@ class VctPipeline {
   VoxelizePass voxelize_;
   VoxelTextures textures_;
   VoxelInjector injector_;
+  VoxelOccupancy occupancy_;  // of the last voxelization, for the shadow march
   VoxelMips mips_;
   HashedListsCl lists_;
   hashed::HashedStructure hashed_;
