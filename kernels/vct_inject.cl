@@ -12,8 +12,8 @@
  * VCT_SHADOWS=1 (--vct-shadows voxel): each light's term is multiplied by its
  * visibility through level-0 opacity (voxel_visibility()); 0 or undefined
  * compiles none of it, so the option costs nothing when off.
- * VCT_SHADOW_SKIP=1: the march skips runs of samples in empty bricks and
- * outside the grid, read from the occupancy hierarchy `occ`
+ * VCT_SHADOW_SKIP=1: the march skips runs of samples in empty space and
+ * outside the grid, read from the distance volume `occ`
  * (vct_occupancy.cl), and decides exactly as the plain march (0: every
  * sample loads its voxel; the bench's peer and what the twin does). */
 #pragma OPENCL FP_CONTRACT OFF
@@ -47,29 +47,14 @@ ML_INLINE bool resolve_voxel(__global const VoxelAccum* accum, uint i, float4 or
 }
 
 /* The level-0 grid the visibility march reads: filled voxels are opaque.
- * occ: its occupancy hierarchy (voxel_occupancy.h), read by the skipping
- * march only. */
+ * occ: its empty-space distance volume (voxel_occupancy.h), read by the
+ * skipping march only. */
 typedef struct ShadowGrid {
   __global const VoxelAccum* accum;
-  __global const uint* occ;
+  __global const uchar* occ;
   float4 origin_size;
   uint edge_log2;
-  uint occ_edge[ML_OCC_LEVELS], occ_offset[ML_OCC_LEVELS];  /* per occupancy level */
 } ShadowGrid;
-
-ML_INLINE ShadowGrid shadow_grid(__global const VoxelAccum* accum, __global const uint* occ, float4 origin_size,
-                                 uint edge_log2) {
-  ShadowGrid g;
-  g.accum = accum;
-  g.occ = occ;
-  g.origin_size = origin_size;
-  g.edge_log2 = edge_log2;
-  for (uint l = 0; l < ML_OCC_LEVELS; ++l) {
-    g.occ_edge[l] = occupancy_level_edge(1u << edge_log2, l);
-    g.occ_offset[l] = occupancy_level_offset(1u << edge_log2, l);
-  }
-  return g;
-}
 
 #if VCT_SHADOWS
 /* The march from a = p + n * voxel size (one voxel off the surface, so the
@@ -79,6 +64,7 @@ ML_INLINE ShadowGrid shadow_grid(__global const VoxelAccum* accum, __global cons
 typedef struct March {
   float ax, ay, az, dx, dy, dz;
   uint steps;
+  float3 rel, inv; /* skipping: origin - a, steps / d (infinite where d = 0) */
 } March;
 
 ML_INLINE March march_to(const ShadowGrid* g, const Surfel* s, float3 lp) {
@@ -92,6 +78,12 @@ ML_INLINE March march_to(const ShadowGrid* g, const Surfel* s, float3 lp) {
   m.dz = lp.z - m.az;
   const float span = fmax(fabs(m.dx), fmax(fabs(m.dy), fabs(m.dz)));
   m.steps = (uint)ceil(2.0f * span / h);
+#if VCT_SHADOW_SKIP
+  const float steps = (float)m.steps;
+  m.rel = (float3)(g->origin_size.x - m.ax, g->origin_size.y - m.ay, g->origin_size.z - m.az);
+  m.inv = (float3)(m.dx == 0.0f ? INFINITY : steps / m.dx, m.dy == 0.0f ? INFINITY : steps / m.dy,
+                   m.dz == 0.0f ? INFINITY : steps / m.dz);
+#endif
   return m;
 }
 
@@ -116,41 +108,37 @@ ML_INLINE uint cell_index(float3 v, uint edge_log2) {
 }
 
 #if VCT_SHADOW_SKIP
-/* The bit of occupancy level `level` over in-grid voxel v. */
-ML_INLINE bool occ_bit(const ShadowGrid* g, uint level, float3 v) {
-  const uint shift = level * ML_OCC_BLOCK_LOG2, e = g->occ_edge[level];
-  const uint c = ((uint)v.x >> shift) + e * (((uint)v.y >> shift) + e * ((uint)v.z >> shift));
-  return (g->occ[g->occ_offset[level] + (c >> 5)] >> (c & 31u)) & 1u;
-}
-
-/* The last sample index j >= k (a float) whose cell can still lie in
- * [lo, hi] along one axis, by solving a + d * (j + 0.5) / steps for the
- * region's exit face, one sample short as margin; any rounding in it is
- * caught by the caller's check of sample j itself. */
-ML_INLINE float axis_last(float a, float d, float o, float h, float lo, float hi, float steps) {
-  if (d == 0.0f) return INFINITY;
-  const float face = d > 0.0f ? hi + 1.0f : lo;
+/* An estimate of the last sample index whose cell can still lie in [lo, hi]
+ * along one axis (infinite bounds allowed): a + d * (j + 0.5) / steps solved
+ * for the box's exit face, with rel = o - a and inv = steps / d precomputed
+ * per march. Rounding in it is caught by the caller, which checks the
+ * sample it points to. */
+ML_INLINE float axis_last(float rel, float inv, float h, float lo, float hi) {
+  if (isinf(inv)) return INFINITY;
+  const float face = inv > 0.0f ? hi + 1.0f : lo;
   if (isinf(face)) return INFINITY;
-  return floor((o + face * h - a) / d * steps - 0.5f) - 1.0f;
+  return ceil((rel + face * h) * inv - 0.5f) - 1.0f;
 }
 
-/* Next sample to test after sample k, whose cell v lies in the empty box
- * [lo, hi] (voxel coordinates, infinite bounds allowed): j + 1 for the
- * farthest j whose cell is checked to lie in the box too, since each
- * coordinate is monotone in the sample index, every sample between k and j
- * then lies in the box; k + 1 when no such j is found. */
+ML_INLINE bool cell_in_box(float3 v, float3 lo, float3 hi) {
+  return v.x >= lo.x && v.y >= lo.y && v.z >= lo.z && v.x <= hi.x && v.y <= hi.y && v.z <= hi.z;
+}
+
+/* Next sample to test after sample k, whose cell lies in the empty box
+ * [lo, hi] (voxel coordinates): j + 1 for the estimated last sample j in the
+ * box (or the one before it) once its cell is checked to lie in the box:
+ * each coordinate is monotone in the sample index, so every sample between k
+ * and j then lies in the box too. k + 1 when neither checks out. */
 ML_INLINE uint skip_box(const ShadowGrid* g, const March* m, uint k, float3 lo, float3 hi) {
-  const float4 o = g->origin_size;
-  const float h = o.w, steps = (float)m->steps;
-  float j = fmin(axis_last(m->ax, m->dx, o.x, h, lo.x, hi.x, steps),
-                 fmin(axis_last(m->ay, m->dy, o.y, h, lo.y, hi.y, steps), axis_last(m->az, m->dz, o.z, h, lo.z, hi.z, steps)));
+  const float h = g->origin_size.w;
+  const float j = fmin(axis_last(m->rel.x, m->inv.x, h, lo.x, hi.x),
+                       fmin(axis_last(m->rel.y, m->inv.y, h, lo.y, hi.y), axis_last(m->rel.z, m->inv.z, h, lo.z, hi.z)));
   if (!(j > (float)k)) return k + 1u;
   /* j is a whole number here; clamped to the last sample before the cast. */
-  const uint jj = j >= (float)(m->steps - 1u) ? m->steps - 1u : (uint)j;
-  if (jj <= k) return k + 1u;
-  const float3 v = march_cell(g, m, jj);
-  const bool in = v.x >= lo.x && v.y >= lo.y && v.z >= lo.z && v.x <= hi.x && v.y <= hi.y && v.z <= hi.z;
-  return in ? jj + 1u : k + 1u;
+  uint jj = j >= (float)(m->steps - 1u) ? m->steps - 1u : (uint)j;
+  for (uint tries = 0; tries < 2u && jj > k; ++tries, --jj)
+    if (cell_in_box(march_cell(g, m, jj), lo, hi)) return jj + 1u;
+  return k + 1u;
 }
 
 /* Where the march goes after sample k outside the grid: `steps` when every
@@ -168,23 +156,12 @@ ML_INLINE uint skip_outside(const ShadowGrid* g, const March* m, uint k, float3 
   return skip_box(g, m, k, lo, hi);
 }
 
-/* The empty box holding in-grid cell v: its 16^3 brick, else its 4^3 brick;
- * returns false (box untouched) when both hold a filled voxel. */
-ML_INLINE bool empty_brick(const ShadowGrid* g, float3 v, float3* lo, float3* hi) {
-  for (uint level = ML_OCC_LEVELS - 1u; level > 0u; --level) {
-    if (occ_bit(g, level, v)) continue;
-    const float size = (float)(1u << (level * ML_OCC_BLOCK_LOG2));
-    *lo = floor(v / size) * size;
-    *hi = *lo + (size - 1.0f);
-    return true;
-  }
-  return false;
-}
-
-/* The plain march's decision, testing fewer samples: a sample whose cell
- * lies in an empty brick or outside the grid is skipped together with the
- * run of samples after it proven to lie there too, and the rest test a bit
- * instead of loading the voxel. *tested counts the samples it looked at. */
+/* The plain march's decision, testing fewer samples: a sample whose voxel
+ * is d >= 2 voxels from any filled one (the distance volume) is skipped
+ * together with the run of samples after it proven to lie in the empty cube
+ * of half-width d - 1 around it, and likewise runs outside the grid; the rest
+ * read a byte instead of loading the voxel. *tested counts the samples it
+ * looked at. */
 ML_INLINE float voxel_visibility(const ShadowGrid* g, const Surfel* s, float3 lp, uint* tested) {
   const March m = march_to(g, s, lp);
   const float edge = (float)(1u << g->edge_log2);
@@ -192,11 +169,14 @@ ML_INLINE float voxel_visibility(const ShadowGrid* g, const Surfel* s, float3 lp
   while (k < m.steps) {
     ++*tested;
     const float3 v = march_cell(g, &m, k);
-    float3 lo, hi;
-    if (cell_outside(v, edge)) k = skip_outside(g, &m, k, v);
-    else if (empty_brick(g, v, &lo, &hi)) k = skip_box(g, &m, k, lo, hi);
-    else if (occ_bit(g, 0u, v)) return 0.0f;
-    else ++k;
+    if (cell_outside(v, edge)) {
+      k = skip_outside(g, &m, k, v);
+      continue;
+    }
+    const uint d = g->occ[cell_index(v, g->edge_log2)];
+    if (d == 0u) return 0.0f;
+    const float r = (float)(d - 1u);
+    k = d == 1u ? k + 1u : skip_box(g, &m, k, v - r, v + r);
   }
   return 1.0f;
 }
@@ -242,11 +222,11 @@ ML_INLINE float4 lit(const Surfel* s, float3 acc) {
 /* One voxel's injected radiance: summed over every light (hb null: brute
  * force) or over the hashed list at the voxel centre, in list order. Both
  * kernels go through here so that the two sums differ only in their lights. */
-ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, __global const uint* occ, uint i, float4 origin_size,
+ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, __global const uchar* occ, uint i, float4 origin_size,
                               uint edge_log2, __global const PointLight* lights, uint n_lights, const HsBuffers* hb) {
   Surfel s;
   if (!resolve_voxel(accum, i, origin_size, edge_log2, &s)) return (float4)(0.0f);
-  const ShadowGrid g = shadow_grid(accum, occ, origin_size, edge_log2);
+  const ShadowGrid g = {accum, occ, origin_size, edge_log2};
   float3 acc = (float3)(0.0f);
   if (hb) {
     HsList hl = hs_list_for(hb, s.p);
@@ -260,8 +240,8 @@ ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, __global const u
   return lit(&s, acc);
 }
 
-/* occ: the occupancy hierarchy of accum (read with VCT_SHADOW_SKIP only). */
-__kernel VCT_ATTR void inject_brute(__global const VoxelAccum* accum, __global const uint* occ, __global float4* out,
+/* occ: the distance volume of accum (read with VCT_SHADOW_SKIP only). */
+__kernel VCT_ATTR void inject_brute(__global const VoxelAccum* accum, __global const uchar* occ, __global float4* out,
                                     float4 origin_size, uint edge_log2, uint n, uint chunk,
                                     __global const PointLight* lights, uint n_lights) {
   uint b, e;
@@ -269,7 +249,7 @@ __kernel VCT_ATTR void inject_brute(__global const VoxelAccum* accum, __global c
   for (uint i = b; i < e; ++i) out[i] = inject_voxel(accum, occ, i, origin_size, edge_log2, lights, n_lights, 0);
 }
 
-__kernel VCT_ATTR void inject_hashed(__global const VoxelAccum* accum, __global const uint* occ, __global float4* out,
+__kernel VCT_ATTR void inject_hashed(__global const VoxelAccum* accum, __global const uchar* occ, __global float4* out,
                                      float4 origin_size, uint edge_log2, uint n, uint chunk,
                                      __global const PointLight* lights,
                                      __global const uint* header, __global const uint* offsets,
@@ -297,12 +277,12 @@ __kernel void hashed_lookup_probe(__global const float4* points, uint n, __globa
 /* Tests: per query q, the march from surfel (position pn[2q].xyz, unit
  * normal pn[2q + 1].xyz) to light position lp[q].xyz: (visible, samples
  * tested). One query per work-item. */
-__kernel void visibility_probe(__global const VoxelAccum* accum, __global const uint* occ, float4 origin_size,
+__kernel void visibility_probe(__global const VoxelAccum* accum, __global const uchar* occ, float4 origin_size,
                                uint edge_log2, __global const float4* pn, __global const float4* lp, uint n,
                                __global uint2* out) {
   const uint q = get_global_id(0);
   if (q >= n) return;
-  const ShadowGrid g = shadow_grid(accum, occ, origin_size, edge_log2);
+  const ShadowGrid g = {accum, occ, origin_size, edge_log2};
   Surfel s;
   s.albedo = (float3)(0.0f);
   s.p = pn[2u * q].xyz;

@@ -1,53 +1,51 @@
-/* The occupancy hierarchy of a level-0 voxel grid (layout:
- * voxel_occupancy.h), which the voxel-shadow march reads to skip empty space.
- *   occupancy_voxels: level 0, one word (32 voxels) per item, a bit per
- *     voxel with a non-zero VoxelAccum count;
- *   occupancy_reduce: level l + 1 from level l of the same buffer, one word
- *     (32 cells) per item, a bit per 4^3 block of level-l cells with any bit
- *     set (blocks clipped at the far faces).
- * Items are words; shapes as in vct_common.cl. The C++ twin is
- * host/vct/OccupancyTwin.hpp (bit for bit). */
+/* The empty-space distance volume of a level-0 voxel grid (layout:
+ * voxel_occupancy.h), which the voxel-shadow march reads to skip empty
+ * space. Three passes, items are lines of the grid along one axis:
+ *   distance_rows: along x, from the accumulation buffer: the distance along
+ *     the row to its nearest filled voxel (a forward and a backward sweep);
+ *   distance_lines (twice: along y, then z): f'(i) = min over j of
+ *     max(|i - j|, f(j)) along the line, searched outward from i and stopped
+ *     once |i - j| reaches the best so far (nothing farther can beat it).
+ * Every value clamped to ML_OCC_MAX_DISTANCE. Shapes as in vct_common.cl.
+ * The C++ twin is host/vct/OccupancyTwin.hpp (equal byte for byte). */
 #include "vct_common.cl"
 #include "voxel_types.h"
 #include "voxel_occupancy.h"
 
-__kernel VCT_ATTR void occupancy_voxels(__global const VoxelAccum* accum, uint n_voxels, __global uint* occ,
-                                        uint words, uint chunk) {
+__kernel VCT_ATTR void distance_rows(__global const VoxelAccum* accum, uint edge, __global uchar* out, uint rows,
+                                     uint chunk) {
   uint b, e;
-  item_range(words, chunk, &b, &e);
-  for (uint w = b; w < e; ++w) {
-    const uint first = w * 32u, last = min(first + 32u, n_voxels);
-    uint bits = 0u;
-    for (uint i = first; i < last; ++i) bits |= (accum[i].albedo_count[3] != 0u ? 1u : 0u) << (i - first);
-    occ[w] = bits;
+  item_range(rows, chunk, &b, &e);
+  for (uint r = b; r < e; ++r) {
+    const uint base = r * edge;
+    uint d = ML_OCC_MAX_DISTANCE;
+    for (uint x = 0; x < edge; ++x) {
+      d = accum[base + x].albedo_count[3] != 0u ? 0u : min(d + 1u, ML_OCC_MAX_DISTANCE);
+      out[base + x] = (uchar)d;
+    }
+    d = ML_OCC_MAX_DISTANCE;
+    for (uint x = edge; x-- > 0u;) {
+      d = out[base + x] == 0u ? 0u : min(d + 1u, ML_OCC_MAX_DISTANCE);
+      out[base + x] = (uchar)min(d, (uint)out[base + x]);
+    }
   }
 }
 
-/* Any bit set among the level-l cells of block (x, y, z) of level l + 1. */
-ML_INLINE uint block_any(__global const uint* src, uint src_edge, uint x, uint y, uint z) {
-  const uint s = 1u << ML_OCC_BLOCK_LOG2;
-  const uint x0 = x * s, x1 = min(x0 + s, src_edge), y1 = min(y * s + s, src_edge), z1 = min(z * s + s, src_edge);
-  for (uint sz = z * s; sz < z1; ++sz)
-    for (uint sy = y * s; sy < y1; ++sy)
-      for (uint sx = x0; sx < x1; ++sx) {
-        const uint c = sx + src_edge * (sy + src_edge * sz);
-        if ((src[c >> 5] >> (c & 31u)) & 1u) return 1u;
-      }
-  return 0u;
-}
-
-__kernel VCT_ATTR void occupancy_reduce(__global uint* occ, uint src_offset, uint src_edge, uint dst_offset,
-                                        uint dst_edge, uint words, uint chunk) {
-  const uint cells = dst_edge * dst_edge * dst_edge;
+/* Line l along the axis of `stride` (edge: y, edge^2: z) starts at voxel
+ * (l % stride) + (l / stride) * stride * edge. */
+__kernel VCT_ATTR void distance_lines(__global const uchar* in, __global uchar* out, uint edge, uint stride,
+                                      uint lines, uint chunk) {
   uint b, e;
-  item_range(words, chunk, &b, &e);
-  for (uint w = b; w < e; ++w) {
-    const uint first = w * 32u, last = min(first + 32u, cells);
-    uint bits = 0u;
-    for (uint c = first; c < last; ++c) {
-      const uint x = c % dst_edge, y = c / dst_edge % dst_edge, z = c / dst_edge / dst_edge;
-      bits |= block_any(occ + src_offset, src_edge, x, y, z) << (c - first);
+  item_range(lines, chunk, &b, &e);
+  for (uint l = b; l < e; ++l) {
+    const uint base = l % stride + l / stride * stride * edge;
+    for (uint i = 0; i < edge; ++i) {
+      uint best = in[base + i * stride];
+      for (uint r = 1u; r < best; ++r) {
+        if (i >= r) best = min(best, max(r, (uint)in[base + (i - r) * stride]));
+        if (i + r < edge) best = min(best, max(r, (uint)in[base + (i + r) * stride]));
+      }
+      out[base + i * stride] = (uchar)best;
     }
-    occ[dst_offset + w] = bits;
   }
 }

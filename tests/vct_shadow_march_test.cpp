@@ -1,8 +1,9 @@
 // The voxel-shadow march's empty-space skipping, both kernel shapes:
-//  - the occupancy hierarchy (kernels/vct_occupancy.cl through
+//  - the empty-space distance volume (kernels/vct_occupancy.cl through
 //    vct::VoxelOccupancy) equals its C++ twin (host/vct/OccupancyTwin.hpp)
-//    bit for bit on random volumes of edges 1, 2, odd and 2^k (+-1), empty,
-//    full, sparse and dense, the buffer poisoned before each build;
+//    byte for byte on random volumes of edges 1, 2, odd and 2^k (+-1), empty,
+//    full, sparse and dense, the buffer poisoned before each build; the twin
+//    equals the definition (brute force over voxel pairs) on small grids;
 //  - the skipping march (VoxelInjector's march(), VCT_SHADOW_SKIP) decides
 //    exactly as the plain march on the device (skip_empty = false) for every
 //    query, and as the plain C++ twin (InjectTwin's voxelVisibility()) where
@@ -15,7 +16,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <cstdio>
 #include <glm/glm.hpp>
@@ -57,6 +57,21 @@ std::vector<gpu::VoxelAccum> volume(unsigned edge, unsigned fill, bool blocks, s
 
 class VctOccupancy : public ::testing::TestWithParam<KernelShape> {};
 
+// The definition itself, by brute force over every voxel pair (small grids).
+std::vector<std::uint8_t> distanceByDefinition(const std::vector<gpu::VoxelAccum>& a, unsigned e) {
+  std::vector<std::uint8_t> d(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    unsigned best = ML_OCC_MAX_DISTANCE;
+    for (std::size_t u = 0; u < a.size(); ++u) {
+      if (a[u].albedo_count[3] == 0) continue;
+      const auto diff = [&](std::size_t p, std::size_t q) { return unsigned(p > q ? p - q : q - p); };
+      best = std::min(best, std::max({diff(i % e, u % e), diff(i / e % e, u / e % e), diff(i / e / e, u / e / e)}));
+    }
+    d[i] = std::uint8_t(best);
+  }
+  return d;
+}
+
 TEST_P(VctOccupancy, MatchesTwinOnRandomVolumes) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
@@ -65,34 +80,26 @@ TEST_P(VctOccupancy, MatchesTwinOnRandomVolumes) {
   auto& q = rt.queue();
   VoxelOccupancy occ(compute::ComputeEnv(rt), compute::Options{.shape = GetParam()});
   std::vector<unsigned> edges = {1, 2, 3, 4, 5, 7, 8, 15, 16, 17, 31, 32, 33};
-  if (!test::smallTests()) edges.insert(edges.end(), {63, 64, 65, 128});
+  if (!test::smallTests()) edges.insert(edges.end(), {63, 64, 65});
+  std::size_t far = 0;  // voxels at the clamp: the early stop and the clamp both ran
   for (unsigned edge : edges)
-    for (unsigned fill : {0u, 1u, 2u, 60u, 1000u}) {
+    for (unsigned fill : {0u, 1u, 2u, 60u, 3000u}) {
       SCOPED_TRACE("edge=" + std::to_string(edge) + " fill=1/" + std::to_string(fill));
       const auto a = volume(edge, fill, fill > 2 && rng() % 2, rng);
       const auto want = occupancyTwin(a, edge);
+      if (edge <= 9) {
+        ASSERT_EQ(want, distanceByDefinition(a, edge)) << "the twin misses the definition";
+      }
       cl::Buffer accum = compute::upload(rt.context(), q, a);
       if (occ.edge()) {
         cl::Buffer old = occ.buffer();
         compute::poison(q, old);
       }
       occ.build(q, edge, accum);
-      cl::Buffer got_buf = occ.buffer();
-      compute::poison(q, got_buf);  // the build must write every word: poison, build again
-      occ.build(q, edge, accum);
-      const auto got = compute::download<std::uint32_t>(q, occ.buffer(), want.size());
-      ASSERT_EQ(got, want);
-      // The twin itself: level 0 has exactly the filled voxels; the top
-      // level is empty exactly when the volume is.
-      std::size_t bits = 0, filled = 0;
-      for (std::size_t w = 0; w < gpu::occupancy_words(edge); ++w) bits += std::size_t(std::popcount(want[w]));
-      for (const auto& v : a) filled += v.albedo_count[3] != 0;
-      ASSERT_EQ(bits, filled);
-      const unsigned top = ML_OCC_LEVELS - 1;
-      bool any_top = false;
-      for (std::size_t w = gpu::occupancy_level_offset(edge, top); w < want.size(); ++w) any_top |= want[w] != 0;
-      ASSERT_EQ(any_top, filled != 0);
+      ASSERT_EQ(compute::download<std::uint8_t>(q, occ.buffer(), want.size()), want);
+      for (std::uint8_t d : want) far += d == ML_OCC_MAX_DISTANCE;
     }
+  EXPECT_GT(far, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, VctOccupancy, ::testing::ValuesIn(test::kBothShapes),

@@ -9,35 +9,38 @@ namespace ml::vct {
 
 namespace {
 
-bool bit(const std::vector<std::uint32_t>& w, std::size_t offset, std::size_t c) {
-  return (w[offset + c / 32] >> (c % 32)) & 1u;
-}
-
-void set(std::vector<std::uint32_t>& w, std::size_t offset, std::size_t c) { w[offset + c / 32] |= 1u << (c % 32); }
-
-// Level l + 1 from level l: a bit per 4^3 block with any bit set.
-void reduceLevel(std::vector<std::uint32_t>& w, unsigned edge, unsigned l) {
-  const unsigned se = gpu::occupancy_level_edge(edge, l), de = gpu::occupancy_level_edge(edge, l + 1);
-  const std::size_t so = gpu::occupancy_level_offset(edge, l), dof = gpu::occupancy_level_offset(edge, l + 1);
-  const unsigned s = 1u << ML_OCC_BLOCK_LOG2;
-  for (unsigned z = 0; z < se; ++z)
-    for (unsigned y = 0; y < se; ++y)
-      for (unsigned x = 0; x < se; ++x)
-        if (bit(w, so, x + std::size_t(se) * (y + std::size_t(se) * z)))
-          set(w, dof, x / s + std::size_t(de) * (y / s + std::size_t(de) * (z / s)));
+// f'(i) = min over j of max(|i - j|, f(j)) along every line of `stride`.
+std::vector<std::uint8_t> linePass(const std::vector<std::uint8_t>& in, unsigned edge, std::size_t stride) {
+  std::vector<std::uint8_t> out(in.size());
+  const std::size_t lines = std::size_t(edge) * edge;
+  for (std::size_t l = 0; l < lines; ++l) {
+    const std::size_t base = l % stride + l / stride * stride * edge;
+    for (unsigned i = 0; i < edge; ++i) {
+      unsigned best = in[base + i * stride];
+      for (unsigned j = 0; j < edge; ++j)
+        best = std::min(best, std::max(unsigned(i > j ? i - j : j - i), unsigned(in[base + j * stride])));
+      out[base + i * stride] = std::uint8_t(best);
+    }
+  }
+  return out;
 }
 
 }  // namespace
 
-std::vector<std::uint32_t> occupancyTwin(const std::vector<gpu::VoxelAccum>& accum, unsigned edge) {
+std::vector<std::uint8_t> occupancyTwin(const std::vector<gpu::VoxelAccum>& accum, unsigned edge) {
   if (edge == 0 || edge > ML_VOXEL_MAX_EDGE) throw std::invalid_argument("occupancyTwin: edge out of range");
   const std::size_t n = std::size_t(edge) * edge * edge;
   if (accum.size() < n) throw std::invalid_argument("occupancyTwin: accumulation buffer smaller than the grid");
-  std::vector<std::uint32_t> w(gpu::occupancy_level_offset(edge, ML_OCC_LEVELS), 0u);
-  for (std::size_t i = 0; i < n; ++i)
-    if (accum[i].albedo_count[3] != 0) set(w, 0, i);
-  for (unsigned l = 0; l + 1 < ML_OCC_LEVELS; ++l) reduceLevel(w, edge, l);
-  return w;
+  // Along x: the distance to the nearest filled voxel of the row, clamped.
+  std::vector<std::uint8_t> d(n);
+  for (std::size_t r = 0; r < n / edge; ++r)
+    for (unsigned x = 0; x < edge; ++x) {
+      unsigned best = ML_OCC_MAX_DISTANCE;
+      for (unsigned u = 0; u < edge; ++u)
+        if (accum[r * edge + u].albedo_count[3] != 0) best = std::min(best, x > u ? x - u : u - x);
+      d[r * edge + x] = std::uint8_t(best);
+    }
+  return linePass(linePass(d, edge, edge), edge, std::size_t(edge) * edge);
 }
 
 }  // namespace ml::vct

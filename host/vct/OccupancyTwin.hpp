@@ -1,8 +1,9 @@
 #pragma once
-// The C++ twin of kernels/vct_occupancy.cl: the occupancy hierarchy
+// The C++ twin of kernels/vct_occupancy.cl: the empty-space distance volume
 // (host/shared/voxel_occupancy.h) of a level-0 accumulation grid of `edge`
-// voxels per axis (any edge 1 .. ML_VOXEL_MAX_EDGE), all ML_OCC_LEVELS levels
-// in one word vector, equal to the kernels' buffer bit for bit.
+// voxels per axis (any edge 1 .. ML_VOXEL_MAX_EDGE), equal to the kernels'
+// buffer byte for byte. Written from the passes' definitions (every pair of a
+// line, no early stop), not from the kernels' loops.
 #include <cstdint>
 #include <vector>
 
@@ -10,6 +11,6 @@
 
 namespace ml::vct {
 
-std::vector<std::uint32_t> occupancyTwin(const std::vector<gpu::VoxelAccum>& accum, unsigned edge);
+std::vector<std::uint8_t> occupancyTwin(const std::vector<gpu::VoxelAccum>& accum, unsigned edge);
 
 }  // namespace ml::vct

@@ -4,9 +4,9 @@
 //   (OpenCL, VoxelMips: isotropic, plus anisotropic when the settings ask).
 // Static geometry is voxelized on the first update only; `revoxelize` redoes
 // it every update (moving geometry). With shadows, each voxelization is
-// followed by the occupancy hierarchy the shadow march skips empty space
-// with (VoxelOccupancy, CL device time `vct-occupancy`). Inject and mips rerun every update, so a
-// light move costs only those two. Injection looks lights up in the hashed
+// followed by the distance volume the shadow march skips empty space with
+// (VoxelOccupancy, CL device time `vct-occupancy`). Inject and mips rerun
+// every update, so a light move costs only those two. Injection looks lights up in the hashed
 // structure's lists (built here over the frame's lights, host time
 // `vct-lists`) unless `brute_force` is set.
 // Hand-overs: the volume's SharedBuffers are acquired for CL after the GL

@@ -14,7 +14,7 @@
 // each light's term times its visibility through the filled level-0 voxels
 // of `accum` (InjectTwin's voxelVisibility()); false compiles none of it.
 // With skip_empty (the default) the march skips empty space through the
-// occupancy hierarchy of `accum` (VoxelOccupancy): the caller's, built from
+// empty-space distance volume of `accum` (VoxelOccupancy): the caller's, built from
 // the same accumulation buffer, or, when none is given, one built here on
 // every call (timed as "vct-occupancy"). Its decisions equal the plain march
 // (skip_empty = false: every sample loads its voxel; the bench's peer).

@@ -4,7 +4,6 @@
 #include <string>
 
 #include "host/compute/Detail.hpp"
-#include "host/shared/voxel_occupancy.h"
 #include "host/shared/voxel_types.h"
 
 namespace ml::vct {
@@ -14,18 +13,18 @@ using compute::detail::u32;
 VoxelOccupancy::VoxelOccupancy(const compute::ComputeEnv& env, const compute::Options& options)
     : env_(env), tuning_(compute::resolveTuning(env, options)) {}
 
-void VoxelOccupancy::launchWords(cl::CommandQueue& q, cl::Kernel& k, cl_uint words_arg, std::size_t words,
+void VoxelOccupancy::launchLines(cl::CommandQueue& q, cl::Kernel& k, cl_uint lines_arg, std::size_t lines,
                                  ClPassTimer* timer) {
-  std::size_t chunk = 1, global = words, local = tuning_.wg;
+  std::size_t chunk = 1, global = lines, local = tuning_.wg;
   if (!tuning_.gpu()) {
-    // A word costs 32 voxel loads (level 0) or up to 32 * 64 bit tests: a
-    // floor of 64 words per work-item still splits a 32^3 grid's level 0.
-    chunk = tuning_.cpuChunk(words, 64);
-    global = compute::detail::ceilDiv(words, chunk);
+    // A line is edge voxels (up to 30 reads each): a floor of 16 lines per
+    // work-item still splits a 16^3 grid's 256 lines among the work-items.
+    chunk = tuning_.cpuChunk(lines, 16);
+    global = compute::detail::ceilDiv(lines, chunk);
     local = 1;
   }
-  k.setArg(words_arg, u32(words));
-  k.setArg(words_arg + 1, u32(chunk));
+  k.setArg(lines_arg, u32(lines));
+  k.setArg(lines_arg + 1, u32(chunk));
   compute::detail::launch(q, k, global, local, timer, "vct-occupancy");
 }
 
@@ -35,25 +34,24 @@ void VoxelOccupancy::build(cl::CommandQueue& q, unsigned edge, const cl::Buffer&
                                 std::to_string(ML_VOXEL_MAX_EDGE));
   const std::size_t n = std::size_t(edge) * edge * edge;
   compute::detail::checkBuffer(accum, n * sizeof(gpu::VoxelAccum), "VoxelOccupancy accumulation buffer");
-  const std::size_t bytes = std::size_t(gpu::occupancy_level_offset(edge, ML_OCC_LEVELS)) * 4;
-  if (bytes > capacity_) {
-    buffer_ = cl::Buffer();  // release first: the old and new buffer need not coexist
-    buffer_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, bytes);
-    capacity_ = bytes;
+  if (n > capacity_) {
+    buffer_ = tmp_ = cl::Buffer();  // release first: the old and new buffers need not coexist
+    buffer_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, n);
+    tmp_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, n);
+    capacity_ = n;
   }
-  if (!voxels_()) {
+  if (!rows_()) {
     cl::Program p = compute::detail::buildShaped(env_, tuning_, "vct_occupancy.cl");
-    voxels_ = cl::Kernel(p, "occupancy_voxels");
-    reduce_ = cl::Kernel(p, "occupancy_reduce");
+    rows_ = cl::Kernel(p, "distance_rows");
+    lines_ = cl::Kernel(p, "distance_lines");
   }
-  compute::detail::setArgs(voxels_, accum, u32(n), buffer_);
-  launchWords(q, voxels_, 3, gpu::occupancy_words(edge), timer);
-  for (unsigned l = 0; l + 1 < ML_OCC_LEVELS; ++l) {
-    const unsigned de = gpu::occupancy_level_edge(edge, l + 1);
-    compute::detail::setArgs(reduce_, buffer_, gpu::occupancy_level_offset(edge, l), gpu::occupancy_level_edge(edge, l),
-                             gpu::occupancy_level_offset(edge, l + 1), de);
-    launchWords(q, reduce_, 5, gpu::occupancy_words(de), timer);
-  }
+  const std::size_t lines = std::size_t(edge) * edge;
+  compute::detail::setArgs(rows_, accum, cl_uint(edge), buffer_);
+  launchLines(q, rows_, 3, lines, timer);
+  compute::detail::setArgs(lines_, buffer_, tmp_, cl_uint(edge), cl_uint(edge));
+  launchLines(q, lines_, 4, lines, timer);
+  compute::detail::setArgs(lines_, tmp_, buffer_, cl_uint(edge), u32(lines));
+  launchLines(q, lines_, 4, lines, timer);
   edge_ = edge;
 }
 
