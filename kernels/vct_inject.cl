@@ -67,7 +67,9 @@ typedef struct March {
   float3 rel, inv; /* skipping: origin - a, steps / d (infinite where d = 0) */
 } March;
 
-ML_INLINE March march_to(const ShadowGrid* g, const Surfel* s, float3 lp) {
+/* Out-parameter, not a returned struct: a struct return becomes an sret
+ * (noalias) pointer whose inlining Oclgrind cannot simulate. */
+ML_INLINE void march_to(const ShadowGrid* g, const Surfel* s, float3 lp, March* out) {
   const float h = g->origin_size.w;
   March m;
   m.ax = s->p.x + s->n.x * h;
@@ -84,7 +86,7 @@ ML_INLINE March march_to(const ShadowGrid* g, const Surfel* s, float3 lp) {
   m.inv = (float3)(m.dx == 0.0f ? INFINITY : steps / m.dx, m.dy == 0.0f ? INFINITY : steps / m.dy,
                    m.dz == 0.0f ? INFINITY : steps / m.dz);
 #endif
-  return m;
+  *out = m;
 }
 
 /* Voxel coordinates of sample k, floored but kept in float (no int
@@ -163,7 +165,8 @@ ML_INLINE uint skip_outside(const ShadowGrid* g, const March* m, uint k, float3 
  * read a byte instead of loading the voxel. *tested counts the samples it
  * looked at. */
 ML_INLINE float voxel_visibility(const ShadowGrid* g, const Surfel* s, float3 lp, uint* tested) {
-  const March m = march_to(g, s, lp);
+  March m;
+  march_to(g, s, lp, &m);
   const float edge = (float)(1u << g->edge_log2);
   uint k = 0;
   while (k < m.steps) {
@@ -189,7 +192,8 @@ ML_INLINE float voxel_visibility(const ShadowGrid* g, const Surfel* s, float3 lp
  * outside the grid are empty. The plain march: every sample loads its voxel.
  * Same operations as the twin's voxelVisibility(). */
 ML_INLINE float voxel_visibility(const ShadowGrid* g, const Surfel* s, float3 lp, uint* tested) {
-  const March m = march_to(g, s, lp);
+  March m;
+  march_to(g, s, lp, &m);
   const float edge = (float)(1u << g->edge_log2);
   for (uint k = 0; k < m.steps; ++k) {
     ++*tested;

@@ -70,8 +70,8 @@ jobs="${OCLGRIND_JOBS:-2}"
 if [[ "${1:-}" == --ci ]]; then
   # CI's selection (about 4 minutes on two idle cores): each GPU-shape kernel at
   # least once, one test per primitive family; the rest of the default set runs
-  # without --ci. The voxel-shadow injection, occupancy and march tests add
-  # about ADD s.
+  # without --ci. The voxel-shadow injection, distance-volume and march tests
+  # add about a minute.
   prims="Compute/BitonicSortTest.MatchesStdSort/Gpu_Pairs:Compute/CompactTest.ValuesAndIndicesMatchCopyIf/Gpu_Half"
   prims+=":Compute/UniqueTest.MatchesStdUnique/Gpu_Random:Compute/ReduceTest.MinMaxSumMatchStd/Gpu_F32"
   prims+=":Compute/ReduceShapeTest.SegmentedMinMaxWithOffsets/Gpu:Compute/ReduceShapeTest.TileMinMaxOfDepthImage/Gpu"
