@@ -9,7 +9,8 @@
 //  - Injection of --lights lights into a synthetic room (walls one voxel
 //    thick, a block in the middle) at --inject-edge: through the hashed
 //    structure's lists against brute force over all lights; the mean list
-//    length per filled voxel says why.
+//    length per filled voxel says why. Then with voxel shadows: no shadows,
+//    the plain march and the skipping march (its occupancy build apart).
 //  - With --frame, instead: cone tracing inside the frame (VctFrameSweep.hpp),
 //    per pass at --edges x isotropic/anisotropic x --cones, and the error
 //    against the Embree reference, on the Cornell box and the default scene,
@@ -37,6 +38,7 @@
 #include "host/vct/VoxelGrid.hpp"
 #include "host/vct/VoxelInjector.hpp"
 #include "host/vct/VoxelMips.hpp"
+#include "host/vct/VoxelOccupancy.hpp"
 #include "BenchCommon.hpp"
 #include "BenchSupport.hpp"
 #include "VctFrameSweep.hpp"
@@ -148,18 +150,36 @@ struct Bench {
     return a;
   }
 
-  void inject(unsigned edge, std::size_t n_lights, double radius) {
-    const gpu::VoxelGridParams g{{0, 0, 0, 1.0f / float(edge)}, edge, 1, 0, 0};
+  // The room at `edge` with `n_lights` random lights of `radius`, uploaded.
+  struct InjectInputs {
+    gpu::VoxelGridParams g;
+    std::vector<gpu::VoxelAccum> accum;
     std::size_t filled = 0;
-    const auto accum = room(edge, filled);
+    std::vector<gpu::PointLight> lights;
+    cl::Buffer ab, lb, out;
+  };
+  InjectInputs injectInputs(unsigned edge, std::size_t n_lights, double radius) {
+    InjectInputs in;
+    in.g = gpu::VoxelGridParams{{0, 0, 0, 1.0f / float(edge)}, edge, 1, 0, 0};
+    in.accum = room(edge, in.filled);
     std::mt19937_64 rng(kThesisSeed + n_lights);
     std::uniform_real_distribution<float> u(0.02f, 0.98f);
-    std::vector<gpu::PointLight> lights;
     for (std::size_t i = 0; i < n_lights; ++i)
-      lights.push_back(makeLight({u(rng), u(rng), u(rng)}, float(radius), glm::vec3(u(rng), u(rng), u(rng))));
+      in.lights.push_back(makeLight({u(rng), u(rng), u(rng)}, float(radius), glm::vec3(u(rng), u(rng), u(rng))));
+    in.ab = compute::upload(rt.context(), rt.queue(), in.accum);
+    in.lb = compute::upload(rt.context(), rt.queue(), in.lights);
+    in.out = cl::Buffer(rt.context(), CL_MEM_READ_WRITE, in.accum.size() * 16);
+    return in;
+  }
+
+  void inject(unsigned edge, std::size_t n_lights, double radius) {
+    InjectInputs in = injectInputs(edge, n_lights, radius);
+    const gpu::VoxelGridParams& g = in.g;
+    const auto& accum = in.accum;
+    const auto& lights = in.lights;
+    const std::size_t filled = in.filled;
     auto& q = rt.queue();
-    cl::Buffer ab = compute::upload(rt.context(), q, accum), lb = compute::upload(rt.context(), q, lights);
-    cl::Buffer out(rt.context(), CL_MEM_READ_WRITE, accum.size() * 16);
+    cl::Buffer &ab = in.ab, &lb = in.lb, &out = in.out;
     hashed::HashedStructure hs{hashed::HashedConfig{}};
     hs.build(lights);
     const compute::ComputeEnv env(rt);
@@ -181,6 +201,33 @@ struct Bench {
                        {"filled_voxels", filled}, {"brute_seconds", t_brute}, {"hashed_seconds", t_hashed},
                        {"speedup", t_brute / t_hashed}, {"hashed_build_ms", hs.lastBuild().total_ms},
                        {"mean_list_entries", entries / double(filled)}, {"shape", kernelShapeName(inj.tuning().shape)}});
+  }
+
+  // Hashed injection with voxel shadows against none: the plain march (every
+  // sample loads its voxel) and the skipping one (occupancy hierarchy built
+  // once, as after a voxelization, its build timed apart), same inputs.
+  void shadows(unsigned edge, std::size_t n_lights, double radius) {
+    InjectInputs in = injectInputs(edge, n_lights, radius);
+    auto& q = rt.queue();
+    hashed::HashedStructure hs{hashed::HashedConfig{}};
+    hs.build(in.lights);
+    const compute::ComputeEnv env(rt);
+    vct::HashedListsCl lists(env);
+    lists.upload(q, hs.linkless());
+    vct::VoxelInjector none(env), plain(env, {}, true, false), skipping(env, {}, true);
+    vct::VoxelOccupancy occ(env);
+    const double t_occ = timeMedian(reps, [&] { occ.build(q, in.g.edge, in.ab); q.finish(); });
+    const auto time = [&](vct::VoxelInjector& inj) {
+      return timeMedian(reps, [&] { inj.hashed(q, in.g, in.ab, in.lb, in.lights.size(), lists, in.out, nullptr, &occ); q.finish(); });
+    };
+    const double t_none = time(none), t_plain = time(plain), t_skip = time(skipping);
+    std::printf("%5u^3 %8zu %6.3f %10.3f %12.3f %12.3f %9.2f %12.3f %9.2f\n", edge, n_lights, radius, t_none * 1e3,
+                t_plain * 1e3, t_skip * 1e3, t_skip / t_none, t_occ * 1e3, t_plain / t_skip);
+    records.push_back({{"name", "inject.shadows"}, {"edge", edge}, {"lights", n_lights}, {"radius", radius},
+                       {"filled_voxels", in.filled}, {"none_seconds", t_none}, {"plain_march_seconds", t_plain},
+                       {"skipping_march_seconds", t_skip}, {"occupancy_seconds", t_occ},
+                       {"shadowed_over_none", t_skip / t_none}, {"plain_over_skipping", t_plain / t_skip},
+                       {"shape", kernelShapeName(skipping.tuning().shape)}});
   }
 };
 
@@ -250,6 +297,11 @@ int run(int argc, char** argv) {
   std::printf("%7s %8s %7s %6s %10s %12s %12s %9s %12s\n", "grid", "lights", "filled", "radius", "build ms",
               "brute ms", "hashed ms", "speedup", "list/voxel");
   for (unsigned n : light_list) b.inject(a.inject_edge, n, a.radius);
+  std::printf("\nInjection with voxel shadows (hashed, median of %d), room of %u^3 voxels: none, plain march, "
+              "skipping march\n", a.common.reps, a.inject_edge);
+  std::printf("%7s %8s %6s %10s %12s %12s %9s %12s %9s\n", "grid", "lights", "radius", "none ms", "plain ms",
+              "skipping ms", "vs none", "occupancy ms", "speedup");
+  for (unsigned n : light_list) b.shadows(a.inject_edge, n, a.radius);
   benchutil::writeJson(a.common.json_path, b.records);
   return 0;
 }

@@ -70,21 +70,22 @@ jobs="${OCLGRIND_JOBS:-2}"
 if [[ "${1:-}" == --ci ]]; then
   # CI's selection (about 4 minutes on two idle cores): each GPU-shape kernel at
   # least once, one test per primitive family; the rest of the default set runs
-  # without --ci. The voxel-shadow injection tests add about 8 s.
+  # without --ci. The voxel-shadow injection, distance-volume and march tests
+  # add about a minute.
   prims="Compute/BitonicSortTest.MatchesStdSort/Gpu_Pairs:Compute/CompactTest.ValuesAndIndicesMatchCopyIf/Gpu_Half"
   prims+=":Compute/UniqueTest.MatchesStdUnique/Gpu_Random:Compute/ReduceTest.MinMaxSumMatchStd/Gpu_F32"
   prims+=":Compute/ReduceShapeTest.SegmentedMinMaxWithOffsets/Gpu:Compute/ReduceShapeTest.TileMinMaxOfDepthImage/Gpu"
   prims+=":Compute/ScanTest.MatchesStdScan/Gpu_Exclusive:Compute/ScanTest.InPlace/Gpu_Inclusive"
   prims+=":Compute/SegmentedSortShapeTest.OffsetSegmentsWithAStatedBound/Gpu:Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs32"
   groups=("primitives|$prims|"
-          "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.AllPixelsOneCluster/gpu:Shapes/VctInject.VoxelShadows*/gpu:Shapes/VctInject.ClosedWall*/gpu|-cl-opt-disable")
+          "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.AllPixelsOneCluster/gpu:Shapes/VctInject.VoxelShadows*/gpu:Shapes/VctInject.ClosedWall*/gpu:Shapes/VctOccupancy.*/gpu:Shapes/VctShadowMarch.*/gpu|-cl-opt-disable")
 elif (($#)); then
   groups=("custom|$1|${OCLGRIND_BUILD_OPTIONS--cl-opt-disable}")
 else
   radix_left_out="Compute/RadixSortTest.MatchesStableSort/Gpu_Keys*:Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs32Bits13"
   radix_left_out+=":Compute/RadixSortTest.MatchesStableSort/Gpu_Pairs64:Compute/RadixShapeTest.*"
   groups=("primitives|Compute/*Gpu*-$radix_left_out:Compute/ReduceShapeTest.SegmentedMinMaxFixedSize/Gpu|"
-          "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.*/gpu:Shapes/VctMips.*/gpu:Shapes/VctInject.*/gpu-Shapes/ClusteredUnique.EveryPixelADifferentCluster/gpu|-cl-opt-disable")
+          "techniques|TileSizesAndModes/TiledCulling.*_gpu:Shapes/TiledCullingEdges.*/gpu:Shapes/ClusteredKeys.*/gpu:Shapes/ClusteredUnique.*/gpu:Shapes/VctMips.*/gpu:Shapes/VctInject.*/gpu:Shapes/VctOccupancy.*/gpu:Shapes/VctShadowMarch.*/gpu-Shapes/ClusteredUnique.EveryPixelADifferentCluster/gpu|-cl-opt-disable")
 fi
 
 command -v oclgrind >/dev/null || { echo "oclgrind.sh: oclgrind is not installed (apt-get install oclgrind)" >&2; exit 2; }

@@ -23,7 +23,7 @@ bool resolveVoxel(const gpu::VoxelAccum& a, unsigned i, const gpu::VoxelGridPara
 }
 
 float voxelVisibility(const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& g, const Surfel& s,
-                      const float lp[3]) {
+                      const float lp[3], unsigned* tested) {
   const float h = g.origin_voxel_size.w;
   const float o[3] = {g.origin_voxel_size.x, g.origin_voxel_size.y, g.origin_voxel_size.z};
   float a[3], d[3];
@@ -33,14 +33,18 @@ float voxelVisibility(const std::vector<gpu::VoxelAccum>& accum, const gpu::Voxe
   }
   const float span = std::fmax(std::fabs(d[0]), std::fmax(std::fabs(d[1]), std::fabs(d[2])));
   const auto steps = static_cast<unsigned>(std::ceil(2.0f * span / h));
-  const int edge = static_cast<int>(g.edge);
+  const auto edge = float(g.edge);
+  if (tested) *tested = steps;
   for (unsigned k = 0; k < steps; ++k) {
     const float t = (float(k) + 0.5f) / float(steps);
-    int v[3];
-    for (int c = 0; c < 3; ++c) v[c] = static_cast<int>(std::floor((a[c] + d[c] * t - o[c]) / h));
+    float v[3];  // floored voxel coordinates, compared in float as the kernel does
+    for (int c = 0; c < 3; ++c) v[c] = std::floor((a[c] + d[c] * t - o[c]) / h);
     if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= edge || v[1] >= edge || v[2] >= edge) continue;
-    const std::size_t i = (std::size_t(v[2]) * g.edge + unsigned(v[1])) * g.edge + unsigned(v[0]);
-    if (accum[i].albedo_count[3] != 0) return 0.0f;
+    const std::size_t i = (std::size_t(v[2]) * g.edge + std::size_t(v[1])) * g.edge + std::size_t(v[0]);
+    if (accum[i].albedo_count[3] != 0) {
+      if (tested) *tested = k + 1;
+      return 0.0f;
+    }
   }
   return 1.0f;
 }

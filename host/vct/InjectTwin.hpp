@@ -25,9 +25,11 @@ bool resolveVoxel(const gpu::VoxelAccum& a, unsigned i, const gpu::VoxelGridPara
 
 // 1 when no filled level-0 voxel lies between `s` (one voxel off its surface
 // along its normal) and the light position `lp`, else 0: the kernel's
-// voxel_visibility(), same float operations (kernels/vct_inject.cl).
+// voxel_visibility(), same float operations (kernels/vct_inject.cl), as its
+// plain march: every sample in turn, which the kernel's skipping march must
+// equal. `tested` (if given) gets the number of samples it looked at.
 float voxelVisibility(const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& g, const Surfel& s,
-                      const float lp[3]);
+                      const float lp[3], unsigned* tested = nullptr);
 
 // One float4 per voxel: (albedo * ML_SHADE_DIRECT * sum, 1), or zero.
 std::vector<gpu::ml_float4> injectTwin(const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& g,

@@ -13,6 +13,7 @@ VctPipeline::VctPipeline(ClRuntime& rt, const VctPipelineOptions& options, const
       env_(rt),
       volume_(rt, options.grid, fitVoxelGrid(scene_bounds, options.grid)),
       injector_(env_, options.compute, options.shadows),
+      occupancy_(env_, options.compute),
       mips_(env_, options.compute),
       lists_(env_),
       hashed_(hashed::HashedConfig{}) {}
@@ -23,12 +24,17 @@ void VctPipeline::update(const SceneGpu& scene, const std::vector<gpu::PointLigh
     voxelize_.run(scene, volume_.params(), volume_.accum(), &gl_timer);
     gl_timer.collect(timings);
     ++voxelizations_;
+    occupancy_stale_ = true;
   }
   cl::CommandQueue& q = rt_.queue();
   ClPassTimer timer;
   volume_.accum().acquireForCl(q, ClAccess::Read);
   volume_.radiance().acquireForCl(q, ClAccess::ReadWrite);
   if (volume_.anisotropic()) volume_.anisotropic()->acquireForCl(q, ClAccess::Write);
+  if (options_.shadows && occupancy_stale_) {
+    occupancy_.build(q, volume_.params().edge, volume_.accum().cl(), &timer);
+    occupancy_stale_ = false;
+  }
   inject(q, lights, timings, timer);
   mips_.isotropic(q, volume_.params(), volume_.radiance().cl(), &timer);
   if (volume_.anisotropic())
@@ -58,7 +64,7 @@ void VctPipeline::inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>
     q.enqueueWriteBuffer(lights_, CL_TRUE, 0, lights.size() * sizeof(gpu::PointLight), lights.data());
   const gpu::VoxelGridParams& g = volume_.params();
   if (options_.brute_force || lights.empty()) {
-    injector_.brute(q, g, volume_.accum().cl(), lights_, lights.size(), volume_.radiance().cl(), &timer);
+    injector_.brute(q, g, volume_.accum().cl(), lights_, lights.size(), volume_.radiance().cl(), &timer, occupancy());
     return;
   }
   // The first update builds; later ones update incrementally
@@ -70,7 +76,8 @@ void VctPipeline::inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>
   ++(st.full_rebuild ? list_builds_ : list_updates_);
   if (!st.full_rebuild) list_update_bytes_ += lists_.lastUploadBytes();
   timings.add("vct-lists", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  injector_.hashed(q, g, volume_.accum().cl(), lights_, lights.size(), lists_, volume_.radiance().cl(), &timer);
+  injector_.hashed(q, g, volume_.accum().cl(), lights_, lights.size(), lists_, volume_.radiance().cl(), &timer,
+                   occupancy());
 }
 
 }  // namespace ml::vct

@@ -3,13 +3,16 @@
 //   voxelize (GL, gl/VoxelizePass) -> inject (OpenCL, VoxelInjector) -> mips
 //   (OpenCL, VoxelMips: isotropic, plus anisotropic when the settings ask).
 // Static geometry is voxelized on the first update only; `revoxelize` redoes
-// it every update (moving geometry). Inject and mips rerun every update, so a
-// light move costs only those two. Injection looks lights up in the hashed
-// structure's lists unless `brute_force` is set: this pipeline's own
-// HashedStructure (no geometry mask), built over the first update's lights,
-// then updated incrementally (DynamicLightUpdater) with each update's lights,
-// and copied to OpenCL buffers by HashedListsCl, which after an update writes
-// only what it changed (hashed::GpuUploadPlan); host time `vct-lists`.
+// it every update (moving geometry). With shadows, each voxelization is
+// followed by the distance volume the shadow march skips empty space with
+// (VoxelOccupancy, CL device time `vct-occupancy`). Inject and mips rerun
+// every update, so a light move costs only those two. Injection looks lights
+// up in the hashed structure's lists unless `brute_force` is set: this
+// pipeline's own HashedStructure (no geometry mask), built over the first
+// update's lights, then updated incrementally (DynamicLightUpdater) with each
+// update's lights, and copied to OpenCL buffers by HashedListsCl, which after
+// an update writes only what it changed (hashed::GpuUploadPlan); host time
+// `vct-lists`.
 // Hand-overs: the volume's SharedBuffers are acquired for CL after the GL
 // voxelization and released to GL after the mips (GL owns them between
 // updates), then unpacked into mip-mapped 3D textures for sampling
@@ -30,6 +33,7 @@
 #include "host/vct/VoxelGrid.hpp"
 #include "host/vct/VoxelInjector.hpp"
 #include "host/vct/VoxelMips.hpp"
+#include "host/vct/VoxelOccupancy.hpp"
 #include "host/vct/VoxelVolume.hpp"
 
 namespace ml::vct {
@@ -66,6 +70,8 @@ class VctPipeline {
  private:
   void inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>& lights, PassTimings& timings,
               ClPassTimer& timer);
+  const VoxelOccupancy* occupancy() const { return options_.shadows ? &occupancy_ : nullptr; }
+  bool occupancy_stale_ = true;  // voxelized since the occupancy was built
 
   ClRuntime& rt_;
   VctPipelineOptions options_;
@@ -74,6 +80,7 @@ class VctPipeline {
   VoxelizePass voxelize_;
   VoxelTextures textures_;
   VoxelInjector injector_;
+  VoxelOccupancy occupancy_;  // of the last voxelization, for the shadow march
   VoxelMips mips_;
   HashedListsCl lists_;
   hashed::HashedStructure hashed_;

@@ -1,18 +1,50 @@
 #include "host/vct/VoxelInjector.hpp"
 
+#include <algorithm>
+#include <stdexcept>
+
 #include "host/compute/Detail.hpp"
+#include "host/compute/HostIo.hpp"
 #include "host/vct/VoxelGrid.hpp"
 
 namespace ml::vct {
 
 using compute::detail::u32;
 
-VoxelInjector::VoxelInjector(const compute::ComputeEnv& env, const compute::Options& options, bool shadows)
-    : env_(env), tuning_(compute::resolveTuning(env, options)), shadows_(shadows) {}
+VoxelInjector::VoxelInjector(const compute::ComputeEnv& env, const compute::Options& options, bool shadows,
+                             bool skip_empty)
+    : env_(env),
+      tuning_(compute::resolveTuning(env, options)),
+      shadows_(shadows),
+      skip_(shadows && skip_empty),
+      own_(env, options) {}
 
-std::size_t VoxelInjector::prepare(cl::Kernel& k, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
-                                   const cl::Buffer& lights, std::size_t light_count, cl::Buffer& radiance,
-                                   std::size_t& local) {
+void VoxelInjector::build() {
+  if (brute_()) return;
+  cl::Program p = compute::detail::buildShaped(
+      env_, tuning_, "vct_inject.cl", {{"VCT_SHADOWS", shadows_ ? "1" : "0"}, {"VCT_SHADOW_SKIP", skip_ ? "1" : "0"}});
+  brute_ = cl::Kernel(p, "inject_brute");
+  hashed_ = cl::Kernel(p, "inject_hashed");
+  if (shadows_) probe_ = cl::Kernel(p, "visibility_probe");
+}
+
+const cl::Buffer& VoxelInjector::occupancyFor(cl::CommandQueue& q, const gpu::VoxelGridParams& g,
+                                              const cl::Buffer& accum, ClPassTimer* timer,
+                                              const VoxelOccupancy* occupancy) {
+  if (!skip_) return accum;
+  if (!occupancy) {
+    own_.build(q, g.edge, accum, timer);
+    occupancy = &own_;
+  }
+  if (occupancy->edge() != g.edge)
+    throw std::invalid_argument("VoxelInjector: the occupancy was built for another grid edge");
+  return occupancy->buffer();
+}
+
+std::size_t VoxelInjector::prepare(cl::Kernel& k, cl::CommandQueue& q, const gpu::VoxelGridParams& g,
+                                   const cl::Buffer& accum, const cl::Buffer& lights, std::size_t light_count,
+                                   cl::Buffer& radiance, std::size_t& local, ClPassTimer* timer,
+                                   const VoxelOccupancy* occupancy) {
   VoxelGridSettings s;
   s.voxels = g.edge;
   s.levels = g.levels;
@@ -22,11 +54,7 @@ std::size_t VoxelInjector::prepare(cl::Kernel& k, const gpu::VoxelGridParams& g,
   compute::detail::checkBuffer(radiance, n * 16, "VoxelInjector radiance volume");
   compute::detail::checkBuffer(lights, light_count * sizeof(gpu::PointLight), "VoxelInjector lights");
   compute::detail::checkCount(light_count, "VoxelInjector lights");
-  if (!brute_()) {
-    cl::Program p = compute::detail::buildShaped(env_, tuning_, "vct_inject.cl", {{"VCT_SHADOWS", shadows_ ? "1" : "0"}});
-    brute_ = cl::Kernel(p, "inject_brute");
-    hashed_ = cl::Kernel(p, "inject_hashed");
-  }
+  build();
   std::size_t chunk = 1, global = n;
   local = tuning_.wg;
   if (!tuning_.gpu()) {
@@ -38,27 +66,52 @@ std::size_t VoxelInjector::prepare(cl::Kernel& k, const gpu::VoxelGridParams& g,
     local = 1;
   }
   const auto& o = g.origin_voxel_size;
-  compute::detail::setArgs(k, accum, radiance, cl_float4{{o.x, o.y, o.z, o.w}}, cl_uint(log2Exact(g.edge)), u32(n),
-                           u32(chunk), lights);
+  compute::detail::setArgs(k, accum, occupancyFor(q, g, accum, timer, occupancy), radiance,
+                           cl_float4{{o.x, o.y, o.z, o.w}}, cl_uint(log2Exact(g.edge)), u32(n), u32(chunk), lights);
   return global;
 }
 
 void VoxelInjector::brute(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
                           const cl::Buffer& lights, std::size_t light_count, cl::Buffer& radiance,
-                          ClPassTimer* timer) {
+                          ClPassTimer* timer, const VoxelOccupancy* occupancy) {
   std::size_t local = 1;
-  const std::size_t global = prepare(brute_, g, accum, lights, light_count, radiance, local);
-  brute_.setArg(7, u32(light_count));
+  const std::size_t global = prepare(brute_, q, g, accum, lights, light_count, radiance, local, timer, occupancy);
+  brute_.setArg(8, u32(light_count));
   compute::detail::launch(q, brute_, global, local, timer, "vct-inject");
 }
 
 void VoxelInjector::hashed(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
                            const cl::Buffer& lights, std::size_t light_count, const HashedListsCl& lists,
-                           cl::Buffer& radiance, ClPassTimer* timer) {
+                           cl::Buffer& radiance, ClPassTimer* timer, const VoxelOccupancy* occupancy) {
   std::size_t local = 1;
-  const std::size_t global = prepare(hashed_, g, accum, lights, light_count, radiance, local);
-  lists.setArgs(hashed_, 7);
+  const std::size_t global = prepare(hashed_, q, g, accum, lights, light_count, radiance, local, timer, occupancy);
+  lists.setArgs(hashed_, 8);
   compute::detail::launch(q, hashed_, global, local, timer, "vct-inject");
+}
+
+std::vector<VoxelInjector::MarchResult> VoxelInjector::march(cl::CommandQueue& q, const gpu::VoxelGridParams& g,
+                                                             const cl::Buffer& accum,
+                                                             const std::vector<gpu::ml_float4>& pn,
+                                                             const std::vector<gpu::ml_float4>& lp) {
+  if (!shadows_) throw std::logic_error("VoxelInjector::march: built without shadows");
+  if (pn.size() != 2 * lp.size()) throw std::invalid_argument("VoxelInjector::march: pn needs two float4 per query");
+  const std::size_t n = lp.size();
+  compute::detail::checkBuffer(accum, std::size_t(g.edge) * g.edge * g.edge * sizeof(gpu::VoxelAccum),
+                               "VoxelInjector accumulation buffer");
+  build();
+  const auto& o = g.origin_voxel_size;
+  // Empty inputs still need buffers: an OpenCL buffer needs a size.
+  const auto padded = [](std::vector<gpu::ml_float4> v) { return v.empty() ? std::vector<gpu::ml_float4>(1) : v; };
+  cl::Buffer pnb = compute::upload(env_.context(), q, padded(pn)), lpb = compute::upload(env_.context(), q, padded(lp));
+  cl::Buffer out(env_.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(n, 1) * 8);
+  compute::poison(q, out);
+  compute::detail::setArgs(probe_, accum, occupancyFor(q, g, accum, nullptr, nullptr), cl_float4{{o.x, o.y, o.z, o.w}},
+                           cl_uint(log2Exact(g.edge)), pnb, lpb, u32(n), out);
+  if (n) compute::detail::launch(q, probe_, n, 1, nullptr, "");
+  const auto words = compute::download<cl_uint>(q, out, 2 * n);
+  std::vector<MarchResult> r(n);
+  for (std::size_t i = 0; i < n; ++i) r[i] = {words[2 * i] != 0, words[2 * i + 1]};
+  return r;
 }
 
 }  // namespace ml::vct

@@ -13,41 +13,68 @@
 // shadows = true (--vct-shadows voxel) builds the kernels with VCT_SHADOWS:
 // each light's term times its visibility through the filled level-0 voxels
 // of `accum` (InjectTwin's voxelVisibility()); false compiles none of it.
+// With skip_empty (the default) the march skips empty space through the
+// empty-space distance volume of `accum` (VoxelOccupancy): the caller's, built from
+// the same accumulation buffer, or, when none is given, one built here on
+// every call (timed as "vct-occupancy"). Its decisions equal the plain march
+// (skip_empty = false: every sample loads its voxel; the bench's peer).
 #include <CL/opencl.hpp>
 
 #include <cstddef>
+#include <vector>
 
 #include "host/cl/ClPassTimer.hpp"
 #include "host/compute/ComputeEnv.hpp"
 #include "host/shared/voxel_types.h"
 #include "host/vct/HashedListsCl.hpp"
+#include "host/vct/VoxelOccupancy.hpp"
 
 namespace ml::vct {
 
 class VoxelInjector {
  public:
-  explicit VoxelInjector(const compute::ComputeEnv& env, const compute::Options& options = {}, bool shadows = false);
+  explicit VoxelInjector(const compute::ComputeEnv& env, const compute::Options& options = {}, bool shadows = false,
+                         bool skip_empty = true);
 
   bool shadows() const { return shadows_; }
 
   void brute(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum, const cl::Buffer& lights,
-             std::size_t light_count, cl::Buffer& radiance, ClPassTimer* timer = nullptr);
+             std::size_t light_count, cl::Buffer& radiance, ClPassTimer* timer = nullptr,
+             const VoxelOccupancy* occupancy = nullptr);
   void hashed(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum, const cl::Buffer& lights,
               std::size_t light_count, const HashedListsCl& lists, cl::Buffer& radiance,
-              ClPassTimer* timer = nullptr);
+              ClPassTimer* timer = nullptr, const VoxelOccupancy* occupancy = nullptr);
+
+  // Tests: the shadow march alone (shadows only, else std::logic_error), per
+  // query from a surfel at pn[2q] with unit normal pn[2q + 1] (xyz) to the
+  // light position lp[q] (xyz), on the grid `g` of `accum` (occupancy built
+  // here): whether the light is seen, and how many samples the march looked at.
+  struct MarchResult {
+    bool visible;
+    unsigned tested;
+  };
+  std::vector<MarchResult> march(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
+                                 const std::vector<gpu::ml_float4>& pn, const std::vector<gpu::ml_float4>& lp);
 
   const compute::Tuning& tuning() const { return tuning_; }
 
  private:
   // Checks the buffers, builds the kernels, sets the 6 arguments both
   // kernels share; returns the launch's global size, local size in `local`.
-  std::size_t prepare(cl::Kernel& k, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
-                      const cl::Buffer& lights, std::size_t light_count, cl::Buffer& radiance, std::size_t& local);
+  std::size_t prepare(cl::Kernel& k, cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
+                      const cl::Buffer& lights, std::size_t light_count, cl::Buffer& radiance, std::size_t& local,
+                      ClPassTimer* timer, const VoxelOccupancy* occupancy);
+  void build();
+  // The occupancy buffer the kernels read: the caller's, else own_ built
+  // from `accum` now; `accum` itself (unread) when the march does not skip.
+  const cl::Buffer& occupancyFor(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
+                                 ClPassTimer* timer, const VoxelOccupancy* occupancy);
 
   compute::ComputeEnv env_;
   compute::Tuning tuning_;
-  bool shadows_;
-  cl::Kernel brute_, hashed_;
+  bool shadows_, skip_;
+  cl::Kernel brute_, hashed_, probe_;
+  VoxelOccupancy own_;
 };
 
 }  // namespace ml::vct

@@ -1,0 +1,58 @@
+#include "host/vct/VoxelOccupancy.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "host/compute/Detail.hpp"
+#include "host/shared/voxel_types.h"
+
+namespace ml::vct {
+
+using compute::detail::u32;
+
+VoxelOccupancy::VoxelOccupancy(const compute::ComputeEnv& env, const compute::Options& options)
+    : env_(env), tuning_(compute::resolveTuning(env, options)) {}
+
+void VoxelOccupancy::launchLines(cl::CommandQueue& q, cl::Kernel& k, cl_uint lines_arg, std::size_t lines,
+                                 ClPassTimer* timer) {
+  std::size_t chunk = 1, global = lines, local = tuning_.wg;
+  if (!tuning_.gpu()) {
+    // A line is edge voxels (up to 30 reads each): a floor of 16 lines per
+    // work-item still splits a 16^3 grid's 256 lines among the work-items.
+    chunk = tuning_.cpuChunk(lines, 16);
+    global = compute::detail::ceilDiv(lines, chunk);
+    local = 1;
+  }
+  k.setArg(lines_arg, u32(lines));
+  k.setArg(lines_arg + 1, u32(chunk));
+  compute::detail::launch(q, k, global, local, timer, "vct-occupancy");
+}
+
+void VoxelOccupancy::build(cl::CommandQueue& q, unsigned edge, const cl::Buffer& accum, ClPassTimer* timer) {
+  if (edge == 0 || edge > ML_VOXEL_MAX_EDGE)
+    throw std::invalid_argument("VoxelOccupancy: grid edge " + std::to_string(edge) + " is not in 1.." +
+                                std::to_string(ML_VOXEL_MAX_EDGE));
+  const std::size_t n = std::size_t(edge) * edge * edge;
+  compute::detail::checkBuffer(accum, n * sizeof(gpu::VoxelAccum), "VoxelOccupancy accumulation buffer");
+  if (n > capacity_) {
+    buffer_ = tmp_ = cl::Buffer();  // release first: the old and new buffers need not coexist
+    buffer_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, n);
+    tmp_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, n);
+    capacity_ = n;
+  }
+  if (!rows_()) {
+    cl::Program p = compute::detail::buildShaped(env_, tuning_, "vct_occupancy.cl");
+    rows_ = cl::Kernel(p, "distance_rows");
+    lines_ = cl::Kernel(p, "distance_lines");
+  }
+  const std::size_t lines = std::size_t(edge) * edge;
+  compute::detail::setArgs(rows_, accum, cl_uint(edge), buffer_);
+  launchLines(q, rows_, 3, lines, timer);
+  compute::detail::setArgs(lines_, buffer_, tmp_, cl_uint(edge), cl_uint(edge));
+  launchLines(q, lines_, 4, lines, timer);
+  compute::detail::setArgs(lines_, tmp_, buffer_, cl_uint(edge), u32(lines));
+  launchLines(q, lines_, 4, lines, timer);
+  edge_ = edge;
+}
+
+}  // namespace ml::vct
