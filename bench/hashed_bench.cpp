@@ -50,7 +50,7 @@ struct Args {
   std::string update_fractions = "0.01,0.1,1";
   int update_reps = 5;
   unsigned camera_frames = 4;
-  bool no_render = false, no_octant_masks = false;
+  bool no_render = false, no_octant_masks = false, update_geometry_mask = false;
 };
 
 // --- 1. Build time, memory, table sizes vs node size and light count ---
@@ -91,11 +91,11 @@ struct UpdateSamples {
 // of the same lights, so that both see the same machine (its speed here drifts
 // by up to a third within seconds) and the same cold caches.
 UpdateSamples measureUpdates(const std::vector<gpu::PointLight>& lights0, const hashed::HashedConfig& cfg,
-                             double fraction, int reps) {
+                             const Scene* scene, double fraction, int reps) {
   UpdateSamples s;
   LightAnimator anim(lights0, fraction);
   s.moved = anim.movesPerStep();
-  hashed::HashedStructure hs(cfg);
+  hashed::HashedStructure hs(cfg, scene);
   hs.build(lights0);
   for (int i = 0; i < reps; ++i) {
     const auto& lights = anim.step();
@@ -103,7 +103,7 @@ UpdateSamples measureUpdates(const std::vector<gpu::PointLight>& lights0, const 
     const auto& st = hs.update(lights);
     s.cpu.push_back((benchutil::cpuSeconds() - c0) * 1e3);
     {
-      hashed::HashedStructure fresh(cfg);
+      hashed::HashedStructure fresh(cfg, scene);
       const double r0 = benchutil::cpuSeconds();
       fresh.build(lights);
       s.rebuild_cpu.push_back((benchutil::cpuSeconds() - r0) * 1e3);
@@ -139,20 +139,24 @@ json reportUpdates(const std::string& label, std::size_t lights, double fraction
 }
 
 // --- 2. Incremental updates vs full rebuild ---
-json updateSection(const Args& a, const LightSets& update_sets) {
-  std::printf("\n2. Updates (0.5r; lights move up to r/4; median of %d; ms; each update followed by a full build "
-              "of the same lights (rebuild); min ratio: fastest update / fastest rebuild)\n", a.update_reps);
+json updateSection(const Args& a, const Scene& base, const LightSets& update_sets) {
+  std::printf("\n2. Updates (0.5r%s; lights move up to r/4; median of %d; ms; each update followed by a full build "
+              "of the same lights (rebuild); min ratio: fastest update / fastest rebuild)\n",
+              a.update_geometry_mask ? ", geometry mask" : "", a.update_reps);
   std::printf("%-9s %7s %10s %10s %8s %9s %9s %8s %8s %8s %9s %9s\n", "lights", "moving", "update", "rebuild", "ratio",
               "cpu ratio", "min ratio", "octrees", "tree", "sync", "rehashed", "re-offset");
   json updates = json::array();
   for (const auto& [label, lights0] : update_sets) {
+    // The mask is the default scene's: the suite's lights belong to another scene.
+    if (a.update_geometry_mask && label == "suite1890") continue;
     hashed::HashedConfig cfg;
     cfg.node_size = "0.5r";
     cfg.max_incremental_fraction = 1.0;  // measure the incremental path itself
     cfg.octant_masks = !a.no_octant_masks;
+    cfg.geometry_mask = a.update_geometry_mask;
     for (const auto& fraction_text : splitList(a.update_fractions)) {
       const double fraction = std::stod(fraction_text);
-      const UpdateSamples s = measureUpdates(lights0, cfg, fraction, a.update_reps);
+      const UpdateSamples s = measureUpdates(lights0, cfg, a.update_geometry_mask ? &base : nullptr, fraction, a.update_reps);
       updates.push_back(reportUpdates(label, lights0.size(), fraction, a.update_reps, s));
     }
   }
@@ -277,6 +281,8 @@ void parseArgs(CLI::App& app, Args& a) {
   app.add_flag("--no-render", a.no_render, "host-side sections only");
   app.add_flag("--no-octant-masks", a.no_octant_masks,
                "updates: the thesis's plain light lists (HashedConfig::octant_masks off)");
+  app.add_flag("--update-geometry-mask", a.update_geometry_mask,
+               "updates: with the default scene's geometry mask (the renderer's default; generated light sets only)");
 }
 
 int run(int argc, char** argv) {
@@ -299,8 +305,9 @@ int run(int argc, char** argv) {
   const std::string suite_lights = a.suite_dir + "/lights/1890#3x_3y_3z.json";
   LightSets update_sets = light_sets;
   if (std::filesystem::exists(suite_lights)) update_sets.emplace_back("suite1890", loadLightsJson(suite_lights));
-  out["updates"] = updateSection(a, update_sets);
+  out["updates"] = updateSection(a, base.scene, update_sets);
   out["updates_octant_masks"] = !a.no_octant_masks;
+  if (a.update_geometry_mask) out["updates_geometry_mask"] = true;
   out["thesis_suite"] = suiteSection(a, suite_lights);
   if (!a.no_render) out["light_evaluations"] = evalSection(a, base, light_sets);
   benchutil::writeJson(a.common.json_path, out);

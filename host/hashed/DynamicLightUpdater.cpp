@@ -3,13 +3,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <thread>
+#include <numeric>
 
 #include "host/hashed/LightOctreeBuilder.hpp"
 #include "host/hashed/OctantMask.hpp"
@@ -27,86 +25,17 @@ bool sameVolume(const gpu::PointLight& a, const gpu::PointLight& b) {
 
 using Indexed = std::vector<std::pair<std::uint32_t, gpu::PointLight>>;
 
-// The new versions' octrees, and for moved lights (the first `replaced` of
-// them) both versions' subtree ends, which replace() walks by. Built in
-// chunks that the tree edits consume in order while later chunks are still
-// being built (the edits are sequential; building runs on the other threads
-// and on this one whenever it would otherwise wait).
-class Batch {
- public:
-  static constexpr std::size_t kChunk = 16;
-  static constexpr std::size_t kHelpersMinLights = 64;
-  Batch(const Indexed& lights, const std::vector<LightOctree>& replaced, const OctreeBounds& b,
-        const GeometryMask* geometry)
-      : lights_(lights), replaced_(replaced), b_(b), geometry_(geometry), octrees(lights.size()),
-        old_ends(replaced.size()), new_ends(replaced.size()), chunks_((lights.size() + kChunk - 1) / kChunk),
-        ready_(chunks_) {
-    for (auto& r : ready_) r.store(0, std::memory_order_relaxed);
-    // A few lights: waking the worker threads costs more than it saves
-    // (and on a busy machine a late worker stalls the whole frame).
-    if (lights.size() >= kHelpersMinLights) {
-      helpers_ = true;
-      group_.run([this] {
-        tbb::parallel_for(0, int(tbb::this_task_arena::max_concurrency()) - 1, [this](int) { work(); });
-      });
-    }
-  }
-  ~Batch() { finish(); }
-  // Blocks until octree k is built (building others meanwhile).
-  void waitFor(std::size_t k) {
-    const std::size_t c = k / kChunk;
-    while (!ready_[c].load(std::memory_order_acquire)) {
-      if (!claimOne()) std::this_thread::yield();
-    }
-  }
-  void finish() {
-    if (helpers_) {
-      work();
-      group_.wait();
-      helpers_ = false;
-    }
-    while (claimOne()) {
-    }
-  }
-
- private:
-  const Indexed& lights_;
-  const std::vector<LightOctree>& replaced_;
-  const OctreeBounds& b_;
-  const GeometryMask* geometry_;
-
- public:
-  std::vector<LightOctree> octrees;
-  std::vector<std::vector<std::uint32_t>> old_ends, new_ends;
-
- private:
-  std::size_t chunks_;
-  std::vector<std::atomic<std::uint8_t>> ready_;
-  std::atomic<std::size_t> next_{0};
-  tbb::enumerable_thread_specific<LightGridScratch> scratch_;
-  tbb::task_group group_;
-  bool helpers_ = false;
-
-  void work() {
-    while (claimOne()) {
-    }
-  }
-  bool claimOne() {
-    const std::size_t c = next_.fetch_add(1, std::memory_order_relaxed);
-    if (c >= chunks_) return false;
-    auto& s = scratch_.local();
-    const std::size_t end = std::min(lights_.size(), (c + 1) * kChunk);
-    for (std::size_t i = c * kChunk; i < end; ++i) {
-      octrees[i] = buildLightOctree(lights_[i].second, lights_[i].first, b_, s, geometry_);
-      if (i < replaced_.size()) {
-        SceneOctree::subtreeEnds(replaced_[i], old_ends[i]);
-        SceneOctree::subtreeEnds(octrees[i], new_ends[i]);
-      }
-    }
-    ready_[c].store(1, std::memory_order_release);
-    return true;
-  }
-};
+// Morton code of a cell box's centre (16 bits per axis): editing lights in
+// this order keeps the scene octree nodes that consecutive lights share in
+// cache (the tree step's L1 misses -14% on loads, -30% on stores at 4,096
+// lights, 10% moving).
+std::uint64_t mortonOfCentre(const CellBox& box) {
+  const glm::uvec3 p((box.lo + box.hi) / 2);
+  std::uint64_t m = 0;
+  for (int bit = 15; bit >= 0; --bit)
+    for (int a = 2; a >= 0; --a) m = (m << 1) | ((p[a] >> bit) & 1u);
+  return m;
+}
 
 }  // namespace
 
@@ -183,14 +112,12 @@ std::vector<std::uint64_t> DynamicLightUpdater::editTree(HashedStructure& s, con
   SceneOctree& tree = *s.tree_;
   tree.setRecording(true);
   // Geometry-tight sets need the light octrees (their cells test the geometry).
-  const double waited_ms = s.mask() ? editByOctrees(s, lights, moved) : (editByCells(s, lights, moved), 0.0);
+  const double octrees_ms = s.mask() ? editByOctrees(s, lights, moved) : (editByCells(s, lights, moved), 0.0);
   tree.normalize();
   std::vector<std::uint64_t> touched = tree.takeTouched();
   tree.setRecording(false);
-  // Building the octrees overlaps the edits: what the edits waited for it
-  // (or built it themselves) counts as octree time, the rest as tree time.
-  st.light_octrees_ms = waited_ms;
-  st.tree_ms = msSince(t) - waited_ms;
+  st.light_octrees_ms = octrees_ms;
+  st.tree_ms = msSince(t) - octrees_ms;
   return touched;
 }
 
@@ -201,7 +128,8 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
   const OctreeBounds& b = s.bounds_;
   SceneOctree& tree = *s.tree_;
   // Both versions of every changed light (no version: added or removed,
-  // a default LightCells), built in parallel, then replaced one by one.
+  // a default LightCells), built in parallel, then replaced one by one in
+  // Morton order.
   std::vector<std::uint32_t> changed(moved);
   for (std::size_t i = n_new; i < n_old; ++i) changed.push_back(std::uint32_t(i));
   for (std::size_t i = n_old; i < n_new; ++i) changed.push_back(std::uint32_t(i));
@@ -213,7 +141,13 @@ void DynamicLightUpdater::editByCells(HashedStructure& s, const std::vector<gpu:
       if (i < n_new) versions[2 * k + 1] = LightCells(lights[i], b);
     }
   });
-  for (std::size_t k = 0; k < changed.size(); ++k) tree.replace(versions[2 * k], versions[2 * k + 1], changed[k]);
+  std::vector<std::uint64_t> code(changed.size());
+  for (std::size_t k = 0; k < changed.size(); ++k)
+    code[k] = mortonOfCentre((versions[2 * k + 1].box().empty() ? versions[2 * k] : versions[2 * k + 1]).box());
+  std::vector<std::uint32_t> order(changed.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return code[x] < code[y]; });
+  for (const auto k : order) tree.replace(versions[2 * k], versions[2 * k + 1], changed[k]);
 }
 
 double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
@@ -231,24 +165,36 @@ double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<
   cache.resize(n_new);
   for (std::size_t i = n_old; i < n_new; ++i) to_insert.emplace_back(std::uint32_t(i), lights[i]);
 
-  Batch batch(to_insert, replaced, s.bounds_, s.mask());
-  auto& new_octrees = batch.octrees;
+  // The new octrees (and both versions' subtree ends, which replace()
+  // walks by) in parallel, then the edits in order. Building them on other
+  // threads while the edits consumed them was no faster (bench
+  // --update-geometry-mask).
+  const auto t = Clock::now();
+  std::vector<LightOctree> new_octrees(to_insert.size());
+  std::vector<std::vector<std::uint32_t>> old_ends(replaced.size()), new_ends(replaced.size());
+  tbb::enumerable_thread_specific<LightGridScratch> scratch;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, to_insert.size(), 16), [&](const auto& r) {
+    auto& sc = scratch.local();
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      new_octrees[i] = buildLightOctree(to_insert[i].second, to_insert[i].first, s.bounds_, sc, s.mask());
+      if (i < replaced.size()) {
+        SceneOctree::subtreeEnds(replaced[i], old_ends[i]);
+        SceneOctree::subtreeEnds(new_octrees[i], new_ends[i]);
+      }
+    }
+  });
+  const double built_ms = msSince(t);
   SceneOctree& tree = *s.tree_;
   // A removed index must vanish exactly: the shader would read past the lights.
   for (const auto& o : removed) tree.remove(o);
   // Moved lights come first in to_insert: their old versions are replaced
   // (one joint walk each); the rest (added lights) are inserts.
-  double waited_ms = 0.0;
   for (std::size_t e = 0; e < new_octrees.size(); ++e) {
-    const auto w = Clock::now();
-    batch.waitFor(e);
-    waited_ms += msSince(w);
-    if (e < replaced.size()) tree.replace(replaced[e], new_octrees[e], &batch.old_ends[e], &batch.new_ends[e]);
+    if (e < replaced.size()) tree.replace(replaced[e], new_octrees[e], &old_ends[e], &new_ends[e]);
     else tree.insert(new_octrees[e]);
   }
-  batch.finish();
   for (std::size_t k = 0; k < to_insert.size(); ++k) cache[to_insert[k].first] = std::move(new_octrees[k]);
-  return waited_ms;
+  return built_ms;
 }
 
 }  // namespace ml::hashed

@@ -19,9 +19,8 @@
 //     the octant masks of moved lights in the untouched deepest leaves
 //     (OctantMask.hpp): a moved light's masks change over its whole
 //     surface, not only where its sets did. They are found meanwhile step 2.
-//  Threads: the tree edits are sequential; by cells the versions' LightCells
-//  are computed in parallel first, by octrees the new octrees are built on
-//  the other threads while the edits consume them in order. Meanwhile the previous update's
+//  Threads: the tree edits are sequential; the versions' LightCells, or the
+//  new octrees, are computed in parallel first. Meanwhile the previous update's
 //  light index list garbage is compacted and the octant rewrites are found.
 //  Step 3 derives the touched keys in parallel, interns the light sets in
 //  key order, then edits each table in its own task. The result does not
@@ -55,7 +54,7 @@ class DynamicLightUpdater {
   static void editByCells(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                           const std::vector<std::uint32_t>& moved);
   // Step 2 with the geometry mask (geometry-tight sets), by light octrees (the old versions'
-  // from the cache). Returns the ms spent waiting for new octrees.
+  // from the cache). Returns the ms spent building the new octrees.
   static double editByOctrees(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                               const std::vector<std::uint32_t>& moved);
 };

@@ -22,10 +22,12 @@
 //    must re-derive.
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "host/hashed/GeometryMask.hpp"
+#include "host/hashed/LightSetPool.hpp"
 #include "host/hashed/LightOctreeBuilder.hpp"
 #include "host/hashed/OctreeBounds.hpp"
 
@@ -177,5 +179,48 @@ class SceneOctree {
   std::uint64_t last_parent_ = ~std::uint64_t(0);  // siblings change together: their parent is pushed once
   std::vector<std::uint64_t> sort_scratch_;
 };
+
+// The edits' innermost steps, defined here so that the edit walks in
+// SceneOctree.cpp inline them (-2.5% instructions in an update's tree step).
+
+inline void SceneOctree::record(std::int32_t n, unsigned t, const glm::uvec3& c) {
+  if (!recording_) return;
+  touched_.push_back(nodeKey(t, c));
+  // The parent's description (its children's leaf/filled bits) changes only
+  // when the leaf's set became or stopped being empty; a set of one or none
+  // covers both. Most edits leave a set non-empty, and most touched keys
+  // would otherwise be such parents, looked up for nothing.
+  if (t > 0 && sets_[n].size() <= 1) recordParent(nodeKey(t - 1, c >> 1u));
+}
+
+// A parent just recorded is not pushed again (takeTouched() would drop the
+// duplicate anyway, after sorting it).
+inline void SceneOctree::recordParent(std::uint64_t key) {
+  if (key == last_parent_) return;
+  touched_.push_back(key);
+  last_parent_ = key;
+}
+
+inline bool SceneOctree::addToSet(std::int32_t n, std::uint32_t l) {
+  auto& s = sets_[n];
+  if (s.empty() || s.back() < l) {
+    s.push_back(l);  // full builds insert lights in index order
+  } else {
+    const auto it = std::lower_bound(s.begin(), s.end(), l);
+    if (it != s.end() && *it == l) return false;
+    s.insert(it, l);
+  }
+  sums_[n] += LightSetPool::elementHash(l);
+  return true;
+}
+
+inline bool SceneOctree::eraseFromSet(std::int32_t n, std::uint32_t l) {
+  auto& s = sets_[n];
+  const auto it = std::lower_bound(s.begin(), s.end(), l);
+  if (it == s.end() || *it != l) return false;
+  s.erase(it);
+  sums_[n] -= LightSetPool::elementHash(l);
+  return true;
+}
 
 }  // namespace ml::hashed

@@ -3,7 +3,6 @@
 // their element-hash sums. Contract: SceneOctree.hpp.
 #include <algorithm>
 
-#include "host/hashed/LightSetPool.hpp"
 #include "host/hashed/SceneOctree.hpp"
 
 namespace ml::hashed {
@@ -41,28 +40,6 @@ void SceneOctree::split(std::int32_t n, unsigned t, const glm::uvec3& c) {
   std::vector<std::uint32_t>().swap(sets_[n]);
   sums_[n] = 0;
   recordChildren(t, c);
-}
-
-bool SceneOctree::addToSet(std::int32_t n, std::uint32_t l) {
-  auto& s = sets_[n];
-  if (s.empty() || s.back() < l) {
-    s.push_back(l);  // full builds insert lights in index order
-  } else {
-    const auto it = std::lower_bound(s.begin(), s.end(), l);
-    if (it != s.end() && *it == l) return false;
-    s.insert(it, l);
-  }
-  sums_[n] += LightSetPool::elementHash(l);
-  return true;
-}
-
-bool SceneOctree::eraseFromSet(std::int32_t n, std::uint32_t l) {
-  auto& s = sets_[n];
-  const auto it = std::lower_bound(s.begin(), s.end(), l);
-  if (it == s.end() || *it != l) return false;
-  s.erase(it);
-  sums_[n] -= LightSetPool::elementHash(l);
-  return true;
 }
 
 }  // namespace ml::hashed
