@@ -213,7 +213,7 @@ struct Bench {
     hs.build(in.lights);
     const compute::ComputeEnv env(rt);
     vct::HashedListsCl lists(env);
-    lists.upload(q, hs.linkless());
+    lists.upload(q, hs.linkless(), true);
     vct::VoxelInjector none(env), plain(env, {}, true, false), skipping(env, {}, true);
     vct::VoxelOccupancy occ(env);
     const double t_occ = timeMedian(reps, [&] { occ.build(q, in.g.edge, in.ab); q.finish(); });
