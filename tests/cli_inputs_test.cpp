@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -138,6 +139,37 @@ TEST(CliInputs, OutputsUnderProcOrSysAreRefused) {
   const std::string link = dir.file("to-proc");
   fs::create_directory_symlink("/proc", link);
   expectRefused(runManylights(render + "--out " + link + "/foo.png"), {"--out", "/proc"});
+}
+
+// Outputs that are not files are written in place: the process's stdout by
+// its name (/dev/stdout, as a pipe and redirected to a file), /dev/null, and a
+// link to a file (written through; the link stays). A rename over
+// /dev/stdout used to replace the device name itself when run as root.
+TEST(CliInputs, StreamOutputsAreWrittenInPlace) {
+  TempDir dir;
+  const std::string render = std::string(MANYLIGHTS_BINARY) + " render --size 16x16 --lights 8 --frames 1 ";
+  const CommandResult piped = test::runShell("(" + render + "--stats-json /dev/stdout | cat)");
+  ASSERT_EQ(piped.exit_code, 0) << piped.err;
+  const std::size_t open = piped.out.find("\n{");
+  ASSERT_NE(open, std::string::npos) << "no JSON after the report on stdout: " << piped.out;
+  EXPECT_TRUE(nlohmann::json::accept(piped.out.substr(open + 1))) << piped.out;
+  EXPECT_TRUE(fs::is_symlink("/dev/stdout") || fs::is_character_file("/dev/stdout")) << "/dev/stdout was replaced";
+  const std::string redirected = dir.file("out.txt");
+  const CommandResult to_file = test::runShell("(" + render + "--stats-json /dev/stdout > " + redirected + ")");
+  ASSERT_EQ(to_file.exit_code, 0) << to_file.err;
+  std::ifstream in(redirected);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("lights"), std::string::npos) << "the report before the JSON was lost: " << text;
+  EXPECT_NE(text.find("\n{"), std::string::npos) << "no JSON after the report: " << text;
+  const CommandResult null = test::runShell(render + "--stats-json /dev/null");
+  EXPECT_EQ(null.exit_code, 0) << null.err;
+  EXPECT_TRUE(fs::is_character_file("/dev/null")) << "/dev/null was replaced";
+  const std::string real = dir.write("real.json", "old"), link = dir.file("link.json");
+  fs::create_symlink(real, link);
+  ASSERT_EQ(test::runShell(render + "--stats-json " + link).exit_code, 0);
+  EXPECT_TRUE(fs::is_symlink(link)) << "the link was replaced by a file";
+  std::ifstream json(real);
+  EXPECT_TRUE(nlohmann::json::accept(json)) << "the linked file was not written";
 }
 
 TEST(CliInputs, EmptyTechniqueListIsRefused) {

@@ -1,12 +1,17 @@
 #include "host/bench/OutputFiles.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
 #include <optional>
 
 #include "host/util/DataPaths.hpp"
@@ -69,6 +74,61 @@ void probeFolder(const std::string& flag, const std::string& shown, const fs::pa
   fs::remove(probe, ec);
 }
 
+// A target that is not a place for a file: a device (/dev/null), a pipe or a
+// socket, or the process's own stdout/stderr by any name (/dev/stdout, also
+// when it is redirected to a regular file). A rename there would replace the
+// name (as root, /dev/stdout became a plain file and nothing was printed), so
+// such targets are written in place, and the process's own streams through
+// their descriptors, after what was printed before.
+enum class StreamKind { None, Stdout, Stderr, Other };
+
+StreamKind streamKind(const std::string& path) {
+  struct stat target {};
+  if (path.empty() || ::stat(path.c_str(), &target) != 0) return StreamKind::None;
+  for (const int fd : {1, 2}) {
+    struct stat own {};
+    if (::fstat(fd, &own) == 0 && own.st_dev == target.st_dev && own.st_ino == target.st_ino)
+      return fd == 1 ? StreamKind::Stdout : StreamKind::Stderr;
+  }
+  return S_ISREG(target.st_mode) || S_ISDIR(target.st_mode) ? StreamKind::None : StreamKind::Other;
+}
+
+bool writeAll(int fd, const std::string& bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+void writeToStream(const std::string& flag, const std::string& path, StreamKind kind, const std::string& bytes) {
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  const int fd = kind == StreamKind::Stdout ? 1 : kind == StreamKind::Stderr ? 2 : ::open(path.c_str(), O_WRONLY);
+  const bool ok = fd >= 0 && writeAll(fd, bytes);
+  const int saved = errno;
+  if (kind == StreamKind::Other && fd >= 0) ::close(fd);
+  if (!ok) throw UserError(flag + ": writing '" + path + "' failed (" + std::strerror(saved ? saved : EIO) + ")");
+}
+
+// An existing link to a regular file is written through: the file it names is
+// replaced, the link stays.
+fs::path fileBehind(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_symlink(path, ec)) return path;
+  const fs::path target = fs::canonical(path, ec);
+  return ec ? fs::path(path) : target;
+}
+
+std::string readWholeFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 void replaceWith(const std::string& flag, const fs::path& tmp, const std::string& path) {
   std::error_code ec;
   fs::rename(tmp, path, ec);
@@ -82,6 +142,11 @@ void replaceWith(const std::string& flag, const fs::path& tmp, const std::string
 
 void requireOutputFile(const std::string& flag, const std::string& path) {
   if (path.empty()) return;
+  if (streamKind(path) != StreamKind::None) {
+    if (::access(path.c_str(), W_OK) != 0)
+      throw UserError(flag + ": cannot write '" + path + "' (" + std::strerror(errno) + ")");
+    return;
+  }
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw UserError(flag + ": '" + path + "' is a folder, expected a file name");
   refuseKernelFolders(flag, path);
@@ -106,17 +171,13 @@ void requireImageFile(const std::string& flag, const std::string& path) {
 }
 
 void writeFileAtomically(const std::string& flag, const std::string& path, const std::string& bytes) {
-  const fs::path tmp = tempNameFor(path);
+  if (const StreamKind kind = streamKind(path); kind != StreamKind::None)
+    return writeToStream(flag, path, kind, bytes);
+  const fs::path file = fileBehind(path);
+  const fs::path tmp = tempNameFor(file);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
   if (fd < 0) throw UserError(flag + ": cannot write '" + path + "' (" + std::strerror(errno) + ")");
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    done += static_cast<std::size_t>(n);
-  }
-  bool ok = done == bytes.size();
+  bool ok = writeAll(fd, bytes);
   int saved = ok ? 0 : errno;
   if (ok && ::fsync(fd) != 0) {  // a full disk shows here on some file systems
     ok = false;
@@ -128,20 +189,27 @@ void writeFileAtomically(const std::string& flag, const std::string& path, const
     fs::remove(tmp, ec);
     throw UserError(flag + ": writing '" + path + "' failed (" + std::strerror(saved ? saved : EIO) + ")");
   }
-  replaceWith(flag, tmp, path);
+  replaceWith(flag, tmp, file.string());
 }
 
+// Image writers take a file name (the format follows its extension), so a
+// stream target gets the image made in the temporary folder, then its bytes.
 void writeImageAtomically(const std::string& flag, const std::string& path, unsigned width, unsigned height,
                           unsigned channels, const std::vector<float>& pixels) {
-  const fs::path tmp = tempNameFor(path);
+  const StreamKind kind = streamKind(path);
+  const fs::path file = fileBehind(path);
+  const fs::path tmp = tempNameFor(kind == StreamKind::None ? file : fs::temp_directory_path() / file.filename());
+  std::error_code ec;
   try {
     writeImage(tmp.string(), width, height, channels, pixels);
   } catch (const UserError& e) {
-    std::error_code ec;
     fs::remove(tmp, ec);
     throw UserError(flag + ": cannot write '" + path + "': " + e.what());
   }
-  replaceWith(flag, tmp, path);
+  if (kind == StreamKind::None) return replaceWith(flag, tmp, file.string());
+  const std::string bytes = readWholeFile(tmp);
+  fs::remove(tmp, ec);
+  writeToStream(flag, path, kind, bytes);
 }
 
 std::string reportPath(const std::string& path) {

@@ -8,7 +8,12 @@
 //     paths under /proc or /sys (as written or through links) are refused
 //     first, whoever runs the command (root can create things there);
 //   - writeFileAtomically / writeImageAtomically write a temporary file next to
-//     the target and rename it over the target only once it is complete.
+//     the target and rename it over the target only once it is complete; a
+//     link to a file is written through (the link stays). Targets that are
+//     not files (devices, pipes, sockets) and the process's own stdout/stderr
+//     under any name (/dev/stdout, also redirected to a file) are written in
+//     place instead, after what the process printed before (no rename there:
+//     it would replace /dev/stdout itself).
 // Every failure is a UserError naming the flag and the path. Reports name
 // input files through reportPath.
 #include <string>
