@@ -14,6 +14,7 @@
 
 #include "gl/GlCheck.hpp"
 #include "gl/ShaderProgram.hpp"
+#include "host/shared/test_shader_bindings.h"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
@@ -102,7 +103,9 @@ TEST(GBufferNormal, GlslEncodingMatchesTheMirror) {
   ShaderProgram prog({"test_octahedral.comp"});
   prog.use();
   prog.set("u_n", n);
-  for (GLuint i = 0; i < 3; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, bufs[i]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_OCTAHEDRAL_NORMALS, bufs[0]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_OCTAHEDRAL_PACKED, bufs[1]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_OCTAHEDRAL_DECODED, bufs[2]);
   glDispatchCompute((n + 63) / 64, 1, 1);
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
   std::vector<std::uint32_t> packed(n);

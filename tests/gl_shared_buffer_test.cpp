@@ -6,6 +6,7 @@
 
 #include "gl/GlCheck.hpp"
 #include "gl/ShaderProgram.hpp"
+#include "host/shared/test_shader_bindings.h"
 #include "gl/SharedBuffer.hpp"
 #include "host/cl/ProgramBuilder.hpp"
 #include "support/TestDevice.hpp"
@@ -46,8 +47,8 @@ TEST_P(SharedBufferTest, RoundTripGlClGl) {
     xor_prog.use();
     xor_prog.set("u_key", key);
     xor_prog.set("u_n", n);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, src);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buf.gl());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_XOR_SRC, src);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_XOR_DST, buf.gl());
     glDispatchCompute((n + 63) / 64, 1, 1);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     glCheck("xor dispatch");
@@ -65,8 +66,8 @@ TEST_P(SharedBufferTest, RoundTripGlClGl) {
     glCreateBuffers(1, &dst);
     std::vector<std::uint32_t> poison(n, 0xDEADBEEFu);
     glNamedBufferStorage(dst, n * 4, poison.data(), GL_DYNAMIC_STORAGE_BIT);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buf.gl());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, dst);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_XOR_SRC, buf.gl());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_XOR_DST, dst);
     glDispatchCompute((n + 63) / 64, 1, 1);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     std::vector<std::uint32_t> out(n);

@@ -3,9 +3,10 @@
 // decoded[i] = the normal the deferred pass sees.
 layout(local_size_x = 64) in;
 #include "octahedral.glsl"
-layout(std430, binding = 0) readonly buffer Normals { vec4 normals[]; };
-layout(std430, binding = 1) writeonly buffer Packed { uint packed_out[]; };
-layout(std430, binding = 2) writeonly buffer Decoded { vec4 decoded[]; };
+#include "test_shader_bindings.h"
+layout(std430, binding = ML_BINDING_TEST_OCTAHEDRAL_NORMALS) readonly buffer Normals { vec4 normals[]; };
+layout(std430, binding = ML_BINDING_TEST_OCTAHEDRAL_PACKED) writeonly buffer Packed { uint packed_out[]; };
+layout(std430, binding = ML_BINDING_TEST_OCTAHEDRAL_DECODED) writeonly buffer Decoded { vec4 decoded[]; };
 uniform uint u_n;
 void main() {
   uint i = gl_GlobalInvocationID.x;
