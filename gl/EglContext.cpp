@@ -35,6 +35,8 @@ class EglContext final : public GlContext {
   EglContext() {
     const char* choice = std::getenv("MANYLIGHTS_EGL");
     const std::string want = choice ? choice : "";
+    if (!want.empty() && want != "device" && want != "surfaceless")
+      throw UserError("MANYLIGHTS_EGL: expected device or surfaceless (or unset), got '" + want + "'");
     const char* client_ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     const bool has_platform = client_ext && std::strstr(client_ext, "EGL_EXT_platform_base");
     if (want.empty() || want == "device") tryDevice(has_platform, client_ext, want == "device");

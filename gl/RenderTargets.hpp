@@ -43,7 +43,7 @@ class RenderTargets {
   // ratio that passes, when width x height exceeds a GL size limit
   // (GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS,
   // GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT), a proxy texture of some target's format
-  // is refused (llvmpipe allocates at most 1 GiB per texture), or the targets
+  // is refused (Mesa 22.3.6 llvmpipe: about 1.5 GiB per texture), or the targets
   // need more than memoryBudget(). Allocates nothing. Needs a current context.
   static void checkSize(unsigned width, unsigned height);
   // Half the physical memory (software GL keeps textures there), and at most

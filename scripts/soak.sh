@@ -14,11 +14,11 @@ cd "$root"
 # Tests that take seeds from test::freshSeed (grep tests/ for freshSeed when adding one).
 hashed="HashedDynamic.*:HashedKeys.OwnRangesKeepCountAndCapacityThroughResizeAndCompaction:HashedMask.*:HashedMaskGeometry.*"
 hashed+=":HashedOctree.*:HashedThreads.*:HashedPsh.*:HashedRender.AnimatedLightsMatchAFreshBuild"
-rest="ClusteredAssign.BruteMatchesReferenceAndBvhMatchesBrute:ClusteredKeys.KernelMatchesReference"
-rest+=":ClusteredUnique.*:*BitonicSort*:*CompactTest.*:*UniqueTest.*:ComputeCompact.*:*RadixSort*:*ReduceTest.*"
+rest="*/ClusteredAssign.BruteMatchesReferenceAndBvhMatchesBrute/*:*/ClusteredKeys.KernelMatchesReference/*"
+rest+=":*/ClusteredUnique.*:*BitonicSort*:*CompactTest.*:*UniqueTest.*:ComputeCompact.*:*RadixSort*:*ReduceTest.*"
 rest+=":*ReduceShapeTest.*:*ScanTest.*:ComputeScan.*:*SegmentedSort*:*SharedBufferTest.RoundTripGlClGl*"
 rest+=":GBufferNormal.*:CameraMatrices.*:CameraJson.RoundTripSingleAndPath:LightGenerate.*"
-rest+=":LightJson.RoundTripIsBitExact:*TiledCulling.*:TiledCullingEdges.*"
+rest+=":LightJson.RoundTripIsBitExact:*TiledCulling.*:*/TiledCullingEdges.*"
 
 rounds="${1:-50}"
 case "${2:-all}" in

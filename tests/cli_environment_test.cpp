@@ -58,6 +58,11 @@ TEST(CliEnvironment, BogusGlTimingIsRefused) {
   EXPECT_THROW(glTimingModeFromEnv(), UserError);
 }
 
+// Used to say "no EGL display ... install libegl-mesa0", as if Mesa were missing.
+TEST(CliEnvironment, BogusEglPlatformIsRefused) {
+  expectRefused("MANYLIGHTS_EGL=bogus", {"MANYLIGHTS_EGL", "device", "surfaceless", "bogus"});
+}
+
 TEST(CliEnvironment, GlTimingValues) {
   {
     ScopedEnv env("MANYLIGHTS_GL_TIMING", "host");

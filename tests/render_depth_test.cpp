@@ -131,6 +131,7 @@ TEST(CameraDepthRange, RefusesWhatFloatDepthCannotResolveNamingTheFile) {
       {R"("near": 1e-31, "far": 1e-2)", "1e-30"},  // near below the smallest
       {R"("near": 1e-8, "far": 1e23)", "1e+30"},   // far / near above the largest
       {R"("near": 1e-36, "far": 1)", "1e-30"},     // both: near is checked first
+      {R"("near": 1e-20, "far": 1e20)", "= 1e+40"},  // the ratio as it is, not float's inf
   };
   int i = 0;
   for (const auto& [lens, limit] : bad) {

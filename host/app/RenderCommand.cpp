@@ -71,7 +71,7 @@ void addTechniqueFlags(CLI::App& cmd, std::map<std::string, std::string>& params
 
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   auto* cmd = app.add_subcommand("render", "Render one frame with one technique; print per-pass times and counts");
-  addInputFlags(*cmd, {kSceneInputFlags | kDeviceFlag, &a.inputs, &a.device});
+  addInputFlags(*cmd, {kSceneInputFlags | kSuiteFlags | kDeviceFlag, &a.inputs, &a.device});
   cmd->footer(kLightLimitsHelp);
   cmd->add_option("--technique", a.technique, "one of: " + techniqueNames())->capture_default_str();
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();

@@ -16,7 +16,7 @@ CLI::App* addViewCommand(CLI::App& app, ViewArgs& a) {
   auto* cmd = app.add_subcommand("view",
                                  "Interactive viewer: a window with a panel to fly through a scene and switch "
                                  "techniques, parameters, lights and view modes live");
-  addInputFlags(*cmd, {kSceneInputFlags | kDeviceFlag, &a.inputs, &a.device});
+  addInputFlags(*cmd, {kSceneInputFlags | kSuiteFlags | kDeviceFlag, &a.inputs, &a.device});
   cmd->add_option("--technique", a.technique, "one of: " + techniqueNames())->capture_default_str();
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT of the window and the rendered frame")->capture_default_str();
   cmd->add_option("--script", a.script,

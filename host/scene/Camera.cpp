@@ -29,9 +29,9 @@ void validate(const Camera& c, const std::string& where) {
   checkDepthRange(c, where);
 }
 
-std::string num(float v) {
+std::string num(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", double(v));
+  std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
 
@@ -75,7 +75,7 @@ void checkDepthRange(const Camera& c, const std::string& where) {
     throw UserError(where + ": \"near\" " + num(n) + " is below " + num(kMinNearPlane) +
                     ", the smallest the float depth buffer resolves");
   if (!(f / n <= kMaxFarOverNear))
-    throw UserError(where + ": \"far\" / \"near\" = " + num(f / n) + " (near " + num(n) + ", far " + num(f) +
+    throw UserError(where + ": \"far\" / \"near\" = " + num(double(f) / n) + " (near " + num(n) + ", far " + num(f) +
                     ") exceeds " + num(kMaxFarOverNear) + ", the largest ratio the float depth buffer resolves");
 }
 
