@@ -276,8 +276,11 @@ void parseArgs(CLI::App& app, Args& a) {
   app.add_option("--update-reps", a.update_reps, "updates per case (median reported)")->capture_default_str();
   app.add_option("--update-fractions", a.update_fractions, "fractions of the lights moving per update")
       ->capture_default_str();
-  app.add_option("--suite", a.suite_dir, "thesis suite scene folder (its lights/ holds the 1890-light set)")
-      ->capture_default_str();
+  // The default is a path on this machine: described, not printed.
+  app.add_option("--suite", a.suite_dir,
+                 "thesis suite scene folder (its lights/ holds the 1890-light set); default: "
+                 "$MANYLIGHTS_THESIS_SUITE/scenes/spaceship-indoor, else ../shared/data/thesis-suite/... "
+                 "beside the source tree");
   app.add_flag("--no-render", a.no_render, "host-side sections only");
   app.add_flag("--no-octant-masks", a.no_octant_masks,
                "updates: the thesis's plain light lists (HashedConfig::octant_masks off)");

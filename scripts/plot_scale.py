@@ -98,9 +98,13 @@ def markdown(table, meta, load):
 
 
 def plot(table, path):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:  # one line, not a traceback: the fix is a package
+        sys.stderr.write("plot_scale.py: matplotlib is missing; install python3-matplotlib\n")
+        sys.exit(2)
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
     panels = [(axes[0], time_metric, "assignment time per frame, ms (hashed: host build)"),
               (axes[1], lambda t, r: (r.get("memory") or 0) / 2**20 or None, "structure memory, MiB")]

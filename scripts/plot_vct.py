@@ -54,9 +54,13 @@ def group(r):
 
 
 def plot(by_scene, out_png, load_line):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:  # one line, not a traceback: the fix is a package
+        sys.stderr.write("plot_vct.py: matplotlib is missing; install python3-matplotlib\n")
+        sys.exit(2)
     markers = {32: "o", 64: "s", 128: "^", 256: "D"}
     cols = min(2, len(by_scene))
     rows = (len(by_scene) + cols - 1) // cols

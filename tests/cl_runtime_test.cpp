@@ -41,8 +41,16 @@ TEST(ClRuntime, DeviceChoiceParsing) {
   }
 }
 
-TEST(ClRuntime, OutOfRangeIndexIsAUserError) {
-  EXPECT_THROW(ClRuntime::create(DeviceChoice::parse("999", "--device")), UserError);
+// The error names where the index came from: the flag or the variable.
+TEST(ClRuntime, OutOfRangeIndexIsAUserErrorNamingItsOrigin) {
+  for (const char* origin : {"--device", "MANYLIGHTS_DEVICE"}) {
+    try {
+      ClRuntime::create(DeviceChoice::parse("999", origin));
+      ADD_FAILURE() << origin << ": device 999 was accepted";
+    } catch (const UserError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(std::string(origin) + " 999:", 0), 0u) << e.what();
+    }
+  }
 }
 
 TEST(ClRuntime, DescribeNamesDevice) {

@@ -108,6 +108,7 @@ bool DeviceInfo::hasExtension(std::string_view ext) const {
 
 DeviceChoice DeviceChoice::parse(std::string_view text, std::string_view origin) {
   DeviceChoice c;
+  c.origin = std::string(origin);
   if (text.empty() || text == "default") return c;
   if (text == "gpu") {
     c.kind = Kind::Gpu;
@@ -169,16 +170,16 @@ const DeviceListing* pickDevice(const std::vector<DeviceListing>& devices, Devic
   switch (choice.kind) {
     case DeviceChoice::Kind::Index:
       if (choice.index < 0 || choice.index >= static_cast<int>(devices.size()))
-        throw UserError("--device " + std::to_string(choice.index) + ": only " + std::to_string(devices.size()) +
+        throw UserError(choice.origin + " " + std::to_string(choice.index) + ": only " + std::to_string(devices.size()) +
                         " OpenCL device(s) present (see `manylights devices`)");
       return &devices[choice.index];
     case DeviceChoice::Kind::Gpu:
       if (gl_device && gl_device->info.isGpu()) return gl_device;
       if (auto* d = first(&DeviceInfo::isGpu)) return d;
-      throw UserError("--device gpu: no OpenCL GPU device present (see `manylights devices`)");
+      throw UserError(choice.origin + " gpu: no OpenCL GPU device present (see `manylights devices`)");
     case DeviceChoice::Kind::Cpu:
       if (auto* d = first(&DeviceInfo::isCpu)) return d;
-      throw UserError("--device cpu: no OpenCL CPU device present (install pocl-opencl-icd)");
+      throw UserError(choice.origin + " cpu: no OpenCL CPU device present (install pocl-opencl-icd)");
     case DeviceChoice::Kind::Default:
       break;
   }

@@ -23,6 +23,7 @@ struct DeviceChoice {
   enum class Kind { Default, Gpu, Cpu, Index };
   Kind kind = Kind::Default;
   int index = -1;
+  std::string origin = "--device";  // what errors name: the flag or MANYLIGHTS_DEVICE
   // Parses "gpu", "cpu", "default" or a non-negative integer; `origin` names the
   // flag or variable in the error message.
   static DeviceChoice parse(std::string_view text, std::string_view origin);
