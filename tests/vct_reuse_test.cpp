@@ -127,7 +127,9 @@ TEST(VctReuse, StaticLightsUpdateOnceAndEqualAPassThatUpdatesEveryFrame) {
     EXPECT_EQ(firstDifference(got.indirect, want.indirect), "") << "indirect image";
     EXPECT_EQ(firstDifference(got.color, want.color), "") << "shaded image";
     // The camera moved: a trace that did not run again would show the last frame.
-    if (f > 0) EXPECT_NE(firstDifference(got.indirect, previous), "") << "the indirect image did not follow the camera";
+    if (f > 0) {
+      EXPECT_NE(firstDifference(got.indirect, previous), "") << "the indirect image did not follow the camera";
+    }
     previous = got.indirect;
   }
   EXPECT_EQ(reusing.volumeUpdates(), 1u);
