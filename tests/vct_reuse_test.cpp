@@ -1,9 +1,10 @@
 // VctGiPass reuses its voxel volume while nothing it reads changed, on the
 // default scene through FrameRenderer (as `render` and the viewer run it):
-//  - static lights over N frames (the camera moving, fresh seed): one
-//    inject/mips/textures update and N traces, and every frame (shaded and
-//    indirect image) bit-identical to a pass that updates on every frame (its
-//    renderer is given the same lights again before each frame);
+//  - static lights over N frames (the camera at random frames of the scene's
+//    path, fresh seed): one inject/mips/textures update and N traces, and
+//    every frame (shaded and indirect image) bit-identical to a pass that
+//    updates on every frame (its renderer is given the same lights again
+//    before each frame);
 //  - lights moved before frame k: frame k updates, and it and the frames after
 //    it equal a fresh pass's on the moved lights (bit for bit with brute-force
 //    injection; within the incremental hashed lists' rounding otherwise),
@@ -16,6 +17,7 @@
 //    next frame a new, updated volume, equal to a fresh pass's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 #include <string>
@@ -92,13 +94,15 @@ std::string firstDifference(const std::vector<float>& a, const std::vector<float
   return "";
 }
 
-// The scene's camera, its eye moved by up to 5% of the scene size.
-std::vector<Camera> jitteredCameras(std::mt19937_64& rng, std::size_t n) {
-  const Aabb& b = sceneInputs().scene.bounds;
-  const float step = 0.05f * glm::length(b.max - b.min);
-  std::uniform_real_distribution<float> u(-step, step);
-  std::vector<Camera> cams(n, sceneInputs().cameras.frames.front());
-  for (std::size_t i = 1; i < n; ++i) cams[i].eye += glm::vec3(u(rng), u(rng), u(rng));
+// `n` distinct frames of the scene's camera path, in random order (inside the
+// scene: a camera moved at random may see a flat wall whose frames are equal).
+std::vector<Camera> pathCameras(std::mt19937_64& rng, std::size_t n) {
+  const std::vector<Camera>& path = sceneInputs().cameras.frames;
+  std::vector<std::size_t> index(path.size());
+  for (std::size_t i = 0; i < index.size(); ++i) index[i] = i;
+  std::shuffle(index.begin(), index.end(), rng);
+  std::vector<Camera> cams;
+  for (std::size_t i = 0; i < n && i < index.size(); ++i) cams.push_back(path[index[i]]);
   return cams;
 }
 
@@ -108,7 +112,8 @@ TEST(VctReuse, StaticLightsUpdateOnceAndEqualAPassThatUpdatesEveryFrame) {
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
   constexpr std::size_t kFrames = 5;
-  const std::vector<Camera> cams = jitteredCameras(rng, kFrames);
+  const std::vector<Camera> cams = pathCameras(rng, kFrames);
+  ASSERT_EQ(cams.size(), kFrames) << "the camera path is too short";
   const auto& lights = sceneInputs().lights;
   VctGiPass reusing(test::runtime(), smallSettings(), sceneInputs().scene.bounds);
   VctGiPass updating(test::runtime(), smallSettings(), sceneInputs().scene.bounds);
