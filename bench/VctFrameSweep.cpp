@@ -72,8 +72,8 @@ nlohmann::json frameSweep(const FrameSweepOptions& o) {
   RunContext ctx = RunContext::open(DeviceChoice::resolve(o.device));
   ctx.printDevices();
   std::printf("\nVCT in %s frames, %ux%u (trace at 0.5), ms: vct-voxelize of the first frame, the rest median of %d "
-              "frames, each updating the volume (the lights set again, as if they moved); rel RMSE vs the Embree reference "
-              "(%u samples/pixel)\n",
+              "frames, each updating the volume (the lights set again, as if they moved); rel RMSE vs the Embree "
+              "reference (%u samples/pixel)\n",
               o.technique.c_str(), o.width, o.height, o.reps, o.reference_samples);
   std::printf("%-8s %7s %7s %-5s %5s %9s", "scene", "lights", "voxels", "vol", "cones", "voxelize");
   for (const char* p : kPasses) std::printf(" %9s", p + 4);

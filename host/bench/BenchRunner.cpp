@@ -96,7 +96,10 @@ void runFrames(ClRuntime& cl, const Run& run, Progress* progress, std::size_t& d
     if (plan.timing) {
       const GiUpdateCounts before = gi ? gi->updateCounts() : GiUpdateCounts{};
       setTimes(r, timedRenders(renderer, *assigner, options, cam, plan.repeat, animate));
-      if (gi) r.gi_updates = GiUpdateCounts{gi->updateCounts().ran - before.ran, gi->updateCounts().reused - before.reused};
+      if (gi) {
+        const GiUpdateCounts after = gi->updateCounts();
+        r.gi_updates = GiUpdateCounts{after.ran - before.ran, after.reused - before.reused};
+      }
     }
     if (gi && plan.timing && plan.gi_reference_samples > 0) r.gi_rel_rmse = giRelRmse(run, *gi, frame);
     if (!plan.image_dir.empty())  // the folder was checked before the first frame (requireOutputDir)

@@ -8,8 +8,9 @@
 //    "light_count", "width", "height", "frame", "light_evaluations",
 //    "lower_bound", "covered_pixels", "fragment_evaluations", "passes": {name: ms},
 //    "passes_total_ms", "host_ms", "memory_bytes", "technique_stats": {k: v},
-//    "gi", "gi_settings": {k: v}, "voxel_bytes", "gi_rel_rmse",
-//    "gi_updates": {"ran", "reused"} (null without a GI pass or timing; not in CSV)}],
+//    "gi", "gi_settings": {k: v}, "voxel_bytes", "gi_rel_rmse", "gi_updates",
+//    "gi_reused" (the GI pass's updates and reuses over the timed renders; null
+//    without a GI pass or timing)}],
 //  "summaries": [{"run", ..., "frames", "light_evaluations": {mean, median, p95,
 //    max, min}, "lower_bound": {...}, "passes_total_ms": {...}, "host_ms": {...},
 //    "memory_bytes": {...}, "passes": {name: {...}}}]}
