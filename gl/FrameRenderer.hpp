@@ -104,6 +104,7 @@ class FrameRenderer {
   Pipeline pipeline_ = Pipeline::Forward;  // of the frame being rendered
   std::vector<gpu::PointLight> host_lights_;
   bool lights_changed_ = true;
+  std::uint64_t lights_version_ = 0;  // GiSceneInputs::lights_version, set by setLights
   std::unique_ptr<ExactLowerBound> bound_;  // created by the first counted frame
   bool bound_lights_stale_ = true;
   cl::Buffer bound_counts_;                 // uint per pixel

@@ -11,16 +11,23 @@
 //                          computes the indirect image (indirectRgba()) and adds
 //                          it to the shaded image in place.
 // Its passes land in the frame's PassTimings. Needs the frame's GL context.
+// A pass that keeps work across frames (VctGiPass reuses its voxel volume)
+// keys it on lights_version, not on lights_changed: frames rendered without
+// the GI pass (countedRender, the viewer's heat maps) consume lights_changed,
+// the version still says whether the lights are the ones of its last update.
 #include <epoxy/gl.h>
 
 #include <glm/glm.hpp>
 
+#include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "gl/GlPassTimer.hpp"
 #include "gl/SceneGpu.hpp"
 #include "host/shared/gpu_types.h"
+#include "host/util/GiUpdateCounts.hpp"
 #include "host/util/PassTimings.hpp"
 
 namespace ml {
@@ -28,9 +35,19 @@ namespace ml {
 struct GiSceneInputs {
   const SceneGpu& scene;
   const std::vector<gpu::PointLight>& lights;
-  bool lights_changed;   // since the previous frame
+  bool lights_changed;   // since the previous frame this renderer rendered, GI pass or not
   PassTimings& passes;   // the frame's
+  // Identifies the light set: FrameRenderer::setLights gives each call a new
+  // number, unique in the process (nextLightsVersion()), so equal versions are
+  // the same lights whichever renderer set them. 0: unknown, treat as changed.
+  std::uint64_t lights_version = 0;
 };
+
+// A fresh light-set version, never 0 (thread-safe; one counter per process).
+inline std::uint64_t nextLightsVersion() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
 
 struct GiFrameInputs {
   glm::mat4 view, proj;
@@ -50,6 +67,8 @@ class GiPass {
   // (the format of host/reference/IndirectReference's image).
   virtual std::vector<float> indirectRgba() const = 0;
   virtual std::size_t memoryBytes() const = 0;
+  // Frames whose update() did the scene work, frames that reused the last.
+  virtual GiUpdateCounts updateCounts() const = 0;
 };
 
 }  // namespace ml

@@ -49,6 +49,8 @@ TEST(BenchGi, SweepOfTwoVctKeysGivesFourRecordsWithTheirSettingsAndPasses) {
       EXPECT_TRUE(rec.at("passes").contains(pass)) << pass;
     bytes.insert(rec.at("voxel_bytes").get<std::size_t>());
     EXPECT_TRUE(rec.at("gi_rel_rmse").is_null());  // no --gi-reference
+    EXPECT_EQ(rec.at("gi_updates"), 1);  // no warm-up: the one timed frame is the first
+    EXPECT_EQ(rec.at("gi_reused"), 0);
     runs.insert(rec.at("run").get<std::string>());
   }
   const std::set<std::pair<std::string, std::string>> want = {{"16", "5"}, {"16", "9"}, {"32", "5"}, {"32", "9"}};
@@ -60,7 +62,7 @@ TEST(BenchGi, SweepOfTwoVctKeysGivesFourRecordsWithTheirSettingsAndPasses) {
   std::ifstream in(csv);
   std::string header, row;
   std::getline(in, header);
-  EXPECT_NE(header.find(",gi,gi_settings,voxel_bytes,gi_rel_rmse"), std::string::npos) << header;
+  EXPECT_NE(header.find(",gi,gi_settings,voxel_bytes,gi_rel_rmse,gi_updates,gi_reused"), std::string::npos) << header;
   int rows = 0;
   while (std::getline(in, row)) {
     ++rows;
@@ -71,25 +73,35 @@ TEST(BenchGi, SweepOfTwoVctKeysGivesFourRecordsWithTheirSettingsAndPasses) {
 
 // --param revoxelize=0,1 sweeps the table's switch: after one warm-up frame,
 // the timed frames voxelize again only with revoxelize on (static geometry is
-// voxelized once per run, in the warm-up).
+// voxelized once per run, in the warm-up). With static lights and revoxelize
+// off the timed frames reuse the warm-up's volume (no vct-* update pass, the
+// record's gi_updates says so); with --animate every timed frame updates.
 TEST(BenchGi, RevoxelizeSweepVoxelizesOnlyWhereOn) {
   test::TempDir tmp;
-  const std::string json = tmp.file("b.json");
-  const auto r = test::runManylights(cornellBench("48x32", 1) + "--repeat 2 --gi vct --param voxels=16 "
-                                     "--param revoxelize=0,1 --no-counts --json " + json);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto recs = readJson(json).at("records");
-  ASSERT_EQ(recs.size(), 2u);
   std::set<std::string> seen;
-  for (const auto& rec : recs) {
-    const std::string on = rec.at("gi_settings").at("revoxelize");
-    seen.insert(on);
-    const auto& passes = rec.at("passes");
-    EXPECT_GT(passes.value("vct-inject", 0.0), 0.0) << "revoxelize " << on;
-    if (on == "on")
-      EXPECT_GT(passes.value("vct-voxelize", 0.0), 0.0) << "revoxelize on: the timed frames voxelize";
-    else
-      EXPECT_FALSE(passes.contains("vct-voxelize")) << "revoxelize off: voxelized after the warm-up";
+  for (const std::string animate : {"", "--animate 0.25 "}) {
+    SCOPED_TRACE(animate);
+    const std::string json = tmp.file("b.json");
+    const auto r = test::runManylights(cornellBench("48x32", 1) + "--repeat 2 --gi vct --param voxels=16 "
+                                       "--param revoxelize=0,1 --no-counts " + animate + "--json " + json);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto recs = readJson(json).at("records");
+    ASSERT_EQ(recs.size(), 2u);
+    for (const auto& rec : recs) {
+      const std::string on = rec.at("gi_settings").at("revoxelize");
+      seen.insert(on);
+      const auto& passes = rec.at("passes");
+      const bool updates = on == "on" || !animate.empty();
+      EXPECT_EQ(rec.at("gi_updates"), updates ? 2 : 0) << "revoxelize " << on;
+      EXPECT_EQ(rec.at("gi_reused"), updates ? 0 : 2) << "revoxelize " << on;
+      for (const char* pass : {"vct-inject", "vct-mips", "vct-textures"})
+        EXPECT_EQ(passes.value(pass, 0.0) > 0.0, updates) << pass << ", revoxelize " << on;
+      EXPECT_GT(passes.value("vct-trace", 0.0), 0.0) << "revoxelize " << on;
+      if (on == "on")
+        EXPECT_GT(passes.value("vct-voxelize", 0.0), 0.0) << "revoxelize on: the timed frames voxelize";
+      else
+        EXPECT_FALSE(passes.contains("vct-voxelize")) << "revoxelize off: voxelized after the warm-up";
+    }
   }
   EXPECT_EQ(seen, (std::set<std::string>{"off", "on"}));
 }
@@ -167,6 +179,8 @@ TEST(BenchGi, WithoutGiRecordsSayNone) {
   EXPECT_TRUE(recs[0].at("gi_settings").empty());
   EXPECT_EQ(recs[0].at("voxel_bytes"), 0);
   EXPECT_TRUE(recs[0].at("gi_rel_rmse").is_null());
+  EXPECT_TRUE(recs[0].at("gi_updates").is_null());
+  EXPECT_TRUE(recs[0].at("gi_reused").is_null());
   EXPECT_EQ(recs[0].at("run").get<std::string>().find("gi="), std::string::npos);
   for (const auto& [name, ms] : recs[0].at("passes").items()) EXPECT_NE(name.rfind("vct-", 0), 0u) << name;
 }

@@ -33,5 +33,27 @@ TEST(RunLayer, OneMedianForRenderAndBench) {
   EXPECT_DOUBLE_EQ(r.passes_total_ms, t.passes_total_ms);
 }
 
+// A pass that ran on some frames only (a reused VCT volume, the hashed
+// technique's skipped update): 0 ms on the others, whichever frame ran it
+// (one that ran on a later frame only was once dropped), listed in the order
+// passes first appear.
+TEST(RunLayer, APassThatSkippedFramesCountsZeroThere) {
+  std::vector<FrameResult> frames(3);
+  frames[0].passes.add("vct-inject", 9.0);
+  for (auto& f : frames) f.passes.add("vct-trace", 2.0);
+  frames[2].passes.add("vct-mips", 4.0);
+  frames[1].passes.add("vct-mips", 6.0);
+  const TimedFrame t = medianOf(frames);
+  ASSERT_EQ(t.passes.entries().size(), 3u);
+  EXPECT_EQ(t.passes.entries()[0].first, "vct-inject");
+  EXPECT_EQ(t.passes.entries()[1].first, "vct-trace");
+  EXPECT_EQ(t.passes.entries()[2].first, "vct-mips");
+  EXPECT_DOUBLE_EQ(t.passes.get("vct-inject"), 0.0);  // median of 9, 0, 0
+  EXPECT_DOUBLE_EQ(t.passes.get("vct-trace"), 2.0);
+  EXPECT_DOUBLE_EQ(t.passes.get("vct-mips"), 4.0);  // median of 0, 6, 4
+  frames.pop_back();
+  EXPECT_DOUBLE_EQ(medianOf(frames).passes.get("vct-inject"), 4.5);  // of two frames: interpolated
+}
+
 }  // namespace
 }  // namespace ml

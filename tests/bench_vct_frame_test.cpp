@@ -1,6 +1,7 @@
 // `manylights-vct-bench --frame` and scripts/plot_vct.py as a researcher runs
 // them: a smallest sweep (16^3, 1 and 2 cones, 100 generated lights, one
-// timed frame) gives one record per case with every VCT pass timed, a finite
+// timed frame, which updates the volume as moving lights do) gives one record
+// per case with every VCT pass timed, a finite
 // error and the memory the grid settings imply; bad --frame flags are one line
 // and exit 2; plot_vct.py turns the JSON into the plot and the Pareto table,
 // and refuses a record lacking a field in one line.
@@ -71,6 +72,10 @@ TEST(BenchVctFrame, OneRecordPerCaseWithPassesErrorAndMemory) {
     EXPECT_EQ(r.at("levels").get<unsigned>(), kLevels);
     EXPECT_GE(r.at("vct-voxelize").get<double>(), 0.0);
     for (const char* p : kFramePasses) EXPECT_GE(r.at(p).get<double>(), 0.0) << p;
+    // The timed frame updated the volume (the sweep sets the lights again:
+    // static lights would reuse the first frame's and time 0 ms of inject).
+    EXPECT_EQ(r.at("vct_updates").get<unsigned>(), 2u) << "the first frame and the one timed frame";
+    for (const char* p : {"vct-inject", "vct-textures", "vct-trace"}) EXPECT_GT(r.at(p).get<double>(), 0.0) << p;
     const double e = r.at("gi_rel_rmse").get<double>();
     EXPECT_TRUE(std::isfinite(e) && e > 0) << e;
     const vct::VoxelGridSettings g{r.at("voxels").get<unsigned>(), kLevels, r.at("anisotropic").get<bool>()};

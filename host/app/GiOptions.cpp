@@ -222,8 +222,11 @@ GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera,
     r.voxel_bytes = vct::voxelBytes(a.vct.grid);
     r.vct_updates = v->pipeline().updates();
     r.vct_voxelizations = v->pipeline().voxelizations();
-    std::printf("\ngi vct: %zu voxelizations in %zu updates%s\n", r.vct_voxelizations, r.vct_updates,
-                a.vct.revoxelize ? " (--revoxelize: every frame)" : " (static geometry: the first frame only)");
+    r.vct_reused = v->volumeReuses();
+    std::printf("\ngi vct: %zu voxelizations in %zu updates%s; %zu frames reused the volume (unchanged lights)\n",
+                r.vct_voxelizations, r.vct_updates,
+                a.vct.revoxelize ? " (--revoxelize: every frame)" : " (static geometry: the first frame only)",
+                r.vct_reused);
     const vct::VctPipeline& p = v->pipeline();
     if (p.listBuilds() > 0) {
       r.list_builds = p.listBuilds();

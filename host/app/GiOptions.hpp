@@ -70,8 +70,10 @@ struct GiResult {
   IndirectError error;          // vct vs the reference (with --gi-reference)
   std::size_t voxel_bytes = 0;  // vct
   // vct: the pipeline's updates and voxelizations over the run's frames
-  // (warm-up included): one voxelization, or one per update with --revoxelize.
-  std::size_t vct_updates = 0, vct_voxelizations = 0;
+  // (warm-up included): one voxelization, or one per update with --revoxelize;
+  // the frames that reused the last volume (lights as at the last update, no
+  // --revoxelize): updates + reused = frames with the pass.
+  std::size_t vct_updates = 0, vct_voxelizations = 0, vct_reused = 0;
   // vct's hashed lists: full builds, incremental updates, bytes uploaded per update (mean) and the whole image
   std::size_t list_builds = 0, list_updates = 0, list_update_bytes = 0, list_image_bytes = 0;
   std::vector<std::string> files;

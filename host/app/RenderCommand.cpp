@@ -234,6 +234,7 @@ void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j
     j["voxel_bytes"] = gi.voxel_bytes;
     j["vct_updates"] = gi.vct_updates;
     j["vct_voxelizations"] = gi.vct_voxelizations;
+    j["vct_reused"] = gi.vct_reused;  // frames that reused the volume: their vct-inject etc. count 0 ms in the medians
     j["vct_list_builds"] = gi.list_builds;
     j["vct_list_updates"] = gi.list_updates;
     j["vct_list_update_bytes"] = gi.list_update_bytes;  // uploaded per incremental update, mean

@@ -93,7 +93,14 @@ void runFrames(ClRuntime& cl, const Run& run, Progress* progress, std::size_t& d
       animate();
       setCounts(r, countedRender(renderer, *assigner, options, cam));
     }
-    if (plan.timing) setTimes(r, timedRenders(renderer, *assigner, options, cam, plan.repeat, animate));
+    if (plan.timing) {
+      const GiUpdateCounts before = gi ? gi->updateCounts() : GiUpdateCounts{};
+      setTimes(r, timedRenders(renderer, *assigner, options, cam, plan.repeat, animate));
+      if (gi) {
+        const GiUpdateCounts after = gi->updateCounts();
+        r.gi_updates = GiUpdateCounts{after.ran - before.ran, after.reused - before.reused};
+      }
+    }
     if (gi && plan.timing && plan.gi_reference_samples > 0) r.gi_rel_rmse = giRelRmse(run, *gi, frame);
     if (!plan.image_dir.empty())  // the folder was checked before the first frame (requireOutputDir)
       writeImageAtomically("--images", plan.image_dir + "/" + fileSafe(run.label) + "_f" + std::to_string(frame) + ".png",

@@ -8,7 +8,9 @@
 //    "light_count", "width", "height", "frame", "light_evaluations",
 //    "lower_bound", "covered_pixels", "fragment_evaluations", "passes": {name: ms},
 //    "passes_total_ms", "host_ms", "memory_bytes", "technique_stats": {k: v},
-//    "gi", "gi_settings": {k: v}, "voxel_bytes", "gi_rel_rmse"}],
+//    "gi", "gi_settings": {k: v}, "voxel_bytes", "gi_rel_rmse", "gi_updates",
+//    "gi_reused" (the GI pass's updates and reuses over the timed renders; null
+//    without a GI pass or timing)}],
 //  "summaries": [{"run", ..., "frames", "light_evaluations": {mean, median, p95,
 //    max, min}, "lower_bound": {...}, "passes_total_ms": {...}, "host_ms": {...},
 //    "memory_bytes": {...}, "passes": {name: {...}}}]}
@@ -26,6 +28,7 @@
 #include <vector>
 
 #include "host/techniques/Registry.hpp"
+#include "host/util/GiUpdateCounts.hpp"
 #include "host/util/PassTimings.hpp"
 
 namespace ml {
@@ -108,6 +111,10 @@ struct FrameRecord : RunIdentity {
   std::vector<std::pair<std::string, std::string>> gi_settings;
   std::size_t voxel_bytes = 0;
   double gi_rel_rmse = -1;
+  // The GI pass's scene updates over the record's timed frames: ran (e.g.
+  // VCT's inject/mips/textures) and reused (the lights unchanged since the
+  // last update, so those passes are absent: 0 ms in the medians).
+  std::optional<GiUpdateCounts> gi_updates;
 };
 
 struct RunSummary : RunIdentity {

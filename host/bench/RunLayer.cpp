@@ -25,7 +25,11 @@ void RunContext::printDevices() const {
 TimedFrame medianOf(const std::vector<FrameResult>& frames) {
   TimedFrame t;
   if (frames.empty()) return t;
-  for (const auto& [name, ms] : frames.front().passes.entries()) {
+  // Every pass that ran on any frame, in the order they first appear; a frame
+  // that did not run it counts 0 ms (it did not spend them).
+  PassTimings names;
+  for (const auto& f : frames) names.merge(f.passes);
+  for (const auto& [name, ms] : names.entries()) {
     (void)ms;
     std::vector<double> v;
     for (const auto& f : frames) v.push_back(f.passes.get(name));

@@ -31,6 +31,10 @@ struct RunContext {
 };
 
 // Median over `frames` per pass, of the pass sum and of the host wall time.
+// A pass absent from a frame (it did not run: a reused VCT volume, the hashed
+// technique's skipped update) is 0 ms there; one that ran on one frame of
+// three or more has a median of 0 (of two: half its time, the interpolated
+// median), and a pass that ran on no frame is not listed.
 struct TimedFrame {
   PassTimings passes;
   double passes_total_ms = 0;

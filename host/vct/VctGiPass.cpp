@@ -72,7 +72,21 @@ void VctGiPass::allocate(unsigned width, unsigned height) {
   glCheck("creating the cone-tracing images");
 }
 
-void VctGiPass::update(const GiSceneInputs& in) { pipeline_.update(in.scene, in.lights, in.passes); }
+void VctGiPass::update(const GiSceneInputs& in) {
+  if (!volumeStale(in)) {
+    ++reuses_;
+    return;
+  }
+  pipeline_.update(in.scene, in.lights, in.passes);
+  volume_lights_ = in.lights_version;
+}
+
+// What the volume reads: the scene (voxelized on the first update, or on every
+// one with revoxelize), the lights (by version: volume_lights_ starts at 0,
+// which no light set has, so the first frame updates) and the settings (fixed).
+bool VctGiPass::volumeStale(const GiSceneInputs& in) const {
+  return s_.revoxelize || in.lights_version == 0 || in.lights_version != volume_lights_;
+}
 
 void VctGiPass::addIndirect(const GiFrameInputs& in) {
   allocate(in.width, in.height);

@@ -2,12 +2,18 @@
 // Voxel cone tracing as the frame's GI pass (gl/GiPass.hpp), whatever
 // technique lit the frame:
 //   update():      VctPipeline::update (voxelize once, inject from the frame's
-//                  lights, mips, 3D textures) on every frame, as if every light
-//                  moved (the many-dynamic-lights case; static geometry stays
-//                  voxelized; the hashed lists follow the lights incrementally,
-//                  so unchanged lights cost them only a comparison); with
-//                  `revoxelize` (moving geometry) every frame voxelizes first,
-//                  and the rest follows it as on any frame;
+//                  lights, mips, 3D textures) when the volume is stale: on the
+//                  first frame, when the lights are not the ones of the last
+//                  update (GiSceneInputs::lights_version differs or is 0), and
+//                  on every frame with `revoxelize` (moving geometry: it
+//                  voxelizes first, and the rest follows). Otherwise the last
+//                  volume is reused as it is (bit for bit what an update would
+//                  write: same scene, lights and settings), its passes do not
+//                  run and do not appear in the frame's PassTimings (as the
+//                  hashed technique's skipped update). The settings are fixed
+//                  for the pass's life (the viewer builds a new pass on any
+//                  change) and the volume does not depend on the resolution;
+//                  the hashed lists follow moved lights incrementally;
 //   addIndirect(): `vct-trace` (gl/shaders/vct_trace.comp: diffuse cones, the
 //                  ambient occlusion and, with `specular`, a specular cone, at
 //                  gi_scale of the frame's resolution) and `vct-upsample`
@@ -21,6 +27,7 @@
 // compared with the reference as is. The specular cone adds
 // kSpecularWeight x its radiance (a dielectric coat, F0 0.04, aperture 10 deg).
 // checkVctGiSettings(): UserError with one line naming the flag.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,11 +66,17 @@ class VctGiPass final : public GiPass {
   void addIndirect(const GiFrameInputs& in) override;
   std::vector<float> indirectRgba() const override;
   std::size_t memoryBytes() const override;  // voxel volumes (voxelBytes) + textures + images
+  GiUpdateCounts updateCounts() const override { return {volumeUpdates(), volumeReuses()}; }
   std::vector<float> ambientOcclusion() const;  // last frame, one float per pixel, 0 on the sky
   const VctGiSettings& settings() const { return s_; }
   const VctPipeline& pipeline() const { return pipeline_; }  // the voxel volume, for debug views
+  // Frames whose update() ran the pipeline (pipeline().updates()) and frames
+  // that reused the last volume.
+  std::size_t volumeUpdates() const { return pipeline_.updates(); }
+  std::size_t volumeReuses() const { return reuses_; }
 
  private:
+  bool volumeStale(const GiSceneInputs& in) const;
   void allocate(unsigned width, unsigned height);
   void freeImages();
   void trace(const GiFrameInputs& in);
@@ -74,6 +87,8 @@ class VctGiPass final : public GiPass {
   std::vector<Cone> cones_;
   ShaderProgram trace_, upsample_;
   unsigned width_ = 0, height_ = 0, lo_w_ = 0, lo_h_ = 0;
+  std::uint64_t volume_lights_ = 0;  // lights_version of the last update; 0: none yet
+  std::size_t reuses_ = 0;
   GLuint lo_irradiance_ = 0, lo_geometry_ = 0, lo_specular_ = 0, indirect_ = 0, ao_ = 0;
 };
 
