@@ -204,18 +204,6 @@ bool GeometryMask::indexOf(const glm::uvec3& c, std::size_t& at) const {
   return true;
 }
 
-bool GeometryMask::geometryBox(const glm::uvec3& c, Box& box) const {
-  std::size_t at;
-  if (!indexOf(c, at)) return false;
-  box = cell_boxes_[at];
-  return true;
-}
-
-const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c) const {
-  const Box* cell_box;
-  return octantBoxes(c, cell_box);
-}
-
 const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c, const Box*& cell_box) const {
   std::size_t at;
   if (!indexOf(c, at)) return nullptr;
