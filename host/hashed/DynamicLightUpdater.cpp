@@ -92,7 +92,7 @@ std::vector<std::uint32_t> DynamicLightUpdater::diff(const std::vector<gpu::Poin
 std::vector<OctantRewrite> DynamicLightUpdater::findRewrites(const HashedStructure& s,
                                                              const std::vector<gpu::PointLight>& lights,
                                                              const std::vector<std::uint32_t>& moved) {
-  if (!s.linkless_->octantMasks()) return {};
+  if (!s.cfg_.octant_masks) return {};
   std::vector<OctantChange> changes;
   // Without the mask, lights are listed where the cell test says (with it,
   // geometry-tight sets list fewer cells): look there.

@@ -349,11 +349,4 @@ bool GeometryMask::has(unsigned t, const glm::uvec3& c) const {
   return std::binary_search(v.begin(), v.end(), packCoord(c));
 }
 
-std::size_t GeometryMask::memoryBytes() const {
-  std::size_t s = 0;
-  for (const auto& d : dense_) s += d.size() * 8;
-  for (const auto& d : sparse_) s += d.size() * 8;
-  return s + cell_keys_.size() * (8 + sizeof(Box) + sizeof(OctantBoxes)) + dense_index_.size() * 4;
-}
-
 }  // namespace ml::hashed

@@ -56,7 +56,6 @@ class GeometryMask {
   // (and `cell_box` untouched) when the cell holds no geometry.
   const OctantBoxes* octantBoxes(const glm::uvec3& cell, const Box*& cell_box) const;
   std::size_t cellCount() const { return cell_count_; }
-  std::size_t memoryBytes() const;
 
  private:
   void setCells(std::vector<std::uint64_t> keys);

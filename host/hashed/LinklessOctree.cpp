@@ -208,7 +208,7 @@ LinklessOctree::GpuImage LinklessOctree::packGpuImage() const {
 
 LinklessOctree::Cell LinklessOctree::cellAt(const glm::vec3& world) const {
   // Mirrors lightListFor() in gl/shaders/lookup_hashed.glsl.
-  const glm::vec3 q = (world - b_.origin_f) * b_.cell_scale;
+  const glm::vec3 q = b_.cellCoordF(world);
   const float n = float(1u << b_.depth);
   if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < n && q.y < n && q.z < n)) return {};
   const glm::uvec3 cell = glm::min(glm::uvec3(q), glm::uvec3((1u << b_.depth) - 1u));

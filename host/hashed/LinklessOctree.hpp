@@ -76,7 +76,6 @@ class LinklessOctree {
   // with the rewrites above applied first, their masks are current.
   void applyTouched(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights,
                     const std::vector<std::uint64_t>& touched, SyncStats& stats);
-  bool octantMasks() const { return cfg_.octant_masks; }
   // Repacks the light index list when its garbage calls for it (and remaps
   // the data tables); lookups are unchanged. applyTouched() leaves this to
   // the caller, which may run it while it edits the scene octree for the
