@@ -63,19 +63,19 @@ TEST(HashedMask, MergingBuffersMatchesBatchedUnion) {
         bool any = false;
         GeometryMask::Box want{glm::dvec3(1e300), glm::dvec3(-1e300)};
         for (const auto& p : parts) {
-          GeometryMask::Box pb;
-          if (!p.geometryBox(c, pb)) continue;
+          const GeometryMask::Box* pb;
+          if (!p.octantBoxes(c, pb)) continue;
           any = true;
-          want.lo = glm::min(want.lo, pb.lo);
-          want.hi = glm::max(want.hi, pb.hi);
+          want.lo = glm::min(want.lo, pb->lo);
+          want.hi = glm::max(want.hi, pb->hi);
         }
-        GeometryMask::Box got;
-        ASSERT_EQ(whole.geometryBox(c, got), any) << x << "," << y << "," << z;
+        const GeometryMask::Box* got = nullptr;
+        ASSERT_EQ(whole.octantBoxes(c, got) != nullptr, any) << x << "," << y << "," << z;
         ASSERT_EQ(whole.has(b.depth, c), any);
         if (!any) continue;
         ++occupied;
-        ASSERT_EQ(got.lo, want.lo) << x << "," << y << "," << z;
-        ASSERT_EQ(got.hi, want.hi) << x << "," << y << "," << z;
+        ASSERT_EQ(got->lo, want.lo) << x << "," << y << "," << z;
+        ASSERT_EQ(got->hi, want.hi) << x << "," << y << "," << z;
         for (unsigned t = 0; t < b.depth; ++t) ASSERT_TRUE(whole.has(t, c >> (b.depth - t)));
       }
   // 8 x 16 x 16 unit cells hold triangles (the grid is larger and aligned to
@@ -119,16 +119,15 @@ TEST_F(HashedMaskGeometry, SurfacePointsLieInTheirOctantBox) {
   for (int i = 0; i < 20000; ++i) {
     const glm::dvec3 p = b.toCells(randomSurfacePoint(rng, s));
     const glm::uvec3 cell(glm::floor(p));
-    GeometryMask::Box box;
-    ASSERT_TRUE(mask.geometryBox(cell, box));
-    const auto* oct = mask.octantBoxes(cell);
+    const GeometryMask::Box* box;
+    const auto* oct = mask.octantBoxes(cell, box);
     ASSERT_NE(oct, nullptr);
     const glm::dvec3 f = p - glm::dvec3(cell);
     const unsigned k = (f.x >= 0.5 ? 1u : 0u) + (f.y >= 0.5 ? 2u : 0u) + (f.z >= 0.5 ? 4u : 0u);
     ASSERT_FALSE(oct->empty(k));
     for (int ax = 0; ax < 3; ++ax) {
-      ASSERT_LE(box.lo[ax], p[ax]);
-      ASSERT_GE(box.hi[ax], p[ax]);
+      ASSERT_LE(box->lo[ax], p[ax]);
+      ASSERT_GE(box->hi[ax], p[ax]);
       ASSERT_LE(double(oct->lo[k][ax]), p[ax]) << "octant " << k;
       ASSERT_GE(double(oct->hi[k][ax]), p[ax]) << "octant " << k;
     }
@@ -183,7 +182,8 @@ TEST_F(HashedMaskGeometry, GeometryOctantBitsKeepEveryLightOfASurfacePoint) {
     const glm::dvec3 p = randomSurfacePoint(rng, s);
     const glm::vec3 q = glm::vec3(b.toCells(p));
     const glm::uvec3 cell(glm::floor(q));
-    const auto* oct = mask.octantBoxes(cell);
+    const GeometryMask::Box* cell_box;
+    const auto* oct = mask.octantBoxes(cell, cell_box);
     ASSERT_NE(oct, nullptr);
     for (const auto& l : lights) {
       const glm::dvec3 d = p - glm::dvec3(l.position_radius.x, l.position_radius.y, l.position_radius.z);
@@ -202,7 +202,8 @@ TEST_F(HashedMaskGeometry, GeometryOctantChangesEqualTheReducedMasksDifference) 
   auto reduced = [&](const gpu::PointLight* l, const glm::ivec3& cell) -> std::uint8_t {
     if (!l) return 0;
     const LightOctants o(*l, b);
-    const auto* oct = mask.octantBoxes(glm::uvec3(cell));
+    const GeometryMask::Box* cell_box;
+    const auto* oct = mask.octantBoxes(glm::uvec3(cell), cell_box);
     return oct ? o.onGeometry(o.mask(cell), *oct) : o.mask(cell);
   };
   std::size_t changes = 0;

@@ -235,7 +235,7 @@ TEST(HashedOctree, LookupsListExactlyTheLightsReachingTheCellOrOctant) {
       }
       const auto in_cell = lightsOverlappingCell(lights, b, cell);
       // The CPU tree agrees with its hashed form.
-      EXPECT_EQ(hs.tree().lightsAtCell(cell), in_cell);
+      EXPECT_EQ(leafLightsAt(hs.tree(), cell), in_cell);
       const auto leaf = hs.tree().find(b.depth, cell);
       const bool by_octant = cs.octant_masks && leaf.exists && leaf.leaf;
       octant_leaves += by_octant && !in_cell.empty();

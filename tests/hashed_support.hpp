@@ -88,18 +88,27 @@ inline bool cellOf(const OctreeBounds& b, const glm::vec3& p, glm::uvec3& cell) 
   return true;
 }
 
+// The light set of the leaf of `tree` that holds deepest cell `c`.
+inline std::vector<std::uint32_t> leafLightsAt(const SceneOctree& tree, const glm::uvec3& c) {
+  const unsigned depth = tree.bounds().depth;
+  for (unsigned t = 0; t <= depth; ++t) {
+    const SceneOctree::NodeView v = tree.find(t, c >> (depth - t));
+    if (v.exists && v.leaf) return *v.lights;
+  }
+  return {};
+}
+
 // Every table of the linkless octree is perfect and reads back its keys.
 inline void expectTablesPerfect(const LinklessOctree& lo) {
   for (unsigned i = 0; i < lo.layerCount(); ++i) {
     auto check = [&](const auto& h) {
-      std::size_t n = 0;
-      h.forEach([&](const glm::uvec3& k, const auto& p) {
-        ++n;
-        const auto got = h.lookup(k);
+      const auto entries = h.entries();
+      for (const auto& e : entries) {
+        const auto got = h.lookup(e.key);
         ASSERT_TRUE(got.has_value());
-        EXPECT_TRUE(*got == p);
-      });
-      EXPECT_EQ(n, h.size());
+        EXPECT_TRUE(*got == e.payload);
+      }
+      EXPECT_EQ(entries.size(), h.size());
     };
     check(lo.desc(i));
     check(lo.data(i));

@@ -6,24 +6,19 @@
 #include <tbb/task_group.h>
 
 #include <algorithm>
-#include <chrono>
 #include <numeric>
 
 #include "host/hashed/LightOctreeBuilder.hpp"
 #include "host/hashed/OctantMask.hpp"
+#include "host/util/Stopwatch.hpp"
 
 namespace ml::hashed {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
 bool sameVolume(const gpu::PointLight& a, const gpu::PointLight& b) {
   return a.position_radius.x == b.position_radius.x && a.position_radius.y == b.position_radius.y &&
          a.position_radius.z == b.position_radius.z && a.position_radius.w == b.position_radius.w;
 }
-
-using Indexed = std::vector<std::pair<std::uint32_t, gpu::PointLight>>;
 
 // Morton code of a cell box's centre (16 bits per axis): editing lights in
 // this order keeps the scene octree nodes that consecutive lights share in
@@ -40,7 +35,7 @@ std::uint64_t mortonOfCentre(const CellBox& box) {
 }  // namespace
 
 void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::PointLight>& lights, UpdateStats& st) {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   auto rebuild = [&](const char* why) {
     st.full_rebuild = true;
     st.reason = why;
@@ -72,10 +67,10 @@ void DynamicLightUpdater::apply(HashedStructure& s, const std::vector<gpu::Point
   });
   const std::vector<std::uint64_t> touched = editTree(s, lights, moved, st);
 
-  const auto t = Clock::now();
+  const auto t = SteadyClock::now();
   background.wait();
   st.sync.compacted = compacted;
-  s.linkless_->applyOctantRewrites(rewrites, st.sync);
+  s.linkless_->applyOctantRewrites(rewrites);
   s.linkless_->applyTouched(*s.tree_, lights, touched, st.sync);
   st.sync_ms = msSince(t);
   s.lights_ = lights;
@@ -97,7 +92,7 @@ std::vector<std::uint32_t> DynamicLightUpdater::diff(const std::vector<gpu::Poin
 std::vector<OctantRewrite> DynamicLightUpdater::findRewrites(const HashedStructure& s,
                                                              const std::vector<gpu::PointLight>& lights,
                                                              const std::vector<std::uint32_t>& moved) {
-  if (!s.linkless_->octantMasks()) return {};
+  if (!s.cfg_.octant_masks) return {};
   std::vector<OctantChange> changes;
   // Without the mask, lights are listed where the cell test says (with it,
   // geometry-tight sets list fewer cells): look there.
@@ -108,7 +103,7 @@ std::vector<OctantRewrite> DynamicLightUpdater::findRewrites(const HashedStructu
 
 std::vector<std::uint64_t> DynamicLightUpdater::editTree(HashedStructure& s, const std::vector<gpu::PointLight>& lights,
                                                          const std::vector<std::uint32_t>& moved, UpdateStats& st) {
-  const auto t = Clock::now();
+  const auto t = SteadyClock::now();
   SceneOctree& tree = *s.tree_;
   tree.setRecording(true);
   // Geometry-tight sets need the light octrees (their cells test the geometry).
@@ -155,7 +150,7 @@ double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<
   const std::size_t n_old = s.lights_.size(), n_new = lights.size();
   // Old versions come from the octree cache; only new versions are built.
   std::vector<LightOctree> replaced, removed;  // old versions of moved and of removed lights
-  Indexed to_insert;
+  std::vector<std::pair<std::uint32_t, gpu::PointLight>> to_insert;
   auto& cache = s.octrees_;
   for (const auto i : moved) {
     replaced.push_back(std::move(cache[i]));
@@ -169,7 +164,7 @@ double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<
   // walks by) in parallel, then the edits in order. Building them on other
   // threads while the edits consumed them was no faster (bench
   // --update-geometry-mask).
-  const auto t = Clock::now();
+  const auto t = SteadyClock::now();
   std::vector<LightOctree> new_octrees(to_insert.size());
   std::vector<std::vector<std::uint32_t>> old_ends(replaced.size()), new_ends(replaced.size());
   tbb::enumerable_thread_specific<LightGridScratch> scratch;
@@ -190,7 +185,7 @@ double DynamicLightUpdater::editByOctrees(HashedStructure& s, const std::vector<
   // Moved lights come first in to_insert: their old versions are replaced
   // (one joint walk each); the rest (added lights) are inserts.
   for (std::size_t e = 0; e < new_octrees.size(); ++e) {
-    if (e < replaced.size()) tree.replace(replaced[e], new_octrees[e], &old_ends[e], &new_ends[e]);
+    if (e < replaced.size()) tree.replace(replaced[e], new_octrees[e], old_ends[e], new_ends[e]);
     else tree.insert(new_octrees[e]);
   }
   for (std::size_t k = 0; k < to_insert.size(); ++k) cache[to_insert[k].first] = std::move(new_octrees[k]);

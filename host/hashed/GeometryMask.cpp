@@ -204,18 +204,6 @@ bool GeometryMask::indexOf(const glm::uvec3& c, std::size_t& at) const {
   return true;
 }
 
-bool GeometryMask::geometryBox(const glm::uvec3& c, Box& box) const {
-  std::size_t at;
-  if (!indexOf(c, at)) return false;
-  box = cell_boxes_[at];
-  return true;
-}
-
-const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c) const {
-  const Box* cell_box;
-  return octantBoxes(c, cell_box);
-}
-
 const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c, const Box*& cell_box) const {
   std::size_t at;
   if (!indexOf(c, at)) return nullptr;
@@ -359,13 +347,6 @@ bool GeometryMask::has(unsigned t, const glm::uvec3& c) const {
   }
   const auto& v = sparse_[t];
   return std::binary_search(v.begin(), v.end(), packCoord(c));
-}
-
-std::size_t GeometryMask::memoryBytes() const {
-  std::size_t s = 0;
-  for (const auto& d : dense_) s += d.size() * 8;
-  for (const auto& d : sparse_) s += d.size() * 8;
-  return s + cell_keys_.size() * (8 + sizeof(Box) + sizeof(OctantBoxes)) + dense_index_.size() * 4;
 }
 
 }  // namespace ml::hashed

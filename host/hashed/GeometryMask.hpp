@@ -8,7 +8,7 @@
 //    reconstructed from depth in deferred) always fall in a marked cell.
 //  - has(t, c) is exact for every depth t <= bounds.depth; cells outside the
 //    octree never contain geometry.
-//  - geometryBox(c) bounds the geometry inside cell c (each triangle clipped
+//  - Cell c's geometry box bounds the geometry inside it (each triangle clipped
 //    to the widened cell, the clipped polygons' bounds united), in cell
 //    units: a floor cell's box is a thin slab. Lights that miss it cannot
 //    light any surface point in the cell (see LightOctreeBuilder).
@@ -18,7 +18,7 @@
 //    octant's box cannot reach one. Geometry finer than the cell (a floor
 //    meeting a wall, a slanted panel) so keeps lights off cells whose whole
 //    box they would reach.
-//  - geometryBox(c) holds every octant box of c (exactly: it is united with
+//  - The geometry box holds every octant box of c (exactly: it is united with
 //    them), so a sphere that misses or holds it misses or holds them all.
 #include <glm/glm.hpp>
 
@@ -52,14 +52,10 @@ class GeometryMask {
     }
     bool empty(unsigned k) const { return lo[k].x > hi[k].x; }
   };
-  // Null when the cell holds no geometry.
-  const OctantBoxes* octantBoxes(const glm::uvec3& cell) const;
-  // octantBoxes() with the cell's geometryBox(), which holds them.
+  // The cell's octant boxes, and its geometry box in `cell_box`; null
+  // (and `cell_box` untouched) when the cell holds no geometry.
   const OctantBoxes* octantBoxes(const glm::uvec3& cell, const Box*& cell_box) const;
-  // False when the cell holds no geometry.
-  bool geometryBox(const glm::uvec3& cell, Box& box) const;
   std::size_t cellCount() const { return cell_count_; }
-  std::size_t memoryBytes() const;
 
  private:
   void setCells(std::vector<std::uint64_t> keys);

@@ -20,8 +20,9 @@ bool mustGrow(GpuArray a, std::size_t need, const GpuArrayWords& capacity) {
   return capacity[index(a)] == 0 || need > capacity[index(a)];
 }
 
-void writeWhole(GpuArray a, const std::vector<std::uint32_t>& words, GpuUploadPlan& p) {
-  if (!words.empty()) p.writes.push_back({a, 0, words.size(), words.data()});
+// All of `words` at word `at` of array a.
+void writeAll(GpuArray a, std::size_t at, const std::vector<std::uint32_t>& words, GpuUploadPlan& p) {
+  if (!words.empty()) p.writes.push_back({a, at, words.size(), words.data()});
 }
 
 // Elements [first, end) of `words` (elem_words each) at element base `base`
@@ -55,9 +56,8 @@ void writeTable(const Hash& h, const TableEdits& d, GpuArray slots, std::size_t 
                 GpuUploadPlan& p) {
   constexpr unsigned kw = Hash::kWords;
   if (d.all) {
-    if (!h.tableWords().empty()) p.writes.push_back({slots, slot_base * kw, h.tableWords().size(), h.tableWords().data()});
-    if (!h.offsetWords().empty())
-      p.writes.push_back({GpuArray::Offsets, offset_base, h.offsetWords().size(), h.offsetWords().data()});
+    writeAll(slots, slot_base * kw, h.tableWords(), p);
+    writeAll(GpuArray::Offsets, offset_base, h.offsetWords(), p);
     return;
   }
   writeElements(slots, slot_base, kw, h.tableWords(), d.slots, p);
@@ -109,7 +109,7 @@ void GpuUploadPlanner::planAll(LinklessOctree& lo, const GpuArrayWords& capacity
   for (unsigned i = 0; i < kGpuArrayCount; ++i) {
     const GpuArray a = static_cast<GpuArray>(i);
     if (mustGrow(a, arrays[i]->size(), capacity)) p.grow[i] = allocationWords(a, arrays[i]->size());
-    writeWhole(a, *arrays[i], p);
+    writeAll(a, 0, *arrays[i], p);
   }
 }
 
@@ -122,7 +122,7 @@ void GpuUploadPlanner::planEdits(LinklessOctree& lo, const GpuArrayWords& capaci
   LightSetPool::Dirty d = lo.pool().takeDirty();
   if (mustGrow(GpuArray::List, list.size(), capacity)) {
     p.grow[index(GpuArray::List)] = allocationWords(GpuArray::List, list.size());
-    writeWhole(GpuArray::List, list, p);
+    writeAll(GpuArray::List, 0, list, p);
     return;
   }
   const std::size_t from = d.all ? 0 : std::min(d.from, list.size());

@@ -1,21 +1,15 @@
 #include "host/hashed/HashedAssigner.hpp"
 
 #include <algorithm>
-#include <chrono>
 
 #include "gl/GlCheck.hpp"
 #include "gl/GlPassTimer.hpp"
 #include "gl/ShaderProgram.hpp"
 #include "host/hashed/GpuUploadPlan.hpp"
 #include "host/shared/shading_bindings.h"
+#include "host/util/Stopwatch.hpp"
 
 namespace ml {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-}  // namespace
 
 HashedAssigner::HashedAssigner(std::string name, const hashed::HashedConfig& config)
     : name_(std::move(name)), config_(config) {
@@ -53,7 +47,7 @@ bool HashedAssigner::gpuMatchesHost(std::string* why) const {
 
 // Applies the shared upload plan (GpuUploadPlan.hpp) to the GL buffers.
 void HashedAssigner::upload(bool rebuilt) {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   Buffer* buffers[hashed::kGpuArrayCount] = {&header_, &offsets_, &desc_, &data_, &list_};  // GpuArray order
   hashed::GpuArrayWords capacity{};
   for (unsigned i = 0; i < hashed::kGpuArrayCount; ++i) capacity[i] = buffers[i]->capacity / 4;

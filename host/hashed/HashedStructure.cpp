@@ -1,19 +1,12 @@
 #include "host/hashed/HashedStructure.hpp"
 
-#include <chrono>
-
 #include "host/hashed/DynamicLightUpdater.hpp"
 #include "host/hashed/LightOctreeBuilder.hpp"
 #include "host/hashed/OctantMask.hpp"
 #include "host/util/Error.hpp"
+#include "host/util/Stopwatch.hpp"
 
 namespace ml::hashed {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-}  // namespace
 
 void HashedStructure::checkLightCount(std::size_t n) {
   if (n > kMaxHashedLights)
@@ -31,7 +24,7 @@ HashedStructure::HashedStructure(const HashedConfig& config, const Scene* scene)
 HashedStructure::~HashedStructure() = default;
 
 void HashedStructure::build(const std::vector<gpu::PointLight>& lights) {
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   const OctreeBounds b = computeBounds(lights, cfg_);
   const double bounds_ms = msSince(t0);
   build(lights, b);
@@ -50,12 +43,12 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
                       std::to_string(cfg_.memory_limit >> 20) + " MiB); use a larger node size or --no-geometry-mask");
   }
   BuildStats st;
-  const auto t0 = Clock::now();
+  const auto t0 = SteadyClock::now();
   bounds_ = bounds;
   linkless_.reset();
   tree_.reset();
   if (cfg_.geometry_mask) {
-    auto t = Clock::now();
+    auto t = SteadyClock::now();
     mask_ = std::make_unique<GeometryMask>(*scene_, bounds_, cfg_.geometry_margin_cells);
     st.mask_ms = msSince(t);
     st.mask_cells = mask_->cellCount();
@@ -63,25 +56,21 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
     mask_.reset();
   }
 
-  auto t = Clock::now();
+  auto t = SteadyClock::now();
   octrees_ = buildLightOctrees(lights, bounds_, mask());
-  const auto& octrees = octrees_;
   st.light_octrees_ms = msSince(t);
-  for (const auto& o : octrees) {
-    st.light_octree_nodes += o.nodes.size();
-    st.filled_cells += o.filled_cells;
-  }
+  for (const auto& o : octrees_) st.filled_cells += o.filled_cells;
 
-  t = Clock::now();
+  t = SteadyClock::now();
   tree_ = std::make_unique<SceneOctree>(bounds_, mask_.get());
-  for (const auto& o : octrees) tree_->insert(o);
+  for (const auto& o : octrees_) tree_->insert(o);
   st.merge_ms = msSince(t);
 
-  t = Clock::now();
+  t = SteadyClock::now();
   tree_->normalize();
   st.normalize_ms = msSince(t);
 
-  t = Clock::now();
+  t = SteadyClock::now();
   linkless_ = std::make_unique<LinklessOctree>(bounds_, cfg_, mask_.get());
   linkless_->buildFrom(*tree_, lights);
   st.hash_ms = msSince(t);
@@ -89,7 +78,6 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   st.scene_nodes = tree_->nodeCount();
   st.index_entries = linkless_->pool().list().size();
   st.leaf_index_entries = tree_->indexEntries();
-  st.distinct_sets = linkless_->pool().rangeCount();
   st.total_ms = msSince(t0);
   build_stats_ = st;
   lights_ = lights;

@@ -29,12 +29,10 @@ namespace ml::hashed {
 struct BuildStats {
   double bounds_ms = 0, mask_ms = 0, light_octrees_ms = 0, merge_ms = 0, normalize_ms = 0, hash_ms = 0,
          total_ms = 0;
-  std::size_t light_octree_nodes = 0;  // summed over lights
   std::size_t filled_cells = 0;        // (light, cell) overlaps, summed
   std::size_t scene_nodes = 0;
   std::size_t index_entries = 0;       // light index list length (distinct sets stored once)
   std::size_t leaf_index_entries = 0;  // what the list would hold without sharing
-  std::size_t distinct_sets = 0;
   std::size_t mask_cells = 0;
 };
 
@@ -60,7 +58,6 @@ class HashedStructure {
 
   bool built() const { return linkless_ != nullptr; }
   const HashedConfig& config() const { return cfg_; }
-  HashedConfig& config() { return cfg_; }
   const OctreeBounds& bounds() const { return bounds_; }
   const LinklessOctree& linkless() const { return *linkless_; }
   LinklessOctree& linkless() { return *linkless_; }  // uploaders take its dirty records

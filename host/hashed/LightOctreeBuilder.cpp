@@ -142,18 +142,15 @@ std::size_t markGeometryCells(const Sphere& s, const CellBox& box, const Geometr
     for (int y = box.lo.y; y <= box.hi.y; ++y)
       for (int x = box.lo.x; x <= box.hi.x; ++x) {
         const glm::ivec3 p(x, y, z);
-        GeometryMask::Box gb;
-        if (!geometry.geometryBox(glm::uvec3(p), gb)) continue;
-        gb.lo -= s.eps;
-        gb.hi += s.eps;
-        bool in = sphereOverlapsBox(s.c, s.r, gb);
-        if (in) {
-          if (const auto* oct = geometry.octantBoxes(glm::uvec3(p))) {
-            in = false;
-            for (unsigned k = 0; k < 8 && !in; ++k)
-              if (!oct->empty(k))
-                in = sphereOverlapsBox(s.c, s.r, {glm::dvec3(oct->lo[k]) - s.eps, glm::dvec3(oct->hi[k]) + s.eps});
-          }
+        const GeometryMask::Box* cell_box;
+        const GeometryMask::OctantBoxes* oct = geometry.octantBoxes(glm::uvec3(p), cell_box);
+        if (!oct) continue;
+        bool in = sphereOverlapsBox(s.c, s.r, {cell_box->lo - s.eps, cell_box->hi + s.eps});
+        if (in) {  // finer: some octant's box
+          in = false;
+          for (unsigned k = 0; k < 8 && !in; ++k)
+            if (!oct->empty(k))
+              in = sphereOverlapsBox(s.c, s.r, {glm::dvec3(oct->lo[k]) - s.eps, glm::dvec3(oct->hi[k]) + s.eps});
         }
         g.cells[g.index(p)] = in ? kTestedIn : kOutside;
         lit += in;

@@ -17,7 +17,7 @@
 //  - Stored compactly in preorder (1 byte per node), children in bit order
 //    k = x + 2y + 4z, so the scene octree can walk it without pointers.
 //  - With a geometry mask (beyond the thesis), a cell is filled only when the
-//    sphere reaches the geometry inside it (GeometryMask::geometryBox); cells
+//    sphere reaches the geometry inside it (GeometryMask::octantBoxes); cells
 //    without geometry cannot be lit and may join full nodes. That predicate
 //    is not convex in the cell position, so the flood fill and the decision
 //    tree's closest/farthest shortcuts give way to testing every cell of the

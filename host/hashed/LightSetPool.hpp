@@ -24,12 +24,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "host/util/SplitMix64.hpp"
+
 namespace ml::hashed {
 
 class LightSetPool {
  public:
-  std::uint32_t acquire(const std::vector<std::uint32_t>& set) { return acquire(set, hashOf(set.data(), set.size())); }
-  // The same with the set's hashOf() computed by the caller (e.g. in parallel).
+  // `hash`: the set's hashOf() (callers compute it in parallel).
   std::uint32_t acquire(const std::vector<std::uint32_t>& set, std::uint64_t hash);
   std::uint32_t acquireOwn(const std::vector<std::uint32_t>& set);
   static std::uint32_t ownCapacity(std::size_t n) { return std::uint32_t(n + std::max<std::size_t>(2, n / 8)); }
@@ -53,13 +54,12 @@ class LightSetPool {
   // Overwrites entry `at` of a range from acquireOwn().
   void rewrite(std::size_t at, std::uint32_t word) {
     list_[at] = word;
-    noteRewritten(at);
+    noteRewritten(at, at + 1);
   }
   // rewrite() in two halves, for tasks rewriting distinct own ranges in
   // parallel: each writes its words, then one thread notes them all, as
   // spans [first, end) (an in-place edit shifts every word after it).
   std::uint32_t* ownWords(std::uint32_t offset) { return list_.data() + offset; }
-  void noteRewritten(std::size_t at) { noteRewritten(at, at + 1); }
   void noteRewritten(std::size_t first, std::size_t end) {
     if (!all_dirty_ && first < dirty_from_)
       dirty_spans_.push_back({std::uint32_t(first), std::uint32_t(std::min(end, dirty_from_))});
@@ -68,10 +68,7 @@ class LightSetPool {
   // whoever edits a set one element at a time (SceneOctree) can keep the sum
   // and hash it in O(1): hashOf(p, n) == hashOfSum(sum of elementHash(p[i]), n).
   static std::uint64_t elementHash(std::uint32_t light) {
-    std::uint64_t z = (std::uint64_t(light) + 1) * 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
+    return SplitMix64::mix((std::uint64_t(light) + 1) * SplitMix64::kGolden);
   }
   static std::uint64_t hashOfSum(std::uint64_t sum, std::size_t n) {
     std::uint64_t h = (sum ^ (std::uint64_t(n) * 0xD6E8FEB86659FD93ull)) * 0xBF58476D1CE4E5B9ull;
@@ -83,7 +80,6 @@ class LightSetPool {
 
   const std::vector<std::uint32_t>& list() const { return list_; }
   std::size_t garbageEntries() const { return garbage_; }
-  std::size_t rangeCount() const { return recs_.size() - free_recs_.size(); }
   // Compaction pays when garbage outweighs the live ranges (the list may
   // reach twice its live size between compactions, plus one update's
   // appends: DynamicLightUpdater compacts at the start of the next update).

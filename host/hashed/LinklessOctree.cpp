@@ -8,10 +8,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <optional>
-
 #include <bit>
-#include <cstring>
+#include <optional>
 #include <stdexcept>
 
 namespace ml::hashed {
@@ -28,6 +26,16 @@ constexpr std::size_t kParallelRemapMinEntries = 16384;
 std::uint64_t tableSeed(std::uint64_t seed, unsigned layer, bool data) {
   SplitMix64 s{seed ^ (0x51ED270B27A1ull * (2 * layer + (data ? 1 : 0) + 1))};
   return s.next();
+}
+
+// f(0), ..., f(n - 1), independent tasks: in parallel only when `parallel`.
+template <class F>
+void runTasks(unsigned n, bool parallel, const F& f) {
+  if (!parallel) {
+    for (unsigned i = 0; i < n; ++i) f(i);
+    return;
+  }
+  tbb::parallel_for(0u, n, f);
 }
 
 }  // namespace
@@ -126,12 +134,7 @@ void LinklessOctree::hashTables(const std::vector<std::vector<DescHash::Entry>>&
     if (data) data_[i] = DataHash::build(data_entries[i], p, &reports[task]);
     else desc_[i] = DescHash::build(desc_entries[i], p, &reports[task]);
   };
-  // Tables are independent; small layers are not worth a thread hand-off.
-  if (keys < kParallelHashMinKeys) {
-    for (unsigned task = 0; task < 2 * layers; ++task) hashTable(task);
-  } else {
-    tbb::parallel_for(0u, 2 * layers, hashTable);
-  }
+  runTasks(2 * layers, keys >= kParallelHashMinKeys, hashTable);
   for (unsigned i = 0; i < layers; ++i) {
     LayerStats& s = build_stats_[i];
     s = LayerStats{};
@@ -162,13 +165,6 @@ void LinklessOctree::computeBases() {
     data_base_[i + 1] = data_base_[i] + data_[i].slots();
   }
 }
-
-std::size_t LinklessOctree::offsetBase(unsigned layer, bool data) const { return offset_base_[2 * layer + (data ? 1 : 0)]; }
-std::size_t LinklessOctree::descSlotBase(unsigned layer) const { return desc_base_[layer]; }
-std::size_t LinklessOctree::dataSlotBase(unsigned layer) const { return data_base_[layer]; }
-std::size_t LinklessOctree::offsetWordCount() const { return offset_base_.back(); }
-std::size_t LinklessOctree::descSlotCount() const { return desc_base_.back(); }
-std::size_t LinklessOctree::dataSlotCount() const { return data_base_.back(); }
 
 std::vector<std::uint32_t> LinklessOctree::headerWords() const {
   std::vector<std::uint32_t> h(8 + 16 * layerCount(), 0);
@@ -212,7 +208,7 @@ LinklessOctree::GpuImage LinklessOctree::packGpuImage() const {
 
 LinklessOctree::Cell LinklessOctree::cellAt(const glm::vec3& world) const {
   // Mirrors lightListFor() in gl/shaders/lookup_hashed.glsl.
-  const glm::vec3 q = (world - b_.origin_f) * b_.cell_scale;
+  const glm::vec3 q = b_.cellCoordF(world);
   const float n = float(1u << b_.depth);
   if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < n && q.y < n && q.z < n)) return {};
   const glm::uvec3 cell = glm::min(glm::uvec3(q), glm::uvec3((1u << b_.depth) - 1u));
@@ -498,11 +494,7 @@ void LinklessOctree::writeTables(const Plan& plan, SyncStats& st) {
     task_layout[task] = data ? editTable(data_[i], plan.data_ops[i], task, rng, task_stats[task])
                              : editTable(desc_[i], plan.desc_ops[i], task, rng, task_stats[task]);
   };
-  if (ops_total < kParallelTableEditsMinOps) {
-    for (unsigned task = 0; task < 2 * layers; ++task) applyTask(task);
-  } else {
-    tbb::parallel_for(0u, 2 * layers, applyTask);
-  }
+  runTasks(2 * layers, ops_total >= kParallelTableEditsMinOps, applyTask);
   bool layout_changed = false;
   for (unsigned task = 0; task < 2 * layers; ++task) {
     const SyncStats& ts = task_stats[task];
@@ -574,9 +566,8 @@ std::vector<OctantRewrite> LinklessOctree::findOctantRewrites(std::vector<Octant
   return out;
 }
 
-void LinklessOctree::applyOctantRewrites(const std::vector<OctantRewrite>& rewrites, SyncStats& st) {
+void LinklessOctree::applyOctantRewrites(const std::vector<OctantRewrite>& rewrites) {
   for (const OctantRewrite& rw : rewrites) pool_.rewrite(rw.at, rw.word);
-  st.mask_rewrites += rewrites.size();
 }
 
 bool LinklessOctree::compactIfWanted() {
@@ -585,11 +576,7 @@ bool LinklessOctree::compactIfWanted() {
   auto remapLayer = [&](unsigned i) {
     data_[i].remapPayloads([&](const DataTraits::Payload& p) { return DataTraits::Payload{remap[p.offset], p.count}; });
   };
-  if (pool_.list().size() < kParallelRemapMinEntries) {
-    for (unsigned i = 0; i < layerCount(); ++i) remapLayer(i);
-  } else {
-    tbb::parallel_for(0u, layerCount(), remapLayer);
-  }
+  runTasks(layerCount(), pool_.list().size() >= kParallelRemapMinEntries, remapLayer);
   for (unsigned i = 0; i < layerCount(); ++i) edits_[2 * i + 1].markAll();
   return true;
 }

@@ -55,7 +55,6 @@ struct SyncStats {
   std::size_t inserts = 0, updates = 0, erases = 0;
   std::size_t in_place = 0, reoffsets = 0;  // how the inserts were placed
   std::size_t rehashed_tables = 0;
-  std::size_t mask_rewrites = 0;  // octant masks rewritten in place
   bool compacted = false;
 };
 
@@ -72,12 +71,11 @@ class LinklessOctree {
   // where a moved light's mask changed and that does not become a touched
   // key (appendOctantChanges()). (`changes` is sorted in the process.)
   std::vector<OctantRewrite> findOctantRewrites(std::vector<OctantChange>& changes) const;
-  void applyOctantRewrites(const std::vector<OctantRewrite>& rewrites, SyncStats& stats);
+  void applyOctantRewrites(const std::vector<OctantRewrite>& rewrites);
   // A touched deepest leaf keeps the words of the lights it listed already:
   // with the rewrites above applied first, their masks are current.
   void applyTouched(const SceneOctree& tree, const std::vector<gpu::PointLight>& lights,
                     const std::vector<std::uint64_t>& touched, SyncStats& stats);
-  bool octantMasks() const { return cfg_.octant_masks; }
   // Repacks the light index list when its garbage calls for it (and remaps
   // the data tables); lookups are unchanged. applyTouched() leaves this to
   // the caller, which may run it while it edits the scene octree for the
@@ -109,8 +107,6 @@ class LinklessOctree {
   unsigned layerCount() const { return unsigned(desc_.size()); }
   const DescHash& desc(unsigned i) const { return desc_[i]; }
   const DataHash& data(unsigned i) const { return data_[i]; }
-  DescHash& desc(unsigned i) { return desc_[i]; }
-  DataHash& data(unsigned i) { return data_[i]; }
   LightSetPool& pool() { return pool_; }
   const LightSetPool& pool() const { return pool_; }
   std::vector<LayerStats> layerStats() const;
@@ -129,12 +125,13 @@ class LinklessOctree {
     std::vector<std::uint32_t> header, offsets, desc, data;
   };
   GpuImage packGpuImage() const;
-  std::size_t offsetBase(unsigned layer, bool data) const;  // in words
-  std::size_t descSlotBase(unsigned layer) const;           // in slots
-  std::size_t dataSlotBase(unsigned layer) const;
-  std::size_t offsetWordCount() const;
-  std::size_t descSlotCount() const;
-  std::size_t dataSlotCount() const;
+  // Where each table starts in the concatenated arrays: offsets in words, slots in slots.
+  std::size_t offsetBase(unsigned layer, bool data) const { return offset_base_[2 * layer + (data ? 1 : 0)]; }
+  std::size_t descSlotBase(unsigned layer) const { return desc_base_[layer]; }
+  std::size_t dataSlotBase(unsigned layer) const { return data_base_[layer]; }
+  std::size_t offsetWordCount() const { return offset_base_.back(); }
+  std::size_t descSlotCount() const { return desc_base_.back(); }
+  std::size_t dataSlotCount() const { return data_base_.back(); }
 
  private:
   void computeBases();

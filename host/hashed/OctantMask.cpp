@@ -92,7 +92,7 @@ struct VersionTerms {
   }
   std::uint8_t mask(int v, int x, int y, int z) const {
     const double* gv = g[v].data();
-    return octantBits(gv + 2 * x, gv + off.y + 2 * y, gv + off.z + 2 * z, r2[v]);
+    return eightSumsBelow(gv + 2 * x, gv + off.y + 2 * y, gv + off.z + 2 * z, r2[v]);
   }
 };
 

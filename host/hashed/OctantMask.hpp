@@ -62,10 +62,6 @@ inline double halfCellGap2(double c, int cell, int h, double eps) {
   const double v = std::max(std::max(lo - c, c - hi), 0.0);
   return v * v;
 }
-// The mask from per-axis terms gx/gy/gz[h] of one cell.
-inline std::uint8_t octantBits(const double* gx, const double* gy, const double* gz, double r2) {
-  return eightSumsBelow(gx, gy, gz, r2);
-}
 
 // One light's octant masks over the deepest cells.
 class LightOctants {
@@ -81,7 +77,7 @@ class LightOctants {
   std::uint8_t mask(const glm::ivec3& cell) const {
     double g[3][2];
     for (int a = 0; a < 3; ++a) axisTerms(a, cell[a], 1, g[a]);
-    return octantBits(g[0], g[1], g[2], r2_);
+    return eightSumsBelow(g[0], g[1], g[2], r2_);
   }
   // mask()'s terms for `n` cells from `lo` along `axis`, 2 per cell: tables
   // of them give the same masks for many cells.
@@ -150,7 +146,7 @@ class OctantTables {
     const glm::ivec3 i = cell - l.lo;
     if (i.x < 0 || i.y < 0 || i.z < 0 || i.x >= l.n.x || i.y >= l.n.y || i.z >= l.n.z) return 0;
     const double* g = &terms_[l.at];
-    return octantBits(g + 2 * i.x, g + 2 * (l.n.x + i.y), g + 2 * (l.n.x + l.n.y + i.z), l.r2);
+    return eightSumsBelow(g + 2 * i.x, g + 2 * (l.n.x + i.y), g + 2 * (l.n.x + l.n.y + i.z), l.r2);
   }
 
  private:

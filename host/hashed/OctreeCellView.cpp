@@ -5,16 +5,14 @@
 
 #include "host/hashed/SceneOctree.hpp"
 #include "host/util/IdColour.hpp"
+#include "host/util/SplitMix64.hpp"
 
 namespace ml::hashed {
 namespace {
 
-// A node key (depth and coordinates) mixed down to 18 bits (SplitMix64's finaliser).
+// A node key (depth and coordinates) mixed down to 18 bits.
 std::uint32_t mixedKey(const LinklessOctree::Cell& cell) {
-  std::uint64_t z = nodeKey(cell.depth, cell.coord) + 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return std::uint32_t((z ^ (z >> 31)) >> 46);
+  return std::uint32_t(SplitMix64::mix(nodeKey(cell.depth, cell.coord) + SplitMix64::kGolden) >> 46);
 }
 
 }  // namespace

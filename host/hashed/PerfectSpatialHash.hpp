@@ -35,7 +35,6 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -44,6 +43,7 @@
 #include <vector>
 
 #include "host/util/SplitMix64.hpp"
+#include "host/util/Stopwatch.hpp"
 #include "host/util/ThesisSeed.hpp"
 
 namespace ml::hashed {
@@ -56,17 +56,17 @@ constexpr double kExactSizeMaxKeys = 255;
 // Offset table growths after which a build is a bug, not bad luck (each
 // doubles the table; the hash table grows meanwhile).
 constexpr unsigned kMaxOffsetGrowths = 200;
+// Random offset candidates per group before the exhaustive search.
+constexpr unsigned kRandomOffsetTries = 64;
 
 struct PshBuildParams {
   std::uint64_t seed = kThesisSeed;
   double slack = 1.0;              // slots >= slack * (1.01) n
   double sigma = 1.0 / 6.0;        // offset entries per key (LH06, the thesis: 1/6)
-  unsigned random_tries = 64;      // random offset candidates per group before the exhaustive search
 };
 
 struct PshBuildReport {
   unsigned attempts = 0;           // 1 + failed assignments (each grows the offset table)
-  unsigned offset_growths = 0;     // offset table growths (failures + shared-h0 groups)
   std::uint64_t rejected = 0;      // offset candidates that collided
   double ms = 0.0;
 };
@@ -113,7 +113,7 @@ class PerfectSpatialHash {
   void prefetchSlot(std::uint32_t s) const { __builtin_prefetch(&table_[std::size_t(s) * kWords]); }
 
   // --- dynamic edits ---
-  InsertResult insert(const glm::uvec3& key, const Payload& payload, SplitMix64& rng, unsigned random_tries = 64);
+  InsertResult insert(const glm::uvec3& key, const Payload& payload, SplitMix64& rng);
   bool update(const glm::uvec3& key, const Payload& payload);
   bool erase(const glm::uvec3& key);
   // The slots of `key`'s offset group (one Phi entry): what a Reoffset
@@ -136,25 +136,18 @@ class PerfectSpatialHash {
     return {w[0] & 0xFFFFu, w[0] >> 16, w[1] & 0xFFFFu};
   }
   Payload slotPayload(std::uint32_t s) const { return Traits::unpack(&table_[std::size_t(s) * kWords]); }
-  template <class F>
-  void forEach(F&& f) const {
-    for (std::uint32_t s = 0; s < slots(); ++s)
-      if (!slotEmpty(s)) f(slotKey(s), slotPayload(s));
-  }
   std::vector<Entry> entries() const {
     std::vector<Entry> out;
     out.reserve(size_);
-    forEach([&](const glm::uvec3& k, const Payload& p) { out.push_back({k, p}); });
+    for (std::uint32_t s = 0; s < slots(); ++s)
+      if (!slotEmpty(s)) out.push_back({slotKey(s), slotPayload(s)});
     return out;
   }
   // Rewrites every payload (e.g. light index list compaction).
   template <class F>
   void remapPayloads(F&& f) {
     for (std::uint32_t s = 0; s < slots(); ++s)
-      if (!slotEmpty(s)) {
-        std::uint32_t* w = &table_[std::size_t(s) * kWords];
-        writeSlot(s, slotKey(s), f(Traits::unpack(w)));
-      }
+      if (!slotEmpty(s)) writeSlot(s, slotKey(s), f(slotPayload(s)));
   }
 
  private:
@@ -223,14 +216,13 @@ class PerfectSpatialHash {
   // True when two of a group's keys share h0: they collide under any offset.
   bool sharesH0(const std::vector<glm::uvec3>& h0) const;
   // An offset that puts every h0 of the group at Phi entry `o` on a free
-  // slot (`fits`): its assigned neighbours' offsets, then `random_tries`
-  // random ones, then searchFree().
+  // slot (`fits`): its assigned neighbours' offsets, then
+  // kRandomOffsetTries random ones, then searchFree().
   template <class F>
   bool findOffset(std::uint32_t o, const std::vector<std::uint8_t>* assigned, const std::vector<glm::uvec3>& h0,
-                  SplitMix64& rng, unsigned random_tries, F&& fits, glm::uvec3& found) const;
+                  SplitMix64& rng, F&& fits, glm::uvec3& found) const;
   enum class Assign { Ok, SharedH0, Failed };
-  Assign assignAll(const std::vector<Entry>& entries, SplitMix64& rng, unsigned random_tries,
-                   std::uint64_t& rejected);
+  Assign assignAll(const std::vector<Entry>& entries, SplitMix64& rng, std::uint64_t& rejected);
 
   glm::uvec3 m_{1}, r_{1};
   std::uint64_t fm_[3] = {0, 0, 0}, fr_[3] = {0, 0, 0};  // fastModConstant(m_), (r_); 0 is d = 1's
@@ -330,11 +322,11 @@ bool PerfectSpatialHash<Traits>::sharesH0(const std::vector<glm::uvec3>& h0) con
 template <class Traits>
 template <class F>
 bool PerfectSpatialHash<Traits>::findOffset(std::uint32_t o, const std::vector<std::uint8_t>* assigned,
-                                            const std::vector<glm::uvec3>& h0, SplitMix64& rng,
-                                            unsigned random_tries, F&& fits, glm::uvec3& off) const {
+                                            const std::vector<glm::uvec3>& h0, SplitMix64& rng, F&& fits,
+                                            glm::uvec3& off) const {
   if (tryNeighbours(o, assigned, fits, off)) return true;
   const glm::uvec3 range = glm::min(m_, glm::uvec3(kOffsetRange));
-  for (unsigned t = 0; t < random_tries; ++t) {
+  for (unsigned t = 0; t < kRandomOffsetTries; ++t) {
     off = glm::uvec3(rng.below(range.x), rng.below(range.y), rng.below(range.z));
     if (fits(off)) return true;
   }
@@ -344,7 +336,6 @@ bool PerfectSpatialHash<Traits>::findOffset(std::uint32_t o, const std::vector<s
 template <class Traits>
 typename PerfectSpatialHash<Traits>::Assign PerfectSpatialHash<Traits>::assignAll(const std::vector<Entry>& entries,
                                                                                   SplitMix64& rng,
-                                                                                  unsigned random_tries,
                                                                                   std::uint64_t& rejected) {
   const std::uint32_t r = std::uint32_t(offsetCount());
   const std::size_t n = entries.size();
@@ -388,7 +379,7 @@ typename PerfectSpatialHash<Traits>::Assign PerfectSpatialHash<Traits>::assignAl
       return true;
     };
     glm::uvec3 off;
-    if (!findOffset(o, &assigned, h0, rng, random_tries, fits, off)) return Assign::Failed;
+    if (!findOffset(o, &assigned, h0, rng, fits, off)) return Assign::Failed;
     offsets_[o] = packOffset(off);
     assigned[o] = 1;
     for (std::uint32_t i = b; i < e; ++i) {
@@ -404,7 +395,7 @@ template <class Traits>
 PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<Entry>& entries,
                                                              const PshBuildParams& params, PshBuildReport* report) {
   using namespace psh_detail;
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = SteadyClock::now();
   const double n = double(entries.size());
   glm::uvec3 lo(~0u), hi(0u);
   for (const auto& e : entries) {
@@ -419,10 +410,10 @@ PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<E
   SplitMix64 rng{params.seed};
   PshBuildReport rep;
   PerfectSpatialHash h;
-  unsigned failures = 0;
+  unsigned failures = 0, growths = 0;
   for (;;) {
     h.reset(m, r);
-    const Assign result = h.assignAll(entries, rng, params.random_tries, rep.rejected);
+    const Assign result = h.assignAll(entries, rng, rep.rejected);
     if (result == Assign::Ok) break;
     if (result == Assign::Failed && ++failures % 4 == 0) {
       m_target = volume(m) * 1.05;
@@ -437,12 +428,11 @@ PerfectSpatialHash<Traits> PerfectSpatialHash<Traits>::build(const std::vector<E
       m = fitDims(m_target, extent, false);
     }
     r = coprime(grown, m);
-    ++rep.offset_growths;
-    if (rep.offset_growths > kMaxOffsetGrowths)
+    if (++growths > kMaxOffsetGrowths)
       throw std::logic_error("perfect spatial hash: construction does not converge");
   }
   rep.attempts = failures + 1;
-  rep.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  rep.ms = msSince(t0);
   if (report) *report = rep;
   return h;
 }
@@ -458,8 +448,7 @@ void PerfectSpatialHash<Traits>::trackGroups() {
 template <class Traits>
 typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::insert(const glm::uvec3& key,
                                                                                     const Payload& payload,
-                                                                                    SplitMix64& rng,
-                                                                                    unsigned random_tries) {
+                                                                                    SplitMix64& rng) {
   trackGroups();
   const std::uint32_t s = slot(key);
   if (keyMatches(&table_[std::size_t(s) * kWords], key)) {
@@ -495,7 +484,7 @@ typename PerfectSpatialHash<Traits>::InsertResult PerfectSpatialHash<Traits>::in
   };
   glm::uvec3 off;
   // members_[o] is still listed, so tryNeighbours skips o itself by index.
-  if (!findOffset(o, nullptr, h0, rng, random_tries, fits, off)) {
+  if (!findOffset(o, nullptr, h0, rng, fits, off)) {
     for (const auto& g : group)
       if (g.slot != ~0u) writeSlot(g.slot, g.key, g.payload);
     return InsertResult::Failed;

@@ -192,17 +192,9 @@ inline SceneOctree::Cover SceneOctree::childCover(Cover parent, Stream& s, std::
   return Cover::Empty;
 }
 
-void SceneOctree::replace(const LightOctree& a, const LightOctree& b, const std::vector<std::uint32_t>* ends_a,
-                          const std::vector<std::uint32_t>* ends_b) {
-  if (!ends_a) {
-    subtreeEnds(a, end_a_);
-    ends_a = &end_a_;
-  }
-  if (!ends_b) {
-    subtreeEnds(b, end_b_);
-    ends_b = &end_b_;
-  }
-  Stream sa{a, a.nodes.data(), ends_a->data()}, sb{b, b.nodes.data(), ends_b->data()};
+void SceneOctree::replace(const LightOctree& a, const LightOctree& b, const std::vector<std::uint32_t>& ends_a,
+                          const std::vector<std::uint32_t>& ends_b) {
+  Stream sa{a, a.nodes.data(), ends_a.data()}, sb{b, b.nodes.data(), ends_b.data()};
   auto top = [](const LightOctree& o, Stream& s) {
     if (o.empty()) return Cover::Empty;
     return o.root_depth == 0 ? Cover(*s.cur++) : Cover::Above;  // depth 0: the one root is the scene root

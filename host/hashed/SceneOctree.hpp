@@ -58,11 +58,10 @@ class SceneOctree {
   // (the additions and removals per node of the thesis's future-work chapter,
   // Tegelaers, KU Leuven, §8.2), which for small moves is
   // a thin shell instead of two whole spheres.
-  // `old_ends`/`new_ends`: subtreeEnds() of the two versions when the caller
-  // has them (e.g. computed in parallel for a batch), else null.
+  // `old_ends`/`new_ends`: subtreeEnds() of the two versions (the caller
+  // computes them in parallel for a batch).
   void replace(const LightOctree& old_version, const LightOctree& new_version,
-               const std::vector<std::uint32_t>* old_ends = nullptr,
-               const std::vector<std::uint32_t>* new_ends = nullptr);
+               const std::vector<std::uint32_t>& old_ends, const std::vector<std::uint32_t>& new_ends);
   // The same without a geometry mask, the versions given as LightCells:
   // each node's coverage is computed instead of read from an octree, so
   // that no octree is built (a default LightCells stands for no version: an
@@ -84,8 +83,6 @@ class SceneOctree {
     std::uint8_t leaf_mask = 0, filled_mask = 0;          // branches: the 8 children
   };
   NodeView find(unsigned depth, const glm::uvec3& coord) const;
-  // The light set of the leaf containing cell `c` (deepest level), or empty.
-  const std::vector<std::uint32_t>& lightsAtCell(const glm::uvec3& c) const;
 
   // Preorder walk: f(depth, coord, view) for every node.
   template <class F>
@@ -153,7 +150,6 @@ class SceneOctree {
   static void consume(Cover k, Stream& s) {
     if (k == Cover::Branch) s.cur = s.branchEnd();
   }
-  std::vector<std::uint32_t> end_a_, end_b_;  // replace()'s scratch
   void replaceRec(std::int32_t n, unsigned t, const glm::uvec3& c, Cover ka, Stream& sa, Cover kb, Stream& sb,
                   std::uint32_t l);
   void replaceCellsRec(std::int32_t n, unsigned t, const glm::uvec3& c, LightNode ka, const LightCells& a,

@@ -3,11 +3,6 @@
 #include "host/hashed/SceneOctree.hpp"
 
 namespace ml::hashed {
-namespace {
-
-const std::vector<std::uint32_t> kNoLights;
-
-}  // namespace
 
 SceneOctree::NodeView SceneOctree::view(std::int32_t n) const {
   NodeView v;
@@ -36,15 +31,6 @@ SceneOctree::NodeView SceneOctree::find(unsigned depth, const glm::uvec3& coord)
     n = nodes_[n].child + std::int32_t(childBit(cc));
   }
   return view(n);
-}
-
-const std::vector<std::uint32_t>& SceneOctree::lightsAtCell(const glm::uvec3& c) const {
-  std::int32_t n = 0;
-  for (unsigned t = 0; t < b_.depth && !isLeaf(n); ++t) {
-    const glm::uvec3 cc = c >> (b_.depth - t - 1);
-    n = nodes_[n].child + std::int32_t(childBit(cc));
-  }
-  return isLeaf(n) ? sets_[n] : kNoLights;
 }
 
 std::vector<SceneOctree::LayerCounts> SceneOctree::countsPerDepth() const {

@@ -8,9 +8,11 @@
 namespace ml {
 
 struct SplitMix64 {
+  static constexpr std::uint64_t kGolden = 0x9E3779B97F4A7C15ull;
   std::uint64_t s;
-  std::uint64_t next() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+  std::uint64_t next() { return mix(s += kGolden); }
+  // The output function on its own: a bijective 64-bit mix (also a hash).
+  static std::uint64_t mix(std::uint64_t z) {
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
