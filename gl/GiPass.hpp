@@ -12,9 +12,10 @@
 //                          it to the shaded image in place.
 // Its passes land in the frame's PassTimings. Needs the frame's GL context.
 // A pass that keeps work across frames (VctGiPass reuses its voxel volume)
-// keys it on lights_version, not on lights_changed: frames rendered without
-// the GI pass (countedRender, the viewer's heat maps) consume lights_changed,
-// the version still says whether the lights are the ones of its last update.
+// keys it on lights_version, not on a "changed since the last frame" flag:
+// frames rendered without the GI pass (countedRender, the viewer's heat maps)
+// would consume such a flag; the version still says whether the lights are
+// the ones of the pass's last update.
 #include <epoxy/gl.h>
 
 #include <glm/glm.hpp>
@@ -35,7 +36,6 @@ namespace ml {
 struct GiSceneInputs {
   const SceneGpu& scene;
   const std::vector<gpu::PointLight>& lights;
-  bool lights_changed;   // since the previous frame this renderer rendered, GI pass or not
   PassTimings& passes;   // the frame's
   // Identifies the light set: FrameRenderer::setLights gives each call a new
   // number, unique in the process (nextLightsVersion()), so equal versions are

@@ -228,7 +228,7 @@ TEST(VctReuse, UnknownLightsVersionUpdatesEveryFrame) {
   SceneGpu scene(sceneInputs().scene);
   for (int f = 0; f < 3; ++f) {
     PassTimings t;
-    pass.update({scene, sceneInputs().lights, false, t});
+    pass.update({scene, sceneInputs().lights, t});
     EXPECT_TRUE(ran(t, "vct-inject")) << "frame " << f;
   }
   EXPECT_EQ(pass.volumeUpdates(), 3u);

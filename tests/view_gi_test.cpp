@@ -98,7 +98,7 @@ TEST(ViewerGi, RevoxelizeReachesThePipeline) {
     ASSERT_NE(pass, nullptr);
     for (int frame = 0; frame < 3; ++frame) {
       PassTimings t;
-      pass->update({gpu_scene, lights, frame == 0, t, /*lights_version=*/1});
+      pass->update({gpu_scene, lights, t, /*lights_version=*/1});
       bool voxelized = false;
       for (const auto& e : t.entries()) voxelized |= e.first == "vct-voxelize";
       EXPECT_EQ(voxelized, on || frame == 0) << "frame " << frame;
