@@ -13,7 +13,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -23,6 +25,7 @@
 
 #include "host/app/Cli.hpp"
 #include "host/scene/Camera.hpp"
+#include "host/scene/GltfLights.hpp"
 #include "host/scene/LightSet.hpp"
 #include "host/scene/Scene.hpp"
 #include "host/suite/CameraPathInterp.hpp"
@@ -78,13 +81,46 @@ inline std::string_view view(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};
 }
 
+// Loaded lights are what the renderer takes: finite, radius > 0, colour >= 0.
+inline void checkLights(const std::vector<gpu::PointLight>& lights) {
+  for (const gpu::PointLight& l : lights) {
+    const float v[] = {l.position_radius.x, l.position_radius.y, l.position_radius.z, l.position_radius.w,
+                       l.color.x,           l.color.y,           l.color.z};
+    for (float f : v)
+      if (!std::isfinite(f)) std::abort();
+    if (!(l.position_radius.w > 0.0f) || l.color.x < 0.0f || l.color.y < 0.0f || l.color.z < 0.0f) std::abort();
+  }
+}
+
+inline bool sameLights(const std::vector<gpu::PointLight>& a, const std::vector<gpu::PointLight>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+}
+
 // .glb when the bytes start with the binary container's magic, else .gltf.
+// The KHR_lights_punctual point lights are read alone (meshes ignored) and
+// with the scene: the same lights, or an error from both; written back as
+// glTF they must read back identical.
 inline void gltf(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes = view(data, size);
   const bool glb = bytes.substr(0, 4) == "glTF";
-  const Scene scene = loadGltfScene(writeFile(tempDir() / (glb ? "scene.glb" : "scene.gltf"), bytes));
+  const std::string path = writeFile(tempDir() / (glb ? "scene.glb" : "scene.gltf"), bytes);
+  bool lights_ok = true;
+  GltfLightTable table;
+  try {
+    table = loadGltfLights(path);
+  } catch (const UserError&) {
+    lights_ok = false;
+  }
+  if (lights_ok) {
+    checkLights(table.lights);
+    const std::string copy = writeFile(tempDir() / (glb ? "lights.glb" : "lights.gltf"),
+                                       gltfLightsDocument(table.lights, glb));
+    if (!sameLights(loadGltfLights(copy).lights, table.lights)) std::abort();
+  }
+  const Scene scene = loadGltfScene(path);
   for (const std::uint32_t i : scene.indices)
     if (i >= scene.vertices.size()) std::abort();  // an index past the vertices would reach the GPU
+  if (!lights_ok || !sameLights(scene.lights, table.lights)) std::abort();
 }
 
 // The same bytes as a light file and as a light-volume file; volumes that

@@ -3,7 +3,10 @@
 
     python3 scripts/make_cornell_box.py [--out DIR]
 
-Outputs cornell.gltf + cornell.bin, camera.json and lights.json. Plain Python 3
+Outputs cornell.gltf + cornell.bin, camera.json and lights.json; the glTF carries
+the same lights as lights.json, in the same order, as KHR_lights_punctual point
+lights (nodes under the root, "range" = radius; colour x intensity = the light
+file's intensity, see host/scene/GltfLights.hpp). Plain Python 3
 standard library only, deterministic (byte-identical on rerun). Geometry and
 glTF writing reuse scripts/make_default_scene.py.
 
@@ -56,6 +59,31 @@ def block_mesh(name, half_w, height):
     return m
 
 
+def punctual_light(radius, intensity):
+    """The KHR_lights_punctual entry whose colour x intensity (in double, as the
+    loader multiplies) is `intensity`: the colour as it is when it lies within
+    [0, 1], else divided by its largest component (the same rule as the C++
+    writer, host/scene/GltfLightsWrite.cpp)."""
+    m = max(intensity)
+    if m <= 1.0:
+        colour, scale = list(intensity), 1.0
+    else:
+        colour, scale = [c / m for c in intensity], m
+    return {"type": "point", "color": colour, "intensity": scale, "range": radius}
+
+
+def add_lights(g):
+    """Light nodes (in LIGHTS order) and the extension's table; returns the nodes."""
+    table, nodes = [], []
+    for i, (position, radius, intensity) in enumerate(LIGHTS):
+        table.append(punctual_light(radius, intensity))
+        nodes.append(g.node("Light%d" % i, t=position))
+        g.doc["nodes"][nodes[-1]]["extensions"] = {"KHR_lights_punctual": {"light": i}}
+    g.doc["extensions"] = {"KHR_lights_punctual": {"lights": table}}
+    g.doc["extensionsUsed"] = sorted(set(g.doc.get("extensionsUsed", [])) | {"KHR_lights_punctual"})
+    return nodes
+
+
 def build_box():
     g = Gltf()
     g.doc["asset"]["generator"] = "manylights scripts/make_cornell_box.py"
@@ -73,6 +101,7 @@ def build_box():
         g.node("ShortBlock", short, t=[0.35, 0.0, 0.3], r=quat_y(-17)),
         g.node("TallBlock", tall, t=[-0.35, 0.0, -0.35], r=quat_y(20)),
     ]
+    nodes += add_lights(g)  # after the meshes: their node order (and the mesh loader's output) stays
     g.doc["scenes"][0]["nodes"] = [g.node("Cornell", children=nodes)]
     return g
 

@@ -228,7 +228,7 @@ nlohmann::ordered_json benchMeta(const BenchArgs& a, const BenchScene& scene, co
   meta["sizes"] = sz;
   nlohmann::ordered_json lj = nlohmann::ordered_json::array();
   for (const auto& ls : plan.light_sets)
-    lj.push_back({{"label", ls.label}, {"file", ls.file}, {"count", ls.lights.size()}});
+    lj.push_back({{"label", ls.label}, {"file", ls.file}, {"source", ls.source}, {"count", ls.lights.size()}});
   meta["light_sets"] = lj;
   nlohmann::ordered_json vj = nlohmann::ordered_json::array();
   for (const auto& v : plan.variants) {
@@ -355,11 +355,12 @@ CLI::App* addBenchCommand(CLI::App& app, BenchArgs& a) {
       "      --size 320x320 --frames 3:518:8 --json out/b.json --csv out/b.csv --plot out/plots\n"
       "  manylights bench --techniques forward,deferred --lights 256,1024 --sizes 320x180,640x360 --frames ::4\n"
       + paramKeysHelp() +
-      "Light sets (--lights, comma list): JSON files; names under the suite's lights/; 'thesis' (the thesis's set\n"
-      "per light count), 'all'; a count N (suite: the thesis's N-light set; glTF: N generated lights).\n" +
+      "Light sets (--lights, comma list): JSON or .gltf/.glb files (their point lights); names under the suite's\n"
+      "lights/; 'thesis' (the thesis's set per light count), 'all'; a count N (suite: the thesis's N-light set;\n"
+      "glTF: N generated lights). Default: the scene folder's lights.json, else the glTF scene's own lights.\n" +
       std::string(kLightLimitsHelp));
-  addInputFlags(*cmd, {kSceneFlag | kGenerateFlags | kSuiteFlags | kDeviceFlag | kProgressFlag, &a.scene, &a.device,
-                       &a.progress});
+  addInputFlags(*cmd, {kSceneFlag | kGenerateFlags | kSuiteFlags | kDeviceFlag | kProgressFlag | kWriteLightsFlag,
+                       &a.scene, &a.device, &a.progress});
   addSweepFlags(*cmd, a);
   addMeasureFlags(*cmd, a);
   cmd->add_option("--json", a.json, "write per-frame records and per-run summaries as JSON");
@@ -418,6 +419,7 @@ CheckedBenchFlags checkBenchFlags(const BenchArgs& a, const std::string& where) 
   if (a.fovy != 0 && !(a.fovy > 0 && a.fovy < 180)) throw UserError("--fovy: must be in (0, 180) degrees");
   if (a.near_plane < 0 || a.far_plane < 0) throw UserError("--near/--far: must be positive");
   checkBenchOutputs(a);
+  checkWriteLightsFlag(a.scene.write_lights);
   checkLightCounts(a.scene.lights, c.variants, where);
   c.device = DeviceChoice::resolve(a.device);
   return c;
@@ -440,6 +442,9 @@ BenchPlan benchPlan(const BenchArgs& a, const CheckedBenchFlags& c, const BenchS
   plan.gi_reference_seed = a.gi_seed;
   plan.light_sets = resolveLightSets(scene, benchSceneArgs(a), where);
   checkLightSets(plan.light_sets, c.variants, where);
+  if (!a.scene.write_lights.empty() && plan.light_sets.size() != 1)
+    throw UserError("--write-lights: writes one light set, the sweep has " + std::to_string(plan.light_sets.size()) +
+                    " (give one --lights set)");
   plan.sizes = c.sizes;
   plan.frames = selectFrames(c.range, scene.cameras.frames.size(), "--frames");
   plan.counts = !a.no_counts;
@@ -537,6 +542,10 @@ int runBench(const BenchArgs& a) {
   printGiErrors(records);
   if (!json_path.empty()) std::printf("\nwrote %s\n", json_path.c_str());
   if (!a.csv.empty()) std::printf("wrote %s\n", a.csv.c_str());
+  if (!a.scene.write_lights.empty()) {
+    writeLightsGltf(a.scene.write_lights, plan.light_sets.front().lights);
+    std::printf("wrote %s (%zu lights)\n", a.scene.write_lights.c_str(), plan.light_sets.front().lights.size());
+  }
   if (!a.plot.empty()) {
     runPlotScript(json_path, a.plot);
     std::printf("wrote plots to %s\n", a.plot.c_str());

@@ -12,12 +12,13 @@
 namespace ml {
 
 enum InputFlagGroup : unsigned {
-  kSceneFlag = 1u << 0,       // --scene (also --suite), --camera
-  kLightFlag = 1u << 1,       // --lights: one count or JSON file (render, view)
+  kSceneFlag = 1u << 0,       // --scene (also --suite), --camera, --light-threshold
+  kLightFlag = 1u << 1,       // --lights: one count, JSON or glTF file (render, view)
   kGenerateFlags = 1u << 2,   // --light-volumes, --light-radius, --light-density, --seed
   kSuiteFlags = 1u << 3,      // --geometry, --allow-missing-meshes
   kDeviceFlag = 1u << 4,      // --device
   kProgressFlag = 1u << 5,    // --progress
+  kWriteLightsFlag = 1u << 6, // --write-lights (render, bench)
   kSceneInputFlags = kSceneFlag | kLightFlag | kGenerateFlags,
 };
 

@@ -71,7 +71,7 @@ void addTechniqueFlags(CLI::App& cmd, std::map<std::string, std::string>& params
 
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& a) {
   auto* cmd = app.add_subcommand("render", "Render one frame with one technique; print per-pass times and counts");
-  addInputFlags(*cmd, {kSceneInputFlags | kSuiteFlags | kDeviceFlag, &a.inputs, &a.device});
+  addInputFlags(*cmd, {kSceneInputFlags | kSuiteFlags | kDeviceFlag | kWriteLightsFlag, &a.inputs, &a.device});
   cmd->footer(kLightLimitsHelp);
   cmd->add_option("--technique", a.technique, "one of: " + techniqueNames())->capture_default_str();
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT")->capture_default_str();
@@ -130,6 +130,7 @@ void checkRenderFlags(const RenderArgs& a, const TechniqueInfo& tech) {
     if (a.no_shading && !file->empty())
       throw UserError(std::string(flag) + ": light evaluations are not counted with --no-shading");
   requireOutputFile("--stats-json", a.stats_json);
+  checkWriteLightsFlag(a.inputs.write_lights);
   checkGiFlags(a.gi, a.out);
   std::uint64_t count = 0;
   if (parseLightCount(a.inputs.lights, count)) checkLightLimits("--lights", count, {&tech}, "generated");
@@ -265,6 +266,8 @@ void writeStatsJson(const RenderArgs& a, const TechniqueInfo& tech, const SceneI
   j["width"] = width;
   j["height"] = height;
   j["lights"] = inputs.lights.size();
+  j["lights_source"] = inputs.lights_source;
+  j["lights_file"] = inputs.lights_file.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(inputs.lights_file);
   j["frame"] = a.frame;
   j["timed_frames"] = a.frames;
   j["animate"] = a.animate;
@@ -328,6 +331,9 @@ int runRender(const RenderArgs& a) {
   if (!a.out.empty()) std::printf("\nwrote %s\n", a.out.c_str());
   for (const std::string* file : {&a.heatmap, &a.ratio_map})
     if (!file->empty()) std::printf("wrote %s\n", file->c_str());
+  writeLightsGltf(a.inputs.write_lights, inputs.lights);
+  if (!a.inputs.write_lights.empty())
+    std::printf("wrote %s (%zu lights)\n", a.inputs.write_lights.c_str(), inputs.lights.size());
   if (!a.stats_json.empty()) writeStatsJson(a, tech, inputs, run, ctx, width, height);
   return 0;
 }

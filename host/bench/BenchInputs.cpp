@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "host/bench/OutputFiles.hpp"
+#include "host/scene/GltfLights.hpp"
 #include "host/suite/CameraPathInterp.hpp"
 #include "host/suite/NtiledSuite.hpp"
 #include "host/util/DataPaths.hpp"
@@ -44,6 +45,17 @@ std::vector<gpu::PointLight> generateSceneLights(const BenchScene& scene, std::u
     vol = (fs::path(scene.dir) / "light_volumes.json").string();
   return generateLightsIn(vol, scene.scene.bounds.min, scene.scene.bounds.max, count, args.seed, args.light_radius,
                           args.light_density);
+}
+
+// A light file's set: a glTF's point lights or a light JSON. An empty glTF
+// set is refused here: it is what a file without the extension gives.
+std::vector<gpu::PointLight> loadLightFile(const std::string& file, float threshold) {
+  if (!isGltfPath(file)) return loadLightsJson(file);
+  GltfLightTable table = loadGltfLights(file, threshold);
+  if (table.lights.empty())
+    throw UserError(file + ": no point lights to use (KHR_lights_punctual, " + std::to_string(table.table_size) +
+                    " in its light table)");
+  return std::move(table.lights);
 }
 
 // A light-set item that names a file: as given, or (suite) under its lights/.
@@ -121,7 +133,7 @@ BenchScene loadBenchScene(const SceneInputArgs& args, const std::string& flag, b
     out.source = scene_file.string();
     out.name = p.lexically_normal().filename().string();
     if (out.name.empty()) out.name = p.lexically_normal().parent_path().filename().string();
-    out.scene = loadGltfScene(scene_file.string());
+    out.scene = loadGltfScene(scene_file.string(), args.light_threshold);
     out.dir = input;
     if (args.camera.empty() && !fs::is_regular_file(p / "camera.json"))
       throw UserError("--camera: no camera path given and '" + (p / "camera.json").string() + "' does not exist");
@@ -131,7 +143,7 @@ BenchScene loadBenchScene(const SceneInputArgs& args, const std::string& flag, b
     out.format = "gltf";
     out.source = input;
     out.name = stem(input);
-    out.scene = loadGltfScene(input);  // names the file when it is missing or broken
+    out.scene = loadGltfScene(input, args.light_threshold);  // names the file when it is missing or broken
     if (args.camera.empty() && !fit_camera)
       throw UserError("--camera: a glTF scene file needs a camera path (--camera FILE.json)");
     out.cameras = args.camera.empty() ? cameraOutside(out.scene) : loadCameraJson(args.camera);
@@ -150,9 +162,13 @@ BenchScene loadBenchScene(const SceneInputArgs& args, const std::string& flag, b
 std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const SceneInputArgs& args,
                                             const std::string& flag) {
   std::vector<std::string> items = splitList(args.lights);
+  if (items.empty() && scene.default_lights.empty() && !scene.scene.lights.empty()) {
+    checkLightDensityFlag(args.light_density, args.light_radius, false);
+    return {LightSetInput{scene.name + "/gltf", reportPath(scene.source), "gltf", scene.scene.lights}};
+  }
   if (items.empty()) {
     if (scene.default_lights.empty())
-      throw UserError(flag + ": no light set given and the scene has no default light file");
+      throw UserError(flag + ": no light set given and the scene has no default light file nor glTF lights");
     items = {scene.default_lights};
   }
   const bool suite = scene.format == "ntiled-suite";
@@ -169,7 +185,8 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const Scene
     s.file = reportPath(file);  // recorded in results: no machine paths
     s.label = stem(file);
     if (s.label == "lights" && !scene.name.empty()) s.label = scene.name + "/lights";
-    s.lights = loadLightsJson(file);
+    s.source = isGltfPath(file) ? "gltf" : "json";
+    s.lights = loadLightFile(file, args.light_threshold);
     if (s.lights.empty()) throw UserError(file + ": the light set is empty");
     out.push_back(std::move(s));
   };
@@ -196,6 +213,7 @@ std::vector<LightSetInput> resolveLightSets(const BenchScene& scene, const Scene
       LightSetInput s;
       s.lights = generateSceneLights(scene, static_cast<std::uint32_t>(count), args);
       s.label = item + " generated" + densityLabel(args.light_density, s.lights);
+      s.source = "generated";
       out.push_back(std::move(s));
     } else {
       addFile(lightFileOf(scene, item, flag));
@@ -212,24 +230,44 @@ SceneInputs loadSceneInputs(const SceneInputArgs& args) {
   checkLightDensityFlag(args.light_density, args.light_radius, generated);
   if (generated) checkLightCount("--lights", count, "generated");  // before any memory is spent on them
   if (!generated && !args.lights.empty() && args.lights[0] == '-')
-    throw UserError("--lights: expected a light count or a JSON file, got '" + args.lights + "'");
+    throw UserError("--lights: expected a light count, a JSON or a glTF file, got '" + args.lights + "'");
   BenchScene scene = loadBenchScene(args, "--scene", true);
   SceneInputs out;
   if (generated) {
     out.lights = generateSceneLights(scene, static_cast<std::uint32_t>(count), args);
     out.lights_label = std::to_string(count) + " generated (seed " + std::to_string(args.seed) +
                        densityLabel(args.light_density, out.lights) + ")";
+    out.lights_source = "generated";
+  } else if (args.lights.empty() && scene.default_lights.empty() && !scene.scene.lights.empty()) {
+    out.lights = scene.scene.lights;  // the glTF's own
+    out.lights_file = reportPath(scene.source);
+    out.lights_source = "gltf";
+    out.lights_label = std::to_string(out.lights.size()) + " (" + out.lights_file + ", KHR_lights_punctual)";
   } else {
     // Without --lights: the scene folder's lights.json, else data/default's (a glTF file has none).
     const std::string file = !args.lights.empty()             ? args.lights
                              : !scene.default_lights.empty() ? scene.default_lights
                                                              : dataPath("default/lights.json");
-    out.lights = loadLightsJson(file);
+    out.lights = loadLightFile(file, args.light_threshold);
+    out.lights_file = reportPath(file);
+    out.lights_source = isGltfPath(file) ? "gltf" : "json";
     out.lights_label = std::to_string(out.lights.size()) + " (" + (args.lights.empty() ? reportPath(file) : file) + ")";
   }
   out.scene = std::move(scene.scene);
   out.cameras = std::move(scene.cameras);
   return out;
+}
+
+void checkWriteLightsFlag(const std::string& path) {
+  if (path.empty()) return;
+  if (!isGltfPath(path))
+    throw UserError("--write-lights: expected a .gltf or .glb file name, got '" + path + "'");
+  requireOutputFile("--write-lights", path);
+}
+
+void writeLightsGltf(const std::string& path, const std::vector<gpu::PointLight>& lights) {
+  if (path.empty()) return;
+  writeFileAtomically("--write-lights", path, gltfLightsDocument(lights, fs::path(path).extension() == ".glb"));
 }
 
 }  // namespace ml

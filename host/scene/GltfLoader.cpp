@@ -1,104 +1,21 @@
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
-#include <tiny_gltf.h>
-
 #include <glm/gtc/matrix_inverse.hpp>
-#include <glm/gtc/quaternion.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "host/scene/GltfModel.hpp"
 #include "host/scene/Scene.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml {
 namespace {
 
-namespace fs = std::filesystem;
-
-// Loader warnings go to stderr, like its errors, so stdout carries only a
-// command's results. Not registered with spdlog: loading twice in one process
-// (tests, fuzzing) must not clash on the name.
-spdlog::logger& warnings() {
-  static spdlog::logger log("gltf", std::make_shared<spdlog::sinks::stderr_color_sink_mt>());
-  return log;
-}
-
-std::string oneLine(const std::string& text) {
-  std::string out;
-  bool pending_sep = false;
-  for (char c : text) {
-    if (c == '\n' || c == '\r') {
-      pending_sep = !out.empty();
-      continue;
-    }
-    if (pending_sep) out += "; ";
-    pending_sep = false;
-    out += c;
-  }
-  return out;
-}
-
-// tinygltf messages can quote whole data URIs (megabytes of base64); keep the
-// one-line error readable.
-std::string summarize(const std::string& text) {
-  std::string out = oneLine(text);
-  for (std::size_t at = out.find("data:"); at != std::string::npos; at = out.find("data:", at + 5)) {
-    std::size_t end = at;
-    while (end < out.size() && out[end] != ' ' && out[end] != '"' && out[end] != '\'' && out[end] != ';') ++end;
-    if (end < out.size() && out[end] == ';') {  // skip ";base64,...." too
-      while (end < out.size() && out[end] != ' ' && out[end] != '"' && out[end] != '\'') ++end;
-    }
-    if (end - at > 40) out.replace(at, end - at, "data:...");
-  }
-  constexpr std::size_t kMax = 400;
-  if (out.size() > kMax) out = out.substr(0, kMax) + "...";
-  return out;
-}
-
-// Wraps tinygltf's stb_image decoder. user_data is the Model being filled, whose
-// buffers and bufferViews are already parsed when images are.
-bool tolerantImageLoader(tinygltf::Image* image, const int image_idx, std::string* err, std::string* warn,
-                         int req_width, int req_height, const unsigned char* bytes, int size, void* user) {
-  // tinygltf 2.7 passes a bufferView's bytes without checking them against its
-  // buffer; refuse rather than let the decoder read past the allocation.
-  if (const auto* model = static_cast<const tinygltf::Model*>(user); model && image->bufferView >= 0) {
-    const auto view = static_cast<std::size_t>(image->bufferView);
-    bool ok = view < model->bufferViews.size();
-    if (ok) {
-      const tinygltf::BufferView& bv = model->bufferViews[view];
-      ok = bv.buffer >= 0 && static_cast<std::size_t>(bv.buffer) < model->buffers.size();
-      if (ok) {
-        const std::size_t available = model->buffers[static_cast<std::size_t>(bv.buffer)].data.size();
-        ok = bv.byteOffset <= available && bv.byteLength <= available - bv.byteOffset;
-      }
-    }
-    if (!ok) {
-      if (err)
-        *err += "image " + std::to_string(image_idx) + ": bufferView " + std::to_string(image->bufferView) +
-                " lies outside its buffer\n";
-      return false;
-    }
-  }
-  // Without this a texture stb_image cannot decode fails the whole load inside
-  // tinygltf; a scene is still useful with that material's base colour factor.
-  std::string decode_err;
-  if (tinygltf::LoadImageData(image, image_idx, &decode_err, warn, req_width, req_height, bytes, size, nullptr))
-    return true;
-  if (warn)
-    *warn += "image " + std::to_string(image_idx) + " could not be decoded (" + oneLine(decode_err) +
-             "); its textures are ignored\n";
-  image->image.clear();
-  return true;
-}
+using gltf_model::warnings;
 
 struct Loader {
   const std::string& path;
@@ -313,36 +230,6 @@ struct Loader {
     }
   }
 
-  glm::mat4 localTransform(const tinygltf::Node& node, const std::string& where) const {
-    if (!node.matrix.empty()) {
-      if (node.matrix.size() != 16) fail(where + " matrix must have 16 elements");
-      glm::dmat4 m;
-      std::memcpy(glm::value_ptr(m), node.matrix.data(), sizeof(double) * 16);  // both column-major
-      return glm::mat4(m);
-    }
-    glm::dvec3 t(0.0), s(1.0);
-    glm::dquat r(1.0, 0.0, 0.0, 0.0);
-    if (!node.translation.empty()) {
-      if (node.translation.size() != 3) fail(where + " translation must have 3 elements");
-      t = {node.translation[0], node.translation[1], node.translation[2]};
-    }
-    if (!node.rotation.empty()) {
-      if (node.rotation.size() != 4) fail(where + " rotation must have 4 elements");
-      // glTF stores (x, y, z, w); glm's constructor takes w first.
-      r = glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
-    }
-    if (!node.scale.empty()) {
-      if (node.scale.size() != 3) fail(where + " scale must have 3 elements");
-      s = {node.scale[0], node.scale[1], node.scale[2]};
-    }
-    glm::dmat4 m = glm::mat4_cast(r);
-    m[0] *= s.x;
-    m[1] *= s.y;
-    m[2] *= s.z;
-    m[3] = glm::dvec4(t, 1.0);
-    return glm::mat4(m);
-  }
-
   // A primitive's vertex attributes; normals and uvs empty when it has none.
   struct Attributes {
     std::vector<float> positions, normals, uvs;
@@ -472,7 +359,7 @@ struct Loader {
     const std::string where = "node " + std::to_string(node_index);
     if (on_path[static_cast<std::size_t>(node_index)]) fail(where + " is its own ancestor");
     on_path[static_cast<std::size_t>(node_index)] = 1;
-    const glm::mat4 world = parent * localTransform(node, where);
+    const glm::mat4 world = parent * gltf_model::localTransform(node, path, where);
     if (node.mesh >= 0) {
       const tinygltf::Mesh& mesh = at(model.meshes, node.mesh, "mesh", where);
       for (std::size_t p = 0; p < mesh.primitives.size(); ++p)
@@ -485,19 +372,7 @@ struct Loader {
 
   void run() {
     convertMaterials();
-    std::vector<int> roots;
-    if (!model.scenes.empty()) {
-      const int which = model.defaultScene >= 0 ? model.defaultScene : 0;
-      roots = at(model.scenes, which, "scene", "the default scene").nodes;
-    } else {
-      // No scene: draw every node that is not someone's child.
-      std::vector<char> is_child(model.nodes.size(), 0);
-      for (const auto& n : model.nodes)
-        for (int c : n.children)
-          if (c >= 0 && static_cast<std::size_t>(c) < is_child.size()) is_child[static_cast<std::size_t>(c)] = 1;
-      for (std::size_t i = 0; i < model.nodes.size(); ++i)
-        if (!is_child[i]) roots.push_back(static_cast<int>(i));
-    }
+    const std::vector<int> roots = gltf_model::sceneRoots(model, path);
     std::vector<char> on_path(model.nodes.size(), 0);
     for (int root : roots) visit(root, glm::mat4(1.0f), on_path, 0);
 
@@ -517,40 +392,15 @@ struct Loader {
 
 }  // namespace
 
-Scene loadGltfScene(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw UserError(path + ": file not found");
-  if (!fs::is_regular_file(path, ec)) throw UserError(path + ": not a regular file");
-
-  char magic[4] = {};
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw UserError(path + ": cannot open file");
-    in.read(magic, sizeof magic);
-  }
-  const bool binary = std::memcmp(magic, "glTF", 4) == 0;
-
-  tinygltf::TinyGLTF gltf;
-  tinygltf::Model model;
-  gltf.SetImageLoader(&tolerantImageLoader, &model);
-  std::string err, warn;
-  bool ok = false;
-  try {
-    ok = binary ? gltf.LoadBinaryFromFile(&model, &err, &warn, path)
-                : gltf.LoadASCIIFromFile(&model, &err, &warn, path);
-  } catch (const std::exception& e) {  // tinygltf lets some JSON type errors escape
-    throw UserError(path + ": malformed glTF: " + summarize(e.what()));
-  }
-  if (!warn.empty()) warnings().warn("{}: {}", path, summarize(warn));
-  if (!ok) {
-    const std::string kind = binary ? "malformed .glb" : "malformed glTF";
-    throw UserError(path + ": " + kind + (err.empty() ? std::string() : ": " + summarize(err)));
-  }
-
+Scene loadGltfScene(const std::string& path, float light_threshold) {
+  const tinygltf::Model model = gltf_model::readModel(path, true);
   Scene scene;
   scene.source = path;
   Loader loader{path, model, scene, {}, {}, -1, false};
   loader.run();
+  GltfLightTable lights = gltf_model::readLights(model, path, light_threshold);
+  if (const std::string note = lights.skippedNote(); !note.empty()) warnings().warn("{}: {}", path, note);
+  scene.lights = std::move(lights.lights);
   return scene;
 }
 

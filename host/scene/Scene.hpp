@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "host/scene/GltfLights.hpp"
+#include "host/shared/gpu_types.h"
+
 namespace ml {
 
 struct Vertex {
@@ -52,6 +55,9 @@ struct Scene {
   std::vector<Material> materials;     // never empty after loading (default white)
   std::vector<Texture> textures;
   Aabb bounds;
+  // The file's KHR_lights_punctual point lights (GltfLights.hpp), in node
+  // order; empty when it has none. Not part of `bounds`.
+  std::vector<gpu::PointLight> lights;
   std::size_t triangleCount() const { return indices.size() / 3; }
 };
 
@@ -60,9 +66,11 @@ struct Scene {
 // hierarchy transforms (mirroring transforms get their winding flipped back),
 // normals (generated when missing: per primitive, area-weighted average of the
 // adjacent face normals), TEXCOORD_0, baseColor factor and texture (a texture
-// that cannot be decoded is dropped with a warning). Throws UserError naming
-// the file for missing, unreadable or malformed input, or a scene without
-// triangles.
-Scene loadGltfScene(const std::string& path);
+// that cannot be decoded is dropped with a warning), and the point lights of
+// KHR_lights_punctual (GltfLights.hpp; light_threshold sets the radius of
+// those without range; skipped lights are one warning line). Throws UserError
+// naming the file for missing, unreadable or malformed input (malformed light
+// entries included), or a scene without triangles.
+Scene loadGltfScene(const std::string& path, float light_threshold = kDefaultLightThreshold);
 
 }  // namespace ml
