@@ -349,5 +349,57 @@ TEST(ClusteredAssignShapes, GpuShapeEqualsCpuShapeExactly) {
       }
 }
 
+// The GPU shape with every group (its own kernels' and the primitives') held
+// to 32, 64, 256 items and the device maximum: the same clusters (sort-based
+// uniquing: the radix, segmented sorts, scan and compaction) and the same
+// boxes, ranges, records and leaf slots as the CPU shape. A kernel that
+// depends on one group size differs at some other.
+TEST(ClusteredAssignShapes, GpuShapeAtForcedGroupSizesEqualsCpuShape) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  ClRuntime& rt = test::runtime();
+  const bool small = test::smallTests();
+  const auto c = test::randomClusterCase(rng, small ? 40 : 160, small ? 24 : 96, small ? 1100 : 5000);
+  cl::Buffer depth(rt.context(), CL_MEM_READ_ONLY, c.depth.size() * 4);
+  ClusterUniquer cpu_u(rt, UniqueMethod::TileSort, 6, KernelShape::CpuChunked);
+  const Frame want = clusters(cpu_u, c, depth, 8);
+  const ClusterPixels cpu_pixels{depth, cpu_u.clusterOf()};
+  ClusterLightAssigner cpu_a(rt, ClusterAssignMethod::Bvh, 32, KernelShape::CpuChunked);
+  RawLists cpu_raw;
+  assign(cpu_a, cpu_u, c, want, &cpu_pixels, &cpu_raw);
+  const auto cpu_boxes = deviceBoxes(cpu_a, want.unique.size());
+  std::size_t device_max = 1;
+  while (device_max * 2 <= rt.info().max_work_group_size) device_max *= 2;
+  for (const std::size_t group : {std::size_t(32), std::size_t(64), std::size_t(256), device_max}) {
+    SCOPED_TRACE("max_group=" + std::to_string(group));
+    for (const UniqueMethod m : {UniqueMethod::TileSort, UniqueMethod::Sort}) {
+      ClusterUniquer u(rt, m, 6, KernelShape::GpuWorkGroup, group);
+      const Frame f = clusters(u, c, depth, 8);
+      ASSERT_EQ(f.unique, want.unique) << uniqueMethodName(m);
+      ASSERT_EQ(f.cluster_of, want.cluster_of) << uniqueMethodName(m);
+    }
+    ClusterLightAssigner a(rt, ClusterAssignMethod::Bvh, 32, KernelShape::GpuWorkGroup, group);
+    RawLists raw;
+    assign(a, cpu_u, c, want, &cpu_pixels, &raw);
+    const auto boxes = deviceBoxes(a, want.unique.size());
+    for (std::size_t k = 0; k < boxes.size(); ++k) {
+      const ClusterBox& x = boxes[k];
+      const ClusterBox& y = cpu_boxes[k];
+      ASSERT_TRUE(x.x0 == y.x0 && x.x1 == y.x1 && x.y0 == y.y0 && x.y1 == y.y1 && x.z0 == y.z0 && x.z1 == y.z1)
+          << "cluster " << k;
+    }
+    ASSERT_EQ(raw.ranges.size(), cpu_raw.ranges.size());
+    for (std::size_t k = 0; k < raw.ranges.size(); ++k) {
+      ASSERT_EQ(raw.ranges[k].offset, cpu_raw.ranges[k].offset) << "cluster " << k;
+      ASSERT_EQ(raw.ranges[k].count, cpu_raw.ranges[k].count) << "cluster " << k;
+    }
+    EXPECT_EQ(raw.records, cpu_raw.records);
+    EXPECT_EQ(raw.leaf_lights, cpu_raw.leaf_lights);
+  }
+  EXPECT_GT(cpu_raw.records.size(), 0u);
+  EXPECT_THROW(ClusterLightAssigner(rt, ClusterAssignMethod::Bvh, 32, KernelShape::GpuWorkGroup, 16), UserError);
+}
+
 }  // namespace
 }  // namespace ml

@@ -52,8 +52,11 @@ std::size_t fitLocalSize(const cl::Kernel& k, const cl::Device& d, std::size_t w
   return local;
 }
 
-std::size_t elementLocalSize(const cl::Kernel& k, const cl::Device& d, const DeviceInfo& info) {
-  return fitLocalSize(k, d, info.isCpu() ? 64 : 256, 1, 0, k.getInfo<CL_KERNEL_FUNCTION_NAME>());
+std::size_t elementLocalSize(const cl::Kernel& k, const cl::Device& d, const DeviceInfo& info, std::size_t cap) {
+  const std::size_t multiple = k.getWorkGroupInfo<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(d);
+  std::size_t want = std::max<std::size_t>(info.isCpu() ? 64 : 256, multiple);
+  if (cap) want = std::min(want, cap);
+  return fitLocalSize(k, d, want, 1, 0, k.getInfo<CL_KERNEL_FUNCTION_NAME>());
 }
 
 void launch1d(cl::CommandQueue& q, const cl::Kernel& k, std::size_t n, std::size_t local, cl::Event* event) {

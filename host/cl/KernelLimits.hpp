@@ -50,11 +50,13 @@ std::size_t fitLocalSize(const cl::Kernel& k, const cl::Device& d, std::size_t w
                          std::size_t local_bytes_per_item, const std::string& what);
 
 // Local size of the per-element kernels that serve both shapes: 64 items on
-// CPUs (PoCL loops over them, vectorized across items), 256 elsewhere, capped by
+// CPUs (PoCL loops over them, vectorized across items), 256 elsewhere, at least
+// the kernel's CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE (whole SIMD
+// bundles), at most `cap` when non-zero (tests force small groups), capped by
 // the kernel's limit. On PoCL (2 cores) tile culling of 20,000 lights at
 // 640x360 and 1280x720 took the same time with 16, 64, 256, 1024 and 4096
 // items within the run-to-run noise (4 interleaved rounds, 2026-11-25).
-std::size_t elementLocalSize(const cl::Kernel& k, const cl::Device& d, const DeviceInfo& info);
+std::size_t elementLocalSize(const cl::Kernel& k, const cl::Device& d, const DeviceInfo& info, std::size_t cap = 0);
 
 // 1D launch over n items, global = n rounded up to `local`; nothing when n == 0.
 void launch1d(cl::CommandQueue& q, const cl::Kernel& k, std::size_t n, std::size_t local, cl::Event* event);

@@ -49,16 +49,24 @@ static unsigned checkedLeafSize(unsigned requested) {
   return requested;
 }
 
+static std::size_t checkedMaxGroup(std::size_t max_group) {
+  if (max_group && max_group < kBranch)
+    throw UserError("cluster assignment: groups of at least " + std::to_string(kBranch) + " work-items needed, " +
+                    std::to_string(max_group) + " given");
+  return max_group;
+}
+
 ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method, unsigned leaf_size,
-                                           KernelShape shape)
+                                           KernelShape shape, std::size_t max_group)
     : rt_(rt),
       method_(method),
       leaf_size_(checkedLeafSize(leaf_size)),
       shape_(resolveKernelShape(rt.info(), shape)),
       gpu_(shape_ == KernelShape::GpuWorkGroup),
+      max_group_(checkedMaxGroup(max_group)),
       record_budget_(kDefaultRecordBudget),
-      scan_(rt, compute::Options{shape_}),
-      radix_(rt, compute::Options{shape_}) {
+      scan_(rt, compute::Options{shape_, max_group}),
+      radix_(rt, compute::Options{shape_, max_group}) {
   program_ = rt.programs().build("cluster_assign.cl", {{"LEAF_SIZE", std::to_string(leaf_size_) + "u"},
                                                       {"MORTON_AXIS_BITS", std::to_string(kMortonAxisBits) + "u"}});
   // Kernels that serve both shapes (a work-item per light or cluster).
@@ -94,19 +102,20 @@ void ClusterLightAssigner::fitLocalSizes() {
   const DeviceInfo& info = rt_.info();
   local_ = 1024;
   for (const cl::Kernel* k : {&view_, &boxes_, &morton_, &order_k_, &finish_, &ranges_, &blocks_})
-    local_ = std::min(local_, elementLocalSize(*k, dev, info));
+    local_ = std::min(local_, elementLocalSize(*k, dev, info, max_group_));
   if (!gpu_) {
     // CPU shape: every pass is a work-item per element (tile, chunk, leaf, node, cluster).
     for (const cl::Kernel* k : {&pixel_boxes_, &pack_, &level_, &bounds_part_, &bounds_final_, &count_k_, &fill_k_})
-      local_ = std::min(local_, elementLocalSize(*k, dev, info));
+      local_ = std::min(local_, elementLocalSize(*k, dev, info, max_group_));
     pixel_local_ = red_local_ = leaf_local_ = node_local_ = walk_local_ = local_;
     return;
   }
   // Group sizes the GPU kernels are written for (their __local arrays):
-  // PIX_WG, RED_WG, LEAF_SIZE and BVH_BRANCH (exact) items.
-  pixel_local_ = fitLocalSize(pixel_boxes_, dev, kGroupMax, 1, 0, "cluster_pixel_boxes_wg");
-  red_local_ = std::min(fitLocalSize(bounds_part_, dev, kGroupMax, 1, 0, "light_bounds_partial_wg"),
-                        fitLocalSize(bounds_final_, dev, kGroupMax, 1, 0, "light_bounds_final_wg"));
+  // up to PIX_WG and RED_WG, exactly LEAF_SIZE and BVH_BRANCH items.
+  const std::size_t most = max_group_ ? std::min(kGroupMax, max_group_) : kGroupMax;
+  pixel_local_ = fitLocalSize(pixel_boxes_, dev, most, 1, 0, "cluster_pixel_boxes_wg");
+  red_local_ = std::min(fitLocalSize(bounds_part_, dev, most, 1, 0, "light_bounds_partial_wg"),
+                        fitLocalSize(bounds_final_, dev, most, 1, 0, "light_bounds_final_wg"));
   leaf_local_ = fitLocalSize(pack_, dev, leaf_size_, leaf_size_, 0, "pack_leaves_wg");
   node_local_ = fitLocalSize(level_, dev, kBranch, kBranch, 0, "bvh_level_wg");
   walk_local_ = std::min(fitLocalSize(count_k_, dev, kBranch, kBranch, 0, "assign_count_wg"),

@@ -70,8 +70,11 @@ class ClusterLightAssigner {
   // leaf_size: lights per leaf, 8, 16 or 32 (UserError otherwise). Smaller
   // leaves test fewer lights that miss but make the walk longer; on PoCL 32 is
   // the fastest (bench/RESULTS-clustered.md), and it is a warp on a GPU.
+  // max_group: most work-items per group of every kernel, the compute
+  // primitives' included (0: what the device allows each kernel; tests force
+  // 32 .. the device maximum); at least 32, the BVH walk's group (UserError).
   ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod method, unsigned leaf_size = 32,
-                       KernelShape shape = KernelShape::Auto);
+                       KernelShape shape = KernelShape::Auto, std::size_t max_group = 0);
 
   // boxes() then assign(). pixels: explicit bounds from these pixels; null: sub-frustum bounds.
   std::uint32_t count(cl::CommandQueue& q, const cl::Buffer& lights, std::uint32_t n, const gpu::CameraParams& cam,
@@ -131,6 +134,7 @@ class ClusterLightAssigner {
   cl::Kernel bounds_part_, bounds_final_, order_k_, finish_;
   // Work-group sizes: per-element kernels, and the GPU shape's groups (per
   // tile, reduction, leaf, node, cluster), fitted to each kernel's limits.
+  std::size_t max_group_ = 0;
   std::size_t local_ = 1, pixel_local_ = 1, red_local_ = 1, leaf_local_ = 1, node_local_ = 1, walk_local_ = 1;
   cl::Buffer order_codes_, order_ids_, order_keys_;
   ClusterGrid order_grid_;

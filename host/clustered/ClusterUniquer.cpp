@@ -25,15 +25,16 @@ const char* uniqueMethodName(UniqueMethod m) {
   return "?";
 }
 
-ClusterUniquer::ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page_bits, KernelShape shape)
+ClusterUniquer::ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page_bits, KernelShape shape,
+                               std::size_t max_group)
     : rt_(rt),
       method_(method),
       shape_(resolveKernelShape(rt.info(), shape)),
       page_bits_(page_bits),
-      scan_(rt, compute::Options{shape_}),
-      compact_(rt, compute::Options{shape_}),
-      radix_(rt, compute::Options{shape_}),
-      segsort_(rt, compute::Options{shape_}) {
+      scan_(rt, compute::Options{shape_, max_group}),
+      compact_(rt, compute::Options{shape_, max_group}),
+      radix_(rt, compute::Options{shape_, max_group}),
+      segsort_(rt, compute::Options{shape_, max_group}) {
   if (page_bits < 1 || page_bits > 16) throw std::invalid_argument("ClusterUniquer: page_bits must be 1..16");
   // Every kernel of cluster_keys.cl is one work-item per pixel, page, slot or
   // sorted element, reading and writing consecutive elements: that suits a GPU
@@ -53,7 +54,7 @@ ClusterUniquer::ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page
   local_ = 1024;
   for (const cl::Kernel* k : {&keys_k_, &mark_, &store_, &inverse_, &page_unique_, &page_map_, &sort_init_, &gather_,
                               &heads_, &scatter_})
-    local_ = std::min(local_, elementLocalSize(*k, rt.device(), rt.info()));
+    local_ = std::min(local_, elementLocalSize(*k, rt.device(), rt.info(), max_group));
 }
 
 void ClusterUniquer::ensurePixels(std::size_t n) {

@@ -41,7 +41,11 @@ const char* uniqueMethodName(UniqueMethod m);
 
 class ClusterUniquer {
  public:
-  ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page_bits = 6, KernelShape shape = KernelShape::Auto);
+  // max_group: most work-items per group of every kernel, the compute
+  // primitives' included (0: what the device allows each kernel; tests force
+  // 32 .. the device maximum).
+  ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page_bits = 6, KernelShape shape = KernelShape::Auto,
+                 std::size_t max_group = 0);
 
   // depth: window floats (cam.width x cam.height, row 0 bottom).
   void keys(cl::CommandQueue& q, const cl::Buffer& depth, const gpu::CameraParams& cam, const ClusterGrid& g,

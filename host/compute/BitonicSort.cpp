@@ -4,8 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "host/util/Error.hpp"
-
 namespace ml::compute {
 
 using detail::ceilDiv;
@@ -18,21 +16,14 @@ BitonicSorter::BitonicSorter(const ComputeEnv& env, const Options& options)
   if (tuning_.gpu()) {
     // Keys and values of a 2 * WG block in local memory.
     while (tuning_.wg > 1 && 2 * tuning_.wg * 8 > env_.info().local_mem_size) tuning_.wg /= 2;
-    block_ = 2 * tuning_.wg;
-  } else {
-    block_ = tuning_.cpu_sort_chunk;
   }
-  cl::Program p = detail::buildShaped(env_, tuning_, "bitonic_sort.cl");
-  block_sort_ = cl::Kernel(p, "bitonic_block_sort");
-  block_merge_ = cl::Kernel(p, "bitonic_block_merge");
-  global_stage_ = cl::Kernel(p, "bitonic_global_stage");
-  if (!tuning_.gpu()) global_stage2_ = cl::Kernel(p, "bitonic_global_stage2");
-  if (tuning_.gpu()) {
-    const std::size_t max_wg = block_sort_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(env_.device());
-    if (max_wg < tuning_.wg)
-      throw UserError("bitonic sort: the device runs it with at most " + std::to_string(max_wg) +
-                      " work-items per group; pass Options::work_group_size");
-  }
+  const detail::FittedProgram p = detail::buildFitted(env_, tuning_, "bitonic_sort.cl", "bitonic sort");
+  if (tuning_.gpu()) tuning_.wg = p.wg;
+  block_ = tuning_.gpu() ? 2 * tuning_.wg : tuning_.cpu_sort_chunk;
+  block_sort_ = cl::Kernel(p.program, "bitonic_block_sort");
+  block_merge_ = cl::Kernel(p.program, "bitonic_block_merge");
+  global_stage_ = cl::Kernel(p.program, "bitonic_global_stage");
+  if (!tuning_.gpu()) global_stage2_ = cl::Kernel(p.program, "bitonic_global_stage2");
   dummy_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, 64);
 }
 

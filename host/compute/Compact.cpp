@@ -11,11 +11,12 @@ Compactor::Compactor(ClRuntime& rt, const Options& options) : Compactor(ComputeE
 
 Compactor::Compactor(const ComputeEnv& env, const Options& options)
     : env_(env), tuning_(resolveTuning(env, options)), scanner_(env, options) {
-  cl::Program p = detail::buildShaped(env_, tuning_, "compact.cl");
-  compact_count_ = cl::Kernel(p, "compact_count");
-  unique_count_ = cl::Kernel(p, "unique_count");
-  compact_write_ = cl::Kernel(p, "compact_write");
-  unique_write_ = cl::Kernel(p, "unique_write");
+  const detail::FittedProgram p = detail::buildFitted(env_, tuning_, "compact.cl", "compact");
+  if (tuning_.gpu()) tuning_.wg = p.wg;
+  compact_count_ = cl::Kernel(p.program, "compact_count");
+  unique_count_ = cl::Kernel(p.program, "unique_count");
+  compact_write_ = cl::Kernel(p.program, "compact_write");
+  unique_write_ = cl::Kernel(p.program, "unique_write");
 }
 
 std::size_t Compactor::run(cl::CommandQueue& q, Mode mode, const cl::Buffer& in, const cl::Buffer& flags,

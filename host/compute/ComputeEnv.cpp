@@ -1,10 +1,13 @@
 #include "host/compute/ComputeEnv.hpp"
 
 #include <algorithm>
+#include <iostream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "host/compute/Detail.hpp"
 #include "host/util/Error.hpp"
@@ -14,6 +17,19 @@ namespace ml::compute {
 namespace {
 
 bool isPow2(std::size_t v) { return v && !(v & (v - 1)); }
+
+// llvmpipe (Mesa rusticl's CPU device) ends a work-item's loops after 65,535
+// iterations in total, all loops of the launch together, and the kernel goes
+// on with wrong results (tests/driver_loop_cap_test.cpp): the CPU-shape radix
+// scatter of 16,400-key chunks lost the payload copy of its one-digit chunks.
+// There the loops of the branch a work-item did not take run too, masked off
+// (the copy path paid for the scatter loop), and chunks up to 13,120 keys
+// came through while 16,144 did not (2^20 + 7 keys of 5 distinct values);
+// 8,192 elements per work-item or group leave a margin. Elsewhere chunks stay
+// unbounded: smaller ones would cost PoCL counters and scheduling for nothing.
+std::size_t loopBudgetChunk(const DeviceInfo& info) {
+  return info.name.find("llvmpipe") != std::string::npos ? std::size_t(8192) : 0;
+}
 
 }  // namespace
 
@@ -35,7 +51,9 @@ std::size_t Tuning::cpuGroups(std::size_t n, std::size_t min_chunk_override) con
 
 std::size_t Tuning::cpuChunk(std::size_t n, std::size_t min_chunk_override) const {
   const std::size_t minc = min_chunk_override ? min_chunk_override : min_chunk;
-  const std::size_t groups = std::clamp<std::size_t>(detail::ceilDiv(n, minc), 1, chunks);
+  std::size_t groups = std::clamp<std::size_t>(detail::ceilDiv(n, minc), 1, chunks);
+  // max_chunk is a multiple of 16, so the rounding below stays within it.
+  if (max_chunk) groups = std::max(groups, detail::ceilDiv(n, max_chunk));
   // Multiples of 16 elements keep every chunk start 64-byte aligned, so two
   // work-items never write the same cache line of a contiguous output.
   return detail::roundUp(detail::ceilDiv(std::max<std::size_t>(n, 1), groups), 16);
@@ -51,6 +69,7 @@ Tuning resolveTuning(const ComputeEnv& env, const Options& o) {
       throw std::invalid_argument("compute::Options::work_group_size must be a power of two <= the device maximum (" +
                                   std::to_string(info.max_work_group_size) + ")");
     t.wg = o.work_group_size;
+    t.requested_wg = o.work_group_size;
   } else {
     // 256 fills a GPU compute unit without starving the local memory the
     // radix and bitonic tiles need; smaller devices get their maximum.
@@ -63,6 +82,7 @@ Tuning resolveTuning(const ComputeEnv& env, const Options& o) {
   // histograms: 2^bits counters each) stays negligible.
   t.chunks = o.chunks ? o.chunks : cus * 8;
   t.min_chunk = 4096;
+  t.max_chunk = loopBudgetChunk(info);
 
   if (o.radix_bits > 12) throw std::invalid_argument("compute::Options::radix_bits must be 1..12");
   // CPU: digits of up to 11 bits (3 passes for uint32 instead of 4; the scatter
@@ -149,6 +169,54 @@ void launch(cl::CommandQueue& q, const cl::Kernel& k, std::size_t global, std::s
   if (global == 0) return;
   q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(roundUp(global, local)), cl::NDRange(local), nullptr,
                          timer ? timer->next(name) : nullptr);
+}
+
+namespace {
+
+// The largest power of two <= wg that every kernel of `p` accepts, judged by
+// what the driver reports for the build at hand (0 when even 1 does not fit).
+std::size_t acceptedWg(const ComputeEnv& env, cl::Program p, const std::size_t built) {
+  std::size_t wg = built;
+  std::vector<cl::Kernel> kernels;
+  p.createKernels(&kernels);
+  const cl_ulong device_local = env.device().getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
+  for (const cl::Kernel& k : kernels) {
+    const std::size_t max_wg = k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(env.device());
+    if (max_wg < wg) wg = max_wg ? prevPow2(max_wg) : 0;
+    // The __local arrays are sized by WG: half the items, about half the bytes.
+    if (k.getWorkGroupInfo<CL_KERNEL_LOCAL_MEM_SIZE>(env.device()) > device_local) wg = std::min(wg, built / 2);
+  }
+  return wg;
+}
+
+void noteLowered(const char* what, std::size_t requested, std::size_t wg, const std::string& device) {
+  static std::mutex mutex;
+  static auto* noted = new std::set<std::string>();
+  const std::string key = std::string(what) + " " + std::to_string(requested) + " " + std::to_string(wg) + device;
+  std::lock_guard lock(mutex);
+  if (!noted->insert(key).second) return;
+  std::cerr << "note: " << what << ": work_group_size " << requested << " lowered to " << wg
+            << ", the most its kernels run with on '" << device << "'\n";
+}
+
+}  // namespace
+
+FittedProgram buildFitted(const ComputeEnv& env, const Tuning& t, const char* file, const char* what,
+                          const std::function<Defines(std::size_t wg)>& extra) {
+  if (!t.gpu()) return {buildShaped(env, t, file, extra ? extra(1) : Defines{}), 1};
+  Tuning fitted = t;
+  for (;;) {
+    cl::Program p = buildShaped(env, fitted, file, extra ? extra(fitted.wg) : Defines{});
+    const std::size_t accepted = acceptedWg(env, p, fitted.wg);
+    if (accepted == fitted.wg) {
+      if (t.requested_wg > fitted.wg) noteLowered(what, t.requested_wg, fitted.wg, env.info().name);
+      return {p, fitted.wg};
+    }
+    if (accepted == 0)
+      throw UserError(std::string(what) + ": the device '" + env.info().name +
+                      "' runs its work-group kernels with no group size at all; use the CPU shape");
+    fitted.wg = accepted;
+  }
 }
 
 cl::Program buildShaped(const ComputeEnv& env, const Tuning& t, const char* file, Defines extra) {

@@ -9,7 +9,10 @@
 // than local-memory atomics + barriers there). GpuWorkGroup: work-groups
 // cooperate through local memory and barriers, which is what a GPU needs.
 // Shape::Auto picks by CL_DEVICE_TYPE. No kernel spin-waits on another
-// work-group; multi-pass designs are reduce-then-scan.
+// work-group; multi-pass designs are reduce-then-scan. The GPU shape's group
+// size is compiled in (WG) and fitted per program to what its kernels accept
+// on the device (CL_KERNEL_WORK_GROUP_SIZE, local memory; detail::buildFitted):
+// a size is lowered, never refused.
 #include <CL/opencl.hpp>
 
 #include <cstddef>
@@ -28,7 +31,9 @@ const char* shapeName(Shape s);
 // Overrides of the device-derived tuning; zero means "from the device".
 struct Options {
   Shape shape = Shape::Auto;
-  std::size_t work_group_size = 0;  // GpuWorkGroup: power of two
+  // GpuWorkGroup: power of two <= CL_DEVICE_MAX_WORK_GROUP_SIZE, lowered
+  // (with a note on stderr) to what each program's kernels accept.
+  std::size_t work_group_size = 0;
   unsigned radix_bits = 0;          // radix sort's widest digit, 1..12 (default CPU 11, GPU 4)
   std::size_t chunks = 0;           // CpuChunked: most work-items per launch (default CUs * 8)
   std::size_t sort_chunk = 0;       // CpuChunked bitonic: power-of-two elements sorted per work-item in cache
@@ -37,10 +42,15 @@ struct Options {
 // Resolved tuning (never Shape::Auto).
 struct Tuning {
   Shape shape = Shape::CpuChunked;
-  std::size_t wg = 1;            // GpuWorkGroup work-group size
+  std::size_t wg = 1;            // GpuWorkGroup work-group size (first guess; see detail::buildFitted)
+  std::size_t requested_wg = 0;  // Options::work_group_size, 0 when from the device
   std::size_t items = 4;         // GpuWorkGroup elements per work-item in a tile
   std::size_t chunks = 16;       // CpuChunked work-items per launch (upper bound)
   std::size_t min_chunk = 4096;  // CpuChunked: no work-item gets fewer elements than this (unless n is smaller)
+  // Most elements one work-item (CpuChunked) or work-group (GpuWorkGroup)
+  // walks in one launch; 0: no bound. Set where the device ends long loops
+  // early (llvmpipe: see loopBudgetChunk in ComputeEnv.cpp).
+  std::size_t max_chunk = 0;
   unsigned radix_bits = 11;  // widest digit
   std::size_t cpu_sort_chunk = 1 << 13;  // CpuChunked bitonic: elements a work-item sorts in cache
   bool gpu() const { return shape == Shape::GpuWorkGroup; }

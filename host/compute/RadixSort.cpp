@@ -73,16 +73,18 @@ DigitPlan balancedDigits(unsigned key_bits, unsigned widest) {
 struct Chunks {
   std::size_t chunk, local, groups;
 };
-Chunks chunksOf(const Tuning& t, const ComputeEnv& env, std::size_t n) {
+Chunks chunksOf(const Tuning& t, std::size_t wg, const ComputeEnv& env, std::size_t n) {
   std::size_t chunk, local;
   if (t.gpu()) {
-    const std::size_t tile = t.wg * t.items;
+    const std::size_t tile = wg * t.items;
     const std::size_t tiles = ceilDiv(n, tile);
     // Enough groups to fill the device several times over, few enough that
     // the counter array (radix * groups) stays a small scan.
     const std::size_t max_groups = std::max<std::size_t>(env.info().compute_units, 1) * 8;
-    chunk = ceilDiv(tiles, std::min(tiles, max_groups)) * tile;
-    local = t.wg;
+    std::size_t per_group = ceilDiv(tiles, std::min(tiles, max_groups));
+    if (t.max_chunk) per_group = std::min(per_group, std::max<std::size_t>(t.max_chunk / tile, 1));
+    chunk = per_group * tile;
+    local = wg;
   } else {
     chunk = t.cpuChunk(n);
     local = 1;
@@ -131,22 +133,18 @@ RadixSorter::Variant& RadixSorter::variant(bool wide) {
   Variant& v = wide ? v64_ : v32_;
   if (!v.hist()) {
     // Built on first use: most callers need only one key width.
-    cl::Program p = detail::buildShaped(env_, tuning_, "radix_sort.cl",
-                                        {{"KEY64", wide ? "1" : "0"},
-                                         {"RADIX_BITS", std::to_string(tuning_.radix_bits)}});
-    v.hist = cl::Kernel(p, "radix_hist");
-    v.scatter = cl::Kernel(p, "radix_scatter");
-    if (tuning_.gpu()) {
-      const std::size_t max_wg = std::min(v.hist.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(env_.device()),
-                                          v.scatter.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(env_.device()));
-      if (max_wg < tuning_.wg)
-        throw UserError("radix sort: the device runs these kernels with at most " + std::to_string(max_wg) +
-                        " work-items per group, " + std::to_string(tuning_.wg) +
-                        " configured; pass Options::work_group_size");
-    }
+    const detail::FittedProgram p =
+        detail::buildFitted(env_, tuning_, "radix_sort.cl", "radix sort", [&](std::size_t) -> Defines {
+          return {{"KEY64", wide ? "1" : "0"}, {"RADIX_BITS", std::to_string(tuning_.radix_bits)}};
+        });
+    v.hist = cl::Kernel(p.program, "radix_hist");
+    v.scatter = cl::Kernel(p.program, "radix_scatter");
+    v.wg = p.wg;
   }
   return v;
 }
+
+std::size_t RadixSorter::workGroupSize(bool wide) { return variant(wide).wg; }
 
 void RadixSorter::sort(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* values, std::size_t n, unsigned key_bits,
                        ClPassTimer* timer) {
@@ -173,7 +171,7 @@ void RadixSorter::sortImpl(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* va
   Variant& v = variant(wide);
   const auto [passes, digit] = balancedDigits(key_bits, digitBits(n));
   const std::size_t radix = std::size_t(1) << tuning_.radix_bits;  // counters per chunk, widest digit
-  const auto [chunk, local, groups] = chunksOf(tuning_, env_, n);
+  const auto [chunk, local, groups] = chunksOf(tuning_, v.wg, env_, n);
 
   // Pass p writes into scratch p % 2. With host pages (CPU device) both are
   // scratch on huge pages, so no pass scatters into the caller's buffer

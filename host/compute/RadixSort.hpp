@@ -40,11 +40,17 @@ class RadixSorter {
   void sort64(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* values, std::size_t n, unsigned key_bits = 64,
               ClPassTimer* timer = nullptr);
 
+  // tuning().wg is the first guess; the kernels of each key width are fitted
+  // to the device when first built (detail::buildFitted).
   const Tuning& tuning() const { return tuning_; }
+  // The work-group size the GPU-shape kernels of that key width run with
+  // (built on first use; 1 for the CPU shape).
+  std::size_t workGroupSize(bool wide_keys = false);
 
  private:
   struct Variant {
     cl::Kernel hist, scatter;
+    std::size_t wg = 1;
   };
   Variant& variant(bool wide);
   unsigned digitBits(std::size_t n) const;  // widest digit for n keys

@@ -29,7 +29,10 @@ Reducer::Reducer(const ComputeEnv& env, const Options& options) : env_(env), tun
 Reducer::Kernels& Reducer::kernels(int kind) {
   Kernels& k = kernels_[kind];
   if (!k.seg()) {
-    cl::Program p = detail::buildShaped(env_, tuning_, "reduce.cl", {{"ELEM_KIND", std::to_string(kind)}});
+    const detail::FittedProgram fitted = detail::buildFitted(
+        env_, tuning_, "reduce.cl", "reduce", [&](std::size_t) -> Defines { return {{"ELEM_KIND", std::to_string(kind)}}; });
+    const cl::Program& p = fitted.program;
+    k.wg = fitted.wg;
     const char* ops[3] = {"min", "max", "sum"};
     for (int i = 0; i < 3; ++i) {
       k.chunks[i] = cl::Kernel(p, (std::string("reduce_chunks_") + ops[i]).c_str());
@@ -50,11 +53,12 @@ void Reducer::reduceImpl(int kind, cl::CommandQueue& q, const cl::Buffer& in, st
   const int o = static_cast<int>(op);
   std::size_t groups, chunk, local;
   if (tuning_.gpu()) {
-    const std::size_t tile = tuning_.wg * tuning_.items;
+    const std::size_t tile = k.wg * tuning_.items;
     // Enough groups to fill the device, few enough for one group to finish.
     groups = std::min<std::size_t>(ceilDiv(n, tile), std::max<cl_uint>(env_.info().compute_units, 1) * 8);
+    if (tuning_.max_chunk) groups = std::max(groups, ceilDiv(n, tuning_.max_chunk));
     chunk = groups ? ceilDiv(n, groups) : 0;
-    local = tuning_.wg;
+    local = k.wg;
   } else {
     chunk = tuning_.cpuChunk(n);
     groups = n ? ceilDiv(n, chunk) : 0;
@@ -95,7 +99,7 @@ void Reducer::segmentsImpl(int kind, cl::CommandQueue& q, const cl::Buffer& in, 
   Kernels& k = kernels(kind);
   std::size_t global, local, per_item = 1;
   if (tuning_.gpu()) {
-    local = tuning_.wg;
+    local = k.wg;
     global = num_segments * local;
   } else {
     local = 1;
@@ -134,7 +138,7 @@ void Reducer::tileMinMax(cl::CommandQueue& q, const cl::Buffer& image, std::size
   Kernels& k = kernels(2);
   std::size_t global, local, cols = 1;
   if (tuning_.gpu()) {
-    local = tuning_.wg;
+    local = k.wg;
     global = tiles_x * tiles_y * local;
   } else {
     // Whole tile rows per work-item (memory-order walks), split into column

@@ -57,10 +57,14 @@ class Reducer {
                   std::size_t tile, cl::Buffer& out_min, cl::Buffer& out_max, ClPassTimer* timer = nullptr);
 
   const Tuning& tuning() const { return tuning_; }
+  // The work-group size the GPU-shape kernels run with (1 for the CPU shape);
+  // builds the uint32 kernels on first use.
+  std::size_t workGroupSize() { return kernels(0).wg; }
 
  private:
   struct Kernels {
     cl::Kernel chunks[3], final[3], seg, tile;
+    std::size_t wg = 1;  // what the GPU-shape kernels of this element kind run with
   };
   Kernels& kernels(int kind);
   void reduceImpl(int kind, cl::CommandQueue& q, const cl::Buffer& in, std::size_t n, ReduceOp op, cl::Buffer& out,

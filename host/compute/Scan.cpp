@@ -8,9 +8,10 @@ using detail::u32;
 Scanner::Scanner(ClRuntime& rt, const Options& options) : Scanner(ComputeEnv(rt), options) {}
 
 Scanner::Scanner(const ComputeEnv& env, const Options& options) : env_(env), tuning_(resolveTuning(env, options)) {
-  cl::Program p = detail::buildShaped(env_, tuning_, "scan.cl");
-  reduce_ = cl::Kernel(p, "scan_reduce");
-  tiles_ = cl::Kernel(p, "scan_tiles");
+  const detail::FittedProgram p = detail::buildFitted(env_, tuning_, "scan.cl", "scan");
+  if (tuning_.gpu()) tuning_.wg = p.wg;
+  reduce_ = cl::Kernel(p.program, "scan_reduce");
+  tiles_ = cl::Kernel(p.program, "scan_tiles");
   dummy_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, 16);
 }
 

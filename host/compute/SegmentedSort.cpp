@@ -13,17 +13,23 @@ SegmentedSorter::SegmentedSorter(ClRuntime& rt, const Options& options) : Segmen
 
 SegmentedSorter::SegmentedSorter(const ComputeEnv& env, const Options& options)
     : env_(env), tuning_(resolveTuning(env, options)) {
-  Defines extra;
+  // Keys + values, 8 bytes per element, in at most half the local memory
+  // (leaving room for the runtime's own use), and no more than 8 comparators
+  // per work-item per stage.
+  auto capacity = [&](std::size_t wg) {
+    const std::size_t c = std::min<std::size_t>(16 * wg, detail::prevPow2(env_.info().local_mem_size / 16));
+    return std::max<std::size_t>(c, 2);
+  };
+  const detail::FittedProgram p =
+      detail::buildFitted(env_, tuning_, "segmented_sort.cl", "segmented sort", [&](std::size_t wg) -> Defines {
+        if (!tuning_.gpu()) return {};
+        return {{"SEG_LOCAL", std::to_string(capacity(wg))}};
+      });
   if (tuning_.gpu()) {
-    // Keys + values, 8 bytes per element, in at most half the local memory
-    // (leaving room for the runtime's own use), and no more than 8 comparators
-    // per work-item per stage.
-    local_capacity_ = std::min<std::size_t>(16 * tuning_.wg, detail::prevPow2(env_.info().local_mem_size / 16));
-    local_capacity_ = std::max<std::size_t>(local_capacity_, 2);
-    extra.emplace_back("SEG_LOCAL", std::to_string(local_capacity_));
+    tuning_.wg = p.wg;
+    local_capacity_ = capacity(p.wg);
   }
-  cl::Program p = detail::buildShaped(env_, tuning_, "segmented_sort.cl", extra);
-  kernel_ = cl::Kernel(p, "segmented_sort");
+  kernel_ = cl::Kernel(p.program, "segmented_sort");
   dummy_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, 64);
 }
 
