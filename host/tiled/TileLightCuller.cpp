@@ -20,6 +20,25 @@ constexpr std::size_t kLanePad = 8;            // LANE_PAD in the kernel
 constexpr std::size_t kChunksPerUnit = 8;      // CPU shape: work-items per compute unit, for load balance
 constexpr std::uint32_t kMinPerChunk = 64;     // ... but no fewer lights per work-item than this
 constexpr std::size_t kMaxChunkCounters = std::size_t(1) << 24;  // chunks x tiles (64 MiB of counters)
+constexpr std::uint64_t kLoopCapMargin = 60000;  // loop iterations a work-item may take where the device caps them
+
+// Where the device ends a work-item's loops after 65,535 iterations in total
+// (llvmpipe; Tuning::max_chunk is set there, tests/driver_loop_cap_test.cpp),
+// the most lights per chunk whose loops stay under the cap: the chunk's
+// counter row (n_tiles iterations), then per light at most what a light
+// covering the whole screen takes in mark_light (mask words, the cached
+// columns, per row 19 per 8 tiles and the row) and in cull_scatter_chunked
+// (a word and a bit per tile). Throws when not even one light fits.
+std::uint32_t lightsWithinLoopCap(std::uint64_t tiles_x, std::uint64_t tiles_y) {
+  const std::uint64_t n_tiles = tiles_x * tiles_y;
+  const std::uint64_t per_light =
+      n_tiles + n_tiles / 16 + 400 + (tiles_y + 1) * ((tiles_x / 8 + 2) * 19 + 1);
+  if (n_tiles + 2 + per_light > kLoopCapMargin)
+    throw UserError("tiled culling: the device ends a work-item's loops after 65,535 iterations, which a light "
+                    "covering all " + std::to_string(n_tiles) + " tiles could pass in the CPU kernel shape (a larger "
+                    "--tile, a smaller --size or --kernel-shape gpu)");
+  return std::uint32_t((kLoopCapMargin - n_tiles - 1) / (per_light + 1));
+}
 }  // namespace
 
 TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape,
@@ -85,14 +104,24 @@ void TileLightCuller::ensureTiles(const gpu::CameraParams& cam) {
 
 // CPU shape: as many chunks as keep the compute units balanced, each holding
 // at least one light (the kernels leave the rows of empty chunks unwritten)
-// and, past kMinPerChunk lights, no fewer than that.
+// and, past kMinPerChunk lights, no fewer than that; where the device caps
+// loops, no more than lightsWithinLoopCap().
 void TileLightCuller::ensureChunks(std::uint32_t n, std::size_t n_tiles) {
+  const std::size_t max_chunks = kMaxChunkCounters / std::max<std::size_t>(n_tiles, 1);
   const std::size_t most = std::max<std::size_t>(
       1, std::min<std::size_t>(std::size_t(std::max<cl_uint>(rt_.info().compute_units, 1)) * kChunksPerUnit,
-                               kMaxChunkCounters / std::max<std::size_t>(n_tiles, 1)));
+                               max_chunks));
   const std::size_t want = std::clamp<std::size_t>(n / kMinPerChunk, 1, most);
   per_chunk_ = std::uint32_t((std::uint64_t(n) + want - 1) / want);
+  if (scan_.tuning().max_chunk) per_chunk_ = std::min(per_chunk_, lightsWithinLoopCap(grid_.tilesX(), grid_.tilesY()));
   chunks_ = std::uint32_t((std::uint64_t(n) + per_chunk_ - 1) / per_chunk_);
+  // tile_chunk_totals and tile_chunk_bases loop over the chunks per tile.
+  const bool capped = scan_.tuning().max_chunk && chunks_ > kLoopCapMargin;
+  if (capped || chunks_ > std::max<std::size_t>(max_chunks, 1))
+    throw UserError("tiled culling: " + std::to_string(n) + " lights in chunks short enough for the device's loop "
+                    "cap need " + std::to_string(chunks_) + " chunks, more than its loop cap or " +
+                    std::to_string(kMaxChunkCounters) + " tile counters allow (fewer --lights, a larger --tile or "
+                    "--kernel-shape gpu)");
   const std::size_t need = std::size_t(chunks_) * n_tiles;
   if (need <= chunk_capacity_) return;
   chunk_capacity_ = need;

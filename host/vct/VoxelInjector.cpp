@@ -62,6 +62,13 @@ std::size_t VoxelInjector::prepare(cl::Kernel& k, cl::CommandQueue& q, const gpu
     // voxels, not the primitives' 4096: a 16^3 grid is still split among all
     // work-items (tuning().chunks of them at most) and PoCL's threads.
     chunk = tuning_.cpuChunk(n, 64);
+    // Where the device ends a work-item's loops after 65,535 iterations in
+    // total (llvmpipe; Tuning::max_chunk is set there,
+    // tests/driver_loop_cap_test.cpp), a voxel per work-item, as in the GPU
+    // shape: one voxel's light loop (with shadows, times its marches) is the
+    // least a work-item can take, and a chunk of them passed the cap with a
+    // few hundred lights.
+    if (tuning_.max_chunk) chunk = 1;
     global = compute::detail::ceilDiv(n, chunk);
     local = 1;
   }

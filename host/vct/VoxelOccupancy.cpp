@@ -1,9 +1,11 @@
 #include "host/vct/VoxelOccupancy.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 #include "host/compute/Detail.hpp"
+#include "host/shared/voxel_occupancy.h"
 #include "host/shared/voxel_types.h"
 
 namespace ml::vct {
@@ -13,13 +15,30 @@ using compute::detail::u32;
 VoxelOccupancy::VoxelOccupancy(const compute::ComputeEnv& env, const compute::Options& options)
     : env_(env), tuning_(compute::resolveTuning(env, options)) {}
 
+namespace {
+
+// Where the device ends a work-item's loops after 65,535 iterations in total
+// (llvmpipe; Tuning::max_chunk is set there, tests/driver_loop_cap_test.cpp),
+// the most lines one work-item may take: a line of distance_lines costs at
+// most edge * (ML_OCC_MAX_DISTANCE + 1) + 1 loop iterations (the outward
+// search stops below the clamp), distance_rows' 2 * edge + 1 fewer. 0: no cap.
+constexpr std::size_t kLoopCapMargin = 60000;
+
+std::size_t linesWithinLoopCap(const compute::Tuning& t, unsigned edge) {
+  if (!t.max_chunk) return 0;
+  return std::max<std::size_t>(1, kLoopCapMargin / (std::size_t(edge) * (ML_OCC_MAX_DISTANCE + 2) + 2));
+}
+
+}  // namespace
+
 void VoxelOccupancy::launchLines(cl::CommandQueue& q, cl::Kernel& k, cl_uint lines_arg, std::size_t lines,
-                                 ClPassTimer* timer) {
+                                 unsigned edge, ClPassTimer* timer) {
   std::size_t chunk = 1, global = lines, local = tuning_.wg;
   if (!tuning_.gpu()) {
     // A line is edge voxels (up to 30 reads each): a floor of 16 lines per
     // work-item still splits a 16^3 grid's 256 lines among the work-items.
     chunk = tuning_.cpuChunk(lines, 16);
+    if (const std::size_t cap = linesWithinLoopCap(tuning_, edge)) chunk = std::min(chunk, cap);
     global = compute::detail::ceilDiv(lines, chunk);
     local = 1;
   }
@@ -47,11 +66,11 @@ void VoxelOccupancy::build(cl::CommandQueue& q, unsigned edge, const cl::Buffer&
   }
   const std::size_t lines = std::size_t(edge) * edge;
   compute::detail::setArgs(rows_, accum, cl_uint(edge), buffer_);
-  launchLines(q, rows_, 3, lines, timer);
+  launchLines(q, rows_, 3, lines, edge, timer);
   compute::detail::setArgs(lines_, buffer_, tmp_, cl_uint(edge), cl_uint(edge));
-  launchLines(q, lines_, 4, lines, timer);
+  launchLines(q, lines_, 4, lines, edge, timer);
   compute::detail::setArgs(lines_, tmp_, buffer_, cl_uint(edge), u32(lines));
-  launchLines(q, lines_, 4, lines, timer);
+  launchLines(q, lines_, 4, lines, edge, timer);
   edge_ = edge;
 }
 

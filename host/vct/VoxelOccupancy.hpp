@@ -28,8 +28,9 @@ class VoxelOccupancy {
   const compute::Tuning& tuning() const { return tuning_; }
 
  private:
-  // Launches `k` over `lines` grid lines (arguments but the last two set).
-  void launchLines(cl::CommandQueue& q, cl::Kernel& k, cl_uint lines_arg, std::size_t lines, ClPassTimer* timer);
+  // Launches `k` over `lines` lines of a grid of `edge` (arguments but the last two set).
+  void launchLines(cl::CommandQueue& q, cl::Kernel& k, cl_uint lines_arg, std::size_t lines, unsigned edge,
+                   ClPassTimer* timer);
 
   compute::ComputeEnv env_;
   compute::Tuning tuning_;
