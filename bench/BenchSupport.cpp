@@ -82,28 +82,40 @@ namespace {
 void printFrameRow(const std::string& size, const std::string& lights, const std::string& tech, int tech_width,
                    const TimedFrame& t, const FrameResult* counted) {
   std::printf("%-11s %7s %-*s", size.c_str(), lights.c_str(), tech_width, tech.c_str());
-  for (const auto& [name, ms] : t.passes.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
+  for (std::size_t i = 0; i < t.passes.entries().size(); ++i) {
+    const auto& [name, ms] = t.passes.entries()[i];
+    std::printf(" %s=%s%s", name.c_str(), passTimeText(ms, 2).c_str(),
+                t.passes.clockAt(i) == PassClock::Host ? "(host)" : "");
+  }
   if (!counted) {
     std::printf(" | frame=%.2f\n", t.host_ms);
     return;
   }
   const double px = double(std::max<std::uint64_t>(1, counted->covered_pixels));
   const double ratio = double(counted->light_evaluations) / double(std::max<std::uint64_t>(1, counted->lower_bound));
-  std::printf(" | sum=%.2f | frame=%.2f evals/px=%.2f lb/px=%.2f ratio=%.3f\n", t.passes_total_ms, t.host_ms,
+  std::printf(" | sum=%s | frame=%.2f evals/px=%.2f lb/px=%.2f ratio=%.3f\n", passTimeText(t.passes_total_ms, 2).c_str(),
+              t.host_ms,
               counted->light_evaluations / px, counted->lower_bound / px, ratio);
 }
 
 nlohmann::ordered_json frameRecord(const std::string& size, const std::string& lights, const std::string& tech,
                                    unsigned w, unsigned h, const TimedFrame& t, const FrameResult* counted) {
   nlohmann::ordered_json passes;
-  for (const auto& [name, ms] : t.passes.entries()) passes[name] = ms;
+  nlohmann::ordered_json clocks = nlohmann::ordered_json::object();
+  for (std::size_t i = 0; i < t.passes.entries().size(); ++i) {
+    const auto& [name, ms] = t.passes.entries()[i];
+    passes[name] = PassTimings::isMissing(ms) ? nlohmann::ordered_json() : nlohmann::ordered_json(ms);  // never 0
+    clocks[name] = t.passes.clockAt(i) == PassClock::Host ? "host" : "device";
+  }
   const double seconds = t.host_ms * 1e-3;
   nlohmann::ordered_json rec = {{"name", "frame_" + tech}, {"resolution", size}, {"lights", std::stoul(lights)},
                                 {"n", std::stoul(lights)}, {"seconds", seconds},
-                                {"items_per_second", double(w) * h / seconds}, {"passes", passes}};
+                                {"items_per_second", double(w) * h / seconds}, {"passes", passes},
+                                {"pass_clocks", clocks}};
   if (counted) {
     const double px = double(std::max<std::uint64_t>(1, counted->covered_pixels));
-    rec["sum_of_passes_ms"] = t.passes_total_ms;
+    rec["sum_of_passes_ms"] = PassTimings::isMissing(t.passes_total_ms) ? nlohmann::ordered_json()
+                                                                         : nlohmann::ordered_json(t.passes_total_ms);
     rec["evals_per_pixel"] = counted->light_evaluations / px;
     rec["lower_bound_per_pixel"] = counted->lower_bound / px;
     rec["evals_over_lower_bound"] =

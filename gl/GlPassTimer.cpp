@@ -58,7 +58,7 @@ void GlPassTimer::begin(const std::string& name) {
 void GlPassTimer::end() {
   if (host_clock_) {
     glFinish();
-    host_done_.add(host_name_, nowMs() - host_start_ms_);
+    host_done_.add(host_name_, nowMs() - host_start_ms_, PassClock::Host);
     return;
   }
   glEndQuery(GL_TIME_ELAPSED);

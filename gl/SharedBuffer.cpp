@@ -101,7 +101,7 @@ void timed(ClRuntime& rt, const char* pass, F&& step) {
   PassTimings* sink = rt.shareTimings();
   const double t0 = sink ? nowMs() : 0.0;
   step();
-  if (sink) sink->add(pass, nowMs() - t0);
+  if (sink) sink->add(pass, nowMs() - t0, PassClock::Host);
 }
 
 }  // namespace

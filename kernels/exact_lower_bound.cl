@@ -4,7 +4,15 @@
  * computed here once per counted frame, the same way for every technique.
  *
  *   exact_lower_bound  one work-item per pixel: window_to_world, then per
- *                      grid level the lights listed in P's cell
+ *                      grid level the lights listed in P's cell, those from
+ *                      the `first`th to before the (first + span)th of the
+ *                      cell's list; launches with first > 0 add to counts
+ *
+ * Why slices: llvmpipe (Mesa rusticl) ends a work-item's loops after 65,535
+ * iterations in total, all loops together (tests/driver_loop_cap_test.cpp),
+ * so a pixel inside 66,000 spheres would count 65,535. The host
+ * (ExactLowerBound::count) keeps level_count * (span + 1) under that and
+ * launches once per slice of the longest list: once, unless a list is long.
  *
  * The grid (host/assign/ExactLowerBound.cpp) lists each light in every cell
  * that its sphere's box, widened for rounding, overlaps, so no light whose
@@ -39,10 +47,11 @@ inline bool window_to_world(float depth, uint x, uint y, __global const BoundPar
   return true;
 }
 
-/* Lights whose sphere contains P, over every level's cell of P. */
+/* Lights whose sphere contains P, over the slice [first, first + span) of
+ * every level's list of P's cell. */
 inline uint lights_containing(float3 P, __global const BoundGridLevel* levels, uint level_count,
                               __global const uint* cell_start, __global const uint* entries,
-                              __global const float4* spheres) {
+                              __global const float4* spheres, uint first, uint span) {
   uint n = 0;
   for (uint l = 0; l < level_count; ++l) {
     const BoundGridLevel g = levels[l];
@@ -54,8 +63,10 @@ inline uint lights_containing(float3 P, __global const BoundGridLevel* levels, u
           qz < (float)g.dims[2]))
       continue;
     const uint c = g.dims[3] + (uint)qx + g.dims[0] * ((uint)qy + g.dims[1] * (uint)qz);
-    const uint end = cell_start[c + 1];
-    for (uint e = cell_start[c]; e < end; ++e) {
+    const uint begin = cell_start[c], length = cell_start[c + 1] - begin;
+    if (first >= length) continue;
+    const uint end = begin + (length - first > span ? first + span : length);
+    for (uint e = begin + first; e < end; ++e) {
       const float4 L = spheres[entries[e]];
       const float dx = L.x - P.x, dy = L.y - P.y, dz = L.z - P.z;
       const float d2 = dx * dx + dy * dy + dz * dz;
@@ -65,16 +76,18 @@ inline uint lights_containing(float3 P, __global const BoundGridLevel* levels, u
   return n;
 }
 
-/* counts[y * width + x]: the pixel's bound (0 for background). */
+/* counts[y * width + x]: the pixel's bound (0 for background), summed over
+ * the launches of slices first = 0, span, 2 * span, ... */
 __kernel void exact_lower_bound(__global const float* depth, __global const BoundParams* params,
                                 __global const BoundGridLevel* levels, __global const uint* cell_start,
                                 __global const uint* entries, __global const float4* spheres,
-                                __global uint* counts) {
+                                __global uint* counts, uint first, uint span) {
   const uint i = get_global_id(0);
   const uint width = params->width;
   if (i >= width * params->height) return;
   float3 P;
-  counts[i] = window_to_world(depth[i], i % width, i / width, params, &P)
-                  ? lights_containing(P, levels, params->level_count, cell_start, entries, spheres)
-                  : 0u;
+  const uint n = window_to_world(depth[i], i % width, i / width, params, &P)
+                     ? lights_containing(P, levels, params->level_count, cell_start, entries, spheres, first, span)
+                     : 0u;
+  counts[i] = first == 0 ? n : counts[i] + n;
 }

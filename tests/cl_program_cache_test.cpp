@@ -22,6 +22,7 @@
 #include "host/cl/ProgramBuilder.hpp"
 #include "ml_test_paths.h"  // MANYLIGHTS_BINARY
 #include "support/RunCommand.hpp"
+#include "support/ScopedEnv.hpp"
 #include "support/TempDir.hpp"
 #include "support/TestDevice.hpp"
 
@@ -104,6 +105,35 @@ BuildOutcome buildWith(const std::string& dir, const std::string& source) {
   return o;
 }
 
+// Whether the test device's driver gets binaries at all (host/cl/KernelCacheProbe.hpp):
+// on one that ends the process when it refuses a binary (Mesa rusticl) the
+// tests below check instead that no binary is ever stored or loaded.
+bool deviceCachesBinaries() {
+  test::TempDir tmp;
+  return builderFor(tmp.file("kernels"))->cachesBinaries();
+}
+
+// Builds of `value`'s probe store no entry, and do not load one forged at its
+// key (intact header and checksum around bytes no driver accepts: on rusticl,
+// loading it would abort the process).
+void expectNoBinariesUsed(const std::string& dir, cl_uint value) {
+  const auto first = buildWith(dir, probeSource(value));
+  EXPECT_EQ(first.value, value);
+  EXPECT_EQ(first.stats.compiles, 1);
+  EXPECT_EQ(first.err, "");
+  EXPECT_TRUE(filesIn(dir).empty()) << "a binary was stored";
+  const std::uint64_t key = builderFor(dir)->cacheKey("probe.cl", probeSource(value));
+  const std::string entry = KernelCache(dir, "forger").entryPath(key);
+  const Bytes forged = encodeKernelCacheEntry(key, Bytes(4096, 0));
+  writeBytes(entry, forged);
+  const auto again = buildWith(dir, probeSource(value));
+  EXPECT_EQ(again.value, value);
+  EXPECT_EQ(again.stats.compiles, 1);
+  EXPECT_EQ(again.stats.disk_hits, 0);
+  EXPECT_EQ(again.err, "");
+  EXPECT_TRUE(readBytes(entry) == forged) << "the forged entry was read or replaced";
+}
+
 enum class Damage { TruncatedBinary, TruncatedHeader, FlippedByte, Swapped, Empty, Padded };
 const char* damageName(Damage d) {
   switch (d) {
@@ -134,10 +164,34 @@ void damage(Damage d, const fs::path& entry, const fs::path& other, std::mt19937
   writeBytes(entry, b);
 }
 
+// PoCL refuses a bad binary with an error, rusticl aborts the process: the
+// probe must tell them apart (an always-unsafe probe would leave PoCL uncached).
+TEST(ProgramCache, ProbeTellsWhetherTheDriverRefusesBinariesSafely) {
+  const std::string platform = test::runtime().info().platform_name;
+  const bool caches = deviceCachesBinaries();
+  if (platform.find("rusticl") != std::string::npos) {
+    EXPECT_FALSE(caches);
+  }
+  if (platform.find("Portable Computing Language") != std::string::npos) {
+    EXPECT_TRUE(caches);
+  }
+  test::ScopedEnv hook("MANYLIGHTS_TEST_BINARIES", "unsafe");
+  EXPECT_FALSE(deviceCachesBinaries());
+}
+
+// The path rusticl takes, on every device (the hook pretends the driver cannot
+// refuse a binary safely).
+TEST(ProgramCache, DriverThatCannotRefuseABinarySafelyNeverGetsOne) {
+  test::ScopedEnv hook("MANYLIGHTS_TEST_BINARIES", "unsafe");
+  test::TempDir tmp;
+  expectNoBinariesUsed(tmp.file("kernels"), static_cast<cl_uint>(test::freshSeed()));
+}
+
 TEST(ProgramCache, EntryHasHeaderAndIsReusedWithoutWarnings) {
   test::TempDir tmp;
   const std::string dir = tmp.file("kernels");
   const cl_uint value = static_cast<cl_uint>(test::freshSeed());
+  if (!deviceCachesBinaries()) return expectNoBinariesUsed(dir, value);
   const auto first = buildWith(dir, probeSource(value));
   EXPECT_EQ(first.value, value);
   EXPECT_EQ(first.stats.compiles, 1);
@@ -171,6 +225,7 @@ TEST_P(ProgramCacheDamage, EntryIsDeletedRecompiledAndRewritten) {
   test::TempDir tmp;
   const std::string dir = tmp.file("kernels");
   const cl_uint a = static_cast<cl_uint>(rng()), b = a ^ 0x5a5a5a5au;
+  if (!deviceCachesBinaries()) return expectNoBinariesUsed(dir, a);
   buildWith(dir, probeSource(a));
   const fs::path entry_a = filesIn(dir).at(0);
   buildWith(dir, probeSource(b));
@@ -202,6 +257,7 @@ TEST(ProgramCache, EntryTheDriverRefusesIsDeletedAndRecompiled) {
   test::TempDir tmp;
   const std::string dir = tmp.file("kernels");
   const cl_uint value = static_cast<cl_uint>(test::freshSeed());
+  if (!deviceCachesBinaries()) return expectNoBinariesUsed(dir, value);
   buildWith(dir, probeSource(value));
   const fs::path entry = filesIn(dir).at(0);
   // Intact header and checksum around a binary the driver cannot load.
@@ -357,6 +413,10 @@ TEST_P(RenderCacheDamage, RecoversWithOneWarningAndTheSameImage) {
   const std::string cache = tmp.file("cache");
   fs::copy(clean.cache, cache, fs::copy_options::recursive);
   const auto entries = filesIn(cache + "/kernels");
+  if (!deviceCachesBinaries()) {  // nothing to damage: no binary was stored
+    EXPECT_TRUE(entries.empty());
+    return expectCleanImage(cache, 0, "");
+  }
   ASSERT_GE(entries.size(), 2u);
   const std::size_t i = rng() % entries.size(), j = (i + 1 + rng() % (entries.size() - 1)) % entries.size();
   damage(GetParam(), entries[i], entries[j], rng);

@@ -31,13 +31,91 @@ TEST(ClRuntime, DeviceChoiceParsing) {
   auto idx = DeviceChoice::parse("0", "--device");
   EXPECT_EQ(idx.kind, DeviceChoice::Kind::Index);
   EXPECT_EQ(idx.index, 0);
-  EXPECT_THROW(DeviceChoice::parse("fast", "--device"), UserError);
   EXPECT_THROW(DeviceChoice::parse("-1", "--device"), UserError);
+  EXPECT_THROW(DeviceChoice::parse("+1", "--device"), UserError);
   try {
-    DeviceChoice::parse("x1", "MANYLIGHTS_DEVICE");
+    DeviceChoice::parse("1x", "MANYLIGHTS_DEVICE");
     FAIL();
   } catch (const UserError& e) {
     EXPECT_NE(std::string(e.what()).find("MANYLIGHTS_DEVICE"), std::string::npos);
+  }
+  // Anything else is a name, matched when the runtime is created.
+  for (const char* name : {"rusticl", "PoCL", "llvmpipe", "x1"}) {
+    const auto c = DeviceChoice::parse(name, "--device");
+    EXPECT_EQ(c.kind, DeviceChoice::Kind::Name) << name;
+    EXPECT_EQ(c.name, name);
+  }
+}
+
+// Made-up devices as PoCL and rusticl (with llvmpipe) list themselves, plus a
+// second device of one platform.
+std::vector<DeviceInfo> fakeDevices() {
+  auto info = [](std::string platform, std::string vendor, std::string name) {
+    DeviceInfo d;
+    d.platform_name = std::move(platform);
+    d.platform_vendor = std::move(vendor);
+    d.name = std::move(name);
+    return d;
+  };
+  return {info("Portable Computing Language", "The pocl project", "cpu-haswell-Intel(R) Xeon(R)"),
+          info("rusticl", "Mesa/X.org", "llvmpipe (LLVM 15.0.6, 256 bits)"),
+          info("NVIDIA CUDA", "NVIDIA Corporation", "NVIDIA H100 80GB HBM3"),
+          info("NVIDIA CUDA", "NVIDIA Corporation", "NVIDIA A100")};
+}
+
+TEST(ClRuntime, DeviceNameMatchesPlatformNameVendorOrDeviceIgnoringCase) {
+  const auto devices = fakeDevices();
+  EXPECT_EQ(deviceIndexByName(devices, "pocl", "--device"), 0u);      // platform vendor
+  EXPECT_EQ(deviceIndexByName(devices, "Portable", "--device"), 0u);  // platform name
+  EXPECT_EQ(deviceIndexByName(devices, "RUSTICL", "--device"), 1u);
+  EXPECT_EQ(deviceIndexByName(devices, "mesa", "--device"), 1u);
+  EXPECT_EQ(deviceIndexByName(devices, "LLVMpipe", "--device"), 1u);  // device name
+  EXPECT_EQ(deviceIndexByName(devices, "h100", "--device"), 2u);
+}
+
+// One line naming the flag or variable and listing every device to choose from.
+void expectNameError(const std::string& name, const std::string& origin, const std::string& why) {
+  try {
+    deviceIndexByName(fakeDevices(), name, origin);
+    ADD_FAILURE() << name << " was accepted";
+  } catch (const UserError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(origin + " '" + name + "'", 0), 0u) << msg;
+    EXPECT_NE(msg.find(why), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    for (const char* listed : {"0: Portable Computing Language", "1: rusticl (Mesa/X.org) / llvmpipe", "3: NVIDIA CUDA"})
+      EXPECT_NE(msg.find(listed), std::string::npos) << listed << " not in: " << msg;
+  }
+}
+
+TEST(ClRuntime, AmbiguousOrUnknownDeviceNameIsAUserErrorListingTheDevices) {
+  expectNameError("nvidia", "--device", "more than one");
+  expectNameError("l", "MANYLIGHTS_DEVICE", "more than one");
+  expectNameError("radeon", "MANYLIGHTS_DEVICE", "matches no OpenCL device");
+}
+
+// The same through the real device list: a name matching nothing here.
+TEST(ClRuntime, UnknownDeviceNameFailsCreation) {
+  try {
+    ClRuntime::create(DeviceChoice::parse("no-such-opencl-device", "MANYLIGHTS_DEVICE"));
+    ADD_FAILURE() << "accepted";
+  } catch (const UserError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("MANYLIGHTS_DEVICE 'no-such-opencl-device': matches no OpenCL device", 0), 0u) << msg;
+    EXPECT_NE(msg.find("0: " + listDevices().front().info.platform_name), std::string::npos) << msg;
+  }
+}
+
+// Each device found by its own device name, unless another shares it.
+TEST(ClRuntime, EveryDeviceIsFoundByAUniqueName) {
+  const auto devices = listDevices();
+  for (const auto& d : devices) {
+    int same = 0;
+    for (const auto& o : devices) same += o.info.name == d.info.name;
+    if (same > 1) continue;
+    auto rt = ClRuntime::create(DeviceChoice::parse(d.info.name, "--device"));
+    EXPECT_EQ(rt->info().name, d.info.name);
+    EXPECT_EQ(rt->info().platform_name, d.info.platform_name);
   }
 }
 

@@ -10,6 +10,7 @@
 #include "gl/GlPassTimer.hpp"
 #include "host/app/BenchCommand.hpp"
 #include "host/app/CompareReferenceCommand.hpp"
+#include "host/app/DevicesCommand.hpp"
 #include "gl/GlContext.hpp"
 #include "host/app/RenderCommand.hpp"
 #include "host/app/ViewCommand.hpp"
@@ -28,27 +29,6 @@ bool isAllocationFailure(cl_int code) {
          code == CL_INVALID_BUFFER_SIZE;
 }
 
-// The OpenCL devices, then what `render` would run on: the GL renderer, the
-// CL device, whether they are the same device, and the share mode.
-int runDevices() {
-  for (const auto& d : listDevices()) {
-    std::printf("%d: %s | %s | %s, %u compute units, %s%s\n", d.index, d.info.platform_name.c_str(),
-                d.info.name.c_str(), d.info.isGpu() ? "GPU" : d.info.isCpu() ? "CPU" : "other", d.info.compute_units,
-                d.info.c_version.c_str(), d.info.hasExtension("cl_khr_gl_sharing") ? ", cl_khr_gl_sharing" : "");
-  }
-  std::unique_ptr<GlContext> gl;
-  try {
-    gl = createHeadlessContext();
-  } catch (const UserError& e) {
-    std::printf("render would run: no GL context (%s)\n", e.what());
-    return 0;
-  }
-  const GlShareHandles share = gl->shareHandles();
-  auto cl = ClRuntime::create(DeviceChoice::resolve(""), &share);
-  std::printf("render would run:\n  %s\n  %s\n", gl->describe().c_str(), cl->describe().c_str());
-  return 0;
-}
-
 // The subcommands and the structs their flags fill.
 struct CommandLine {
   CLI::App app{"manylights: light assignment for many dynamic point lights (OpenCL + OpenGL)"};
@@ -56,7 +36,7 @@ struct CommandLine {
   BenchArgs bench_args;
   CompareReferenceArgs compare_args;
   ViewArgs view_args;
-  CLI::App* devices = app.add_subcommand("devices", "List OpenCL platforms and devices with their indices");
+  CLI::App* devices = app.add_subcommand("devices", "List OpenCL platforms and their devices with indices");
   CLI::App* techniques_cmd = app.add_subcommand("techniques", "List the registered light-assignment techniques");
   CLI::App* render = addRenderCommand(app, render_args);
   CLI::App* bench = addBenchCommand(app, bench_args);

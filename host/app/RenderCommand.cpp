@@ -153,9 +153,17 @@ struct RenderRun {
 void printTimes(const TimedFrame& t) {
   if (!t.shaded) std::printf("\nno shading pass (--no-shading): depth and light assignment only\n");
   std::printf("\n%-24s %10s\n", "pass", "ms (median)");
-  for (const auto& [name, ms] : t.passes.entries()) std::printf("%-24s %10.3f\n", name.c_str(), ms);
-  std::printf("%-24s %10.3f\n", "sum of passes", t.passes_total_ms);
+  for (std::size_t i = 0; i < t.passes.entries().size(); ++i) {
+    const auto& [name, ms] = t.passes.entries()[i];
+    std::printf("%-24s %10s%s\n", name.c_str(), passTimeText(ms).c_str(),
+                t.passes.clockAt(i) == PassClock::Host ? " (host)" : "");
+  }
+  std::printf("%-24s %10s\n", "sum of passes", passTimeText(t.passes_total_ms).c_str());
   std::printf("%-24s %10.3f\n", "frame (host wall)", t.host_ms);
+  if (t.passes.anyHost())
+    std::printf("(host): timed on the host clock (a GL/CL hand-over, or a device whose own clock is unusable: the "
+                "pass bracketed by finish calls)\n");
+  if (t.passes.anyMissing()) std::printf("n/a: the device gave no usable time for the pass\n");
 }
 
 void printCounts(const FrameResult& c) {
@@ -273,8 +281,14 @@ void writeStatsJson(const RenderArgs& a, const TechniqueInfo& tech, const SceneI
   j["animate"] = a.animate;
   j["animated_lights_per_frame"] = run.animated_per_frame;
   nlohmann::ordered_json passes = nlohmann::ordered_json::object();
-  for (const auto& [name, ms] : run.timed.passes.entries()) passes[name] = ms;
-  j["passes"] = passes;
+  nlohmann::ordered_json clocks = nlohmann::ordered_json::object();
+  for (std::size_t i = 0; i < run.timed.passes.entries().size(); ++i) {
+    const auto& [name, ms] = run.timed.passes.entries()[i];
+    passes[name] = PassTimings::isMissing(ms) ? nlohmann::ordered_json() : nlohmann::ordered_json(ms);
+    clocks[name] = run.timed.passes.clockAt(i) == PassClock::Host ? "host" : "device";
+  }
+  j["passes"] = passes;  // null: the device gave no usable time
+  j["pass_clocks"] = clocks;  // "host": bracketed by finish calls, the device clock unusable
   j["frame_host_ms"] = run.timed.host_ms;
   const bool shaded = !a.no_shading;
   auto evals = [&](std::uint64_t v) { return shaded ? nlohmann::ordered_json(v) : nlohmann::ordered_json(); };

@@ -206,6 +206,9 @@ ExactLowerBound::ExactLowerBound(ClRuntime& rt) : rt_(rt) {
 
 void ExactLowerBound::setLights(cl::CommandQueue& q, const std::vector<gpu::PointLight>& lights) {
   grid_ = buildLightGrid(lights);
+  longest_list_ = 0;
+  for (std::size_t c = 0; c + 1 < grid_.cell_start.size(); ++c)
+    longest_list_ = std::max(longest_list_, grid_.cell_start[c + 1] - grid_.cell_start[c]);
   const auto& ctx = rt_.context();
   levels_ = compute::upload(ctx, q, grid_.levels);
   cell_start_ = compute::upload(ctx, q, grid_.cell_start);
@@ -219,9 +222,17 @@ void ExactLowerBound::count(cl::CommandQueue& q, const cl::Buffer& depth, gpu::B
   q.enqueueWriteBuffer(params_, CL_TRUE, 0, sizeof p, &p);
   const std::size_t n = std::size_t(p.width) * p.height;
   if (n == 0) return;
-  setArgs(kernel_, depth, params_, levels_, cell_start_, entries_, spheres_, counts);
-  q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr,
-                         timer ? timer->next("lower-bound") : nullptr);
+  // Slices of every cell's list, so that no work-item loops more than
+  // kLoopCap times in all (the kernel's header says why).
+  const std::uint32_t levels = std::max<std::uint32_t>(1, p.level_count);
+  const std::uint32_t span = std::max<std::uint32_t>(1, kLoopCap / levels - 1);
+  std::uint32_t first = 0;
+  do {
+    setArgs(kernel_, depth, params_, levels_, cell_start_, entries_, spheres_, counts, first, span);
+    q.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr,
+                           timer ? timer->next("lower-bound") : nullptr);
+    first += span;
+  } while (first < longest_list_);
 }
 
 }  // namespace ml

@@ -65,6 +65,10 @@ class ExactLowerBound {
   cl::Program program_;
   cl::Kernel kernel_;
   LightGrid grid_;
+  std::uint32_t longest_list_ = 0;  // entries of the grid's longest cell list
+  // Loop iterations per work-item and launch, all loops together: under
+  // llvmpipe's 65,535 with a margin (kernels/exact_lower_bound.cl).
+  static constexpr std::uint32_t kLoopCap = 60000;
   cl::Buffer params_, levels_, cell_start_, entries_, spheres_;
 };
 

@@ -39,6 +39,14 @@ void addPassNames(const PassTimings& passes, std::vector<std::string>& names) {
   }
 }
 
+void addHostClockNames(const PassTimings& passes, std::vector<std::string>& names) {
+  for (std::size_t i = 0; i < passes.entries().size(); ++i) {
+    const std::string& name = passes.entries()[i].first;
+    if (passes.clockAt(i) == PassClock::Host && std::find(names.begin(), names.end(), name) == names.end())
+      names.push_back(name);
+  }
+}
+
 std::string num(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -100,6 +108,8 @@ std::vector<std::size_t> selectFrames(const FrameRange& range, std::size_t path_
 
 Summary summarize(std::vector<double> values) {
   Summary s;
+  // A missing time (NaN) is not a value: it neither counts nor sorts.
+  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }), values.end());
   s.n = values.size();
   if (values.empty()) return s;
   std::sort(values.begin(), values.end());
@@ -214,6 +224,7 @@ std::vector<RunSummary> summarizeRuns(const std::vector<FrameRecord>& records) {
         total.push_back(r->passes_total_ms);
         host.push_back(r->host_ms);
         addPassNames(r->passes, pass_names);
+        addHostClockNames(r->passes, s.host_clock_passes);
       }
       mem.push_back(static_cast<double>(r->memory_bytes));
     }
@@ -265,7 +276,17 @@ std::vector<Field<R>> runFields() {
 // Counts are null without counting, evaluations also without shading, times without timing.
 Json counted(const FrameRecord& r, std::uint64_t v) { return r.counted ? Json(v) : Json(); }
 Json evaluated(const FrameRecord& r, std::uint64_t v) { return r.shaded ? counted(r, v) : Json(); }
-Json timedMs(const FrameRecord& r, double v) { return r.timed ? Json(v) : Json(); }
+// A time the device could not measure is null, never 0.
+Json msOrNull(double ms) { return PassTimings::isMissing(ms) ? Json() : Json(ms); }
+Json timedMs(const FrameRecord& r, double v) { return r.timed ? msOrNull(v) : Json(); }
+// Per pass, the clock that timed it: "device" (its profiling clock or GL
+// timer queries), or "host" (bracketed by finish calls: the device's clock unusable).
+Json passClocks(const PassTimings& passes) {
+  Json clocks = Json::object();
+  for (std::size_t i = 0; i < passes.entries().size(); ++i)
+    clocks[passes.entries()[i].first] = passes.clockAt(i) == PassClock::Host ? "host" : "device";
+  return clocks;
+}
 
 const std::vector<Field<FrameRecord>>& recordFields() {
   static const std::vector<Field<FrameRecord>> fields = [] {
@@ -281,9 +302,10 @@ const std::vector<Field<FrameRecord>>& recordFields() {
          [](const FrameRecord& r) {
            Json passes = Json::object();
            if (r.timed)
-             for (const auto& [name, ms] : r.passes.entries()) passes[name] = ms;
+             for (const auto& [name, ms] : r.passes.entries()) passes[name] = msOrNull(ms);
            return passes;
          }},
+        {"pass_clocks", false, [](const FrameRecord& r) { return r.timed ? passClocks(r.passes) : Json::object(); }},
         {"passes_total_ms", true, [](const FrameRecord& r) { return timedMs(r, r.passes_total_ms); }},
         {"host_ms", true, [](const FrameRecord& r) { return timedMs(r, r.host_ms); }},
         {"memory_bytes", true, [](const FrameRecord& r) { return Json(r.memory_bytes); }},
@@ -338,12 +360,19 @@ nlohmann::ordered_json summaryJson(const RunSummary& s) {
   j["light_evaluations"] = opt(s.counted && s.shaded, s.light_evaluations);
   j["lower_bound"] = opt(s.counted, s.lower_bound);
   j["covered_pixels"] = opt(s.counted, s.covered_pixels);
-  j["passes_total_ms"] = opt(s.timed, s.passes_total_ms);
+  j["passes_total_ms"] = opt(s.timed && s.passes_total_ms.n, s.passes_total_ms);
   j["host_ms"] = opt(s.timed, s.host_ms);
   j["memory_bytes"] = toJson(s.memory_bytes);
   nlohmann::ordered_json passes = nlohmann::ordered_json::object();
-  for (const auto& [name, sum] : s.passes) passes[name] = toJson(sum);
+  for (const auto& [name, sum] : s.passes) passes[name] = sum.n ? toJson(sum) : nlohmann::ordered_json();
   j["passes"] = passes;
+  nlohmann::ordered_json clocks = nlohmann::ordered_json::object();
+  for (const auto& [name, sum] : s.passes) {
+    const bool host = std::find(s.host_clock_passes.begin(), s.host_clock_passes.end(), name) !=
+                      s.host_clock_passes.end();
+    clocks[name] = host ? "host" : "device";
+  }
+  j["pass_clocks"] = clocks;
   return j;
 }
 
@@ -393,7 +422,7 @@ std::string benchCsv(const std::vector<FrameRecord>& records) {
       }
     for (const auto& n : pass_names) {
       out += ',';
-      if (r.timed) out += num(r.passes.get(n));
+      if (r.timed && !PassTimings::isMissing(r.passes.get(n))) out += num(r.passes.get(n));
     }
     out += '\n';
   }

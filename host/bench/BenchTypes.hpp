@@ -7,15 +7,18 @@
 //   {"run", "technique", "pipeline", "params": {k: v}, "lights", "light_file",
 //    "light_count", "width", "height", "frame", "light_evaluations",
 //    "lower_bound", "covered_pixels", "fragment_evaluations", "passes": {name: ms},
-//    "passes_total_ms", "host_ms", "memory_bytes", "technique_stats": {k: v},
+//    "pass_clocks": {name: "device"|"host"}, "passes_total_ms", "host_ms", "memory_bytes", "technique_stats": {k: v},
 //    "gi", "gi_settings": {k: v}, "voxel_bytes", "gi_rel_rmse", "gi_updates",
 //    "gi_reused" (the GI pass's updates and reuses over the timed renders; null
 //    without a GI pass or timing)}],
 //  "summaries": [{"run", ..., "frames", "light_evaluations": {mean, median, p95,
 //    max, min}, "lower_bound": {...}, "passes_total_ms": {...}, "host_ms": {...},
-//    "memory_bytes": {...}, "passes": {name: {...}}}]}
+//    "memory_bytes": {...}, "passes": {name: {...}}, "pass_clocks": {...}}]}
 // Counts are null in records of runs without counting (--no-counts), times are
-// null without timing (--no-timing). CSV: one row per record, the same scalar
+// null without timing (--no-timing). A pass time the device could not measure
+// is null (its CSV cell empty), never 0, and so is a total with such a part;
+// "pass_clocks" says which passes were timed on the host clock because the
+// device's own clock is unusable (host/cl/ClPassTimer.hpp, gl/GlPassTimer.hpp). CSV: one row per record, the same scalar
 // fields in the same order (one field table, BenchTypes.cpp; not "shaded"),
 // params and gi_settings as "k=v;k=v", then one "pass:<name>_ms" column per pass name.
 #include <nlohmann/json.hpp>
@@ -121,7 +124,8 @@ struct RunSummary : RunIdentity {
   std::size_t frames = 0;
   bool counted = false, timed = false, shaded = true;
   Summary light_evaluations, lower_bound, covered_pixels, passes_total_ms, host_ms, memory_bytes;
-  std::vector<std::pair<std::string, Summary>> passes;
+  std::vector<std::pair<std::string, Summary>> passes;  // n == 0: every frame's time missing (null)
+  std::vector<std::string> host_clock_passes;            // timed on the host clock in some frame
 };
 // One summary per distinct `run`, in first-appearance order.
 std::vector<RunSummary> summarizeRuns(const std::vector<FrameRecord>& records);

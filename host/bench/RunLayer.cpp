@@ -26,14 +26,16 @@ TimedFrame medianOf(const std::vector<FrameResult>& frames) {
   TimedFrame t;
   if (frames.empty()) return t;
   // Every pass that ran on any frame, in the order they first appear; a frame
-  // that did not run it counts 0 ms (it did not spend them).
+  // that did not run it counts 0 ms (it did not spend them), one whose time
+  // is missing does not count (all missing: the median is missing too).
   PassTimings names;
   for (const auto& f : frames) names.merge(f.passes);
-  for (const auto& [name, ms] : names.entries()) {
-    (void)ms;
+  for (std::size_t i = 0; i < names.entries().size(); ++i) {
+    const std::string& name = names.entries()[i].first;
     std::vector<double> v;
-    for (const auto& f : frames) v.push_back(f.passes.get(name));
-    t.passes.add(name, summarize(v).median);
+    for (const auto& f : frames)
+      if (!PassTimings::isMissing(f.passes.get(name))) v.push_back(f.passes.get(name));
+    t.passes.add(name, v.empty() ? PassTimings::kMissing : summarize(v).median, names.clockAt(i));
   }
   std::vector<double> host;
   for (const auto& f : frames) host.push_back(f.host_ms);

@@ -63,6 +63,7 @@ DeviceInfo queryDeviceInfo(const cl::Device& d) {
   DeviceInfo i;
   const cl::Platform p(d.getInfo<CL_DEVICE_PLATFORM>());
   i.platform_name = trimmed(p.getInfo<CL_PLATFORM_NAME>());
+  i.platform_vendor = trimmed(p.getInfo<CL_PLATFORM_VENDOR>());
   i.platform_version = trimmed(p.getInfo<CL_PLATFORM_VERSION>());
   i.name = trimmed(d.getInfo<CL_DEVICE_NAME>());
   i.vendor = trimmed(d.getInfo<CL_DEVICE_VENDOR>());
@@ -118,15 +119,54 @@ DeviceChoice DeviceChoice::parse(std::string_view text, std::string_view origin)
     c.kind = Kind::Cpu;
     return c;
   }
+  const char lead = text.front();
+  if ((lead < '0' || lead > '9') && lead != '-' && lead != '+') {
+    c.kind = Kind::Name;
+    c.name = std::string(text);
+    return c;
+  }
   int value = 0;
   for (char ch : text) {
     if (ch < '0' || ch > '9' || value > 100000)
-      throw UserError(std::string(origin) + ": expected gpu, cpu or a device index, got '" + std::string(text) + "'");
+      throw UserError(std::string(origin) + ": expected gpu, cpu, a device index or a platform/device name, got '" +
+                      std::string(text) + "'");
     value = value * 10 + (ch - '0');
   }
   c.kind = Kind::Index;
   c.index = value;
   return c;
+}
+
+namespace {
+
+std::string lowered(std::string_view s) {
+  std::string out(s);
+  for (char& ch : out)
+    if (ch >= 'A' && ch <= 'Z') ch = static_cast<char>(ch - 'A' + 'a');
+  return out;
+}
+
+bool nameMatches(const DeviceInfo& d, std::string_view wanted) {
+  const std::string w = lowered(wanted);
+  for (const std::string* field : {&d.platform_name, &d.platform_vendor, &d.name})
+    if (lowered(*field).find(w) != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+std::size_t deviceIndexByName(const std::vector<DeviceInfo>& devices, std::string_view name, std::string_view origin) {
+  std::vector<std::size_t> hits;
+  for (std::size_t i = 0; i < devices.size(); ++i)
+    if (nameMatches(devices[i], name)) hits.push_back(i);
+  if (hits.size() == 1) return hits.front();
+  std::string list;
+  for (std::size_t i = 0; i < devices.size(); ++i)
+    list += (i ? "; " : "") + std::to_string(i) + ": " + devices[i].platform_name + " (" + devices[i].platform_vendor +
+            ") / " + devices[i].name;
+  const std::string what = hits.empty() ? "matches no OpenCL device" : "matches more than one OpenCL device";
+  throw UserError(std::string(origin) + " '" + std::string(name) + "': " + what +
+                  " (platform name, platform vendor or device name); the devices are: " + list);
 }
 
 DeviceChoice DeviceChoice::resolve(std::string_view flag_value) {
@@ -135,7 +175,7 @@ DeviceChoice DeviceChoice::resolve(std::string_view flag_value) {
   return {};
 }
 
-std::vector<DeviceListing> listDevices() {
+std::vector<PlatformListing> listPlatforms() {
   std::vector<cl::Platform> platforms;
   try {
     cl::Platform::get(&platforms);
@@ -144,16 +184,29 @@ std::vector<DeviceListing> listDevices() {
     throw UserError("listing OpenCL platforms failed: " + describeClError(e));
   }
   if (platforms.empty()) throw UserError(kNoPlatformHelp);
-  std::vector<DeviceListing> out;
+  std::vector<PlatformListing> out;
+  int index = 0;
   for (const auto& p : platforms) {
+    PlatformListing& pl = out.emplace_back();
+    pl.platform = p;
+    pl.name = trimmed(p.getInfo<CL_PLATFORM_NAME>());
+    pl.vendor = trimmed(p.getInfo<CL_PLATFORM_VENDOR>());
+    pl.version = trimmed(p.getInfo<CL_PLATFORM_VERSION>());
     std::vector<cl::Device> devices;
     try {
       p.getDevices(CL_DEVICE_TYPE_ALL, &devices);
     } catch (const cl::Error&) {
       continue;  // CL_DEVICE_NOT_FOUND on an empty platform is not an error for us
     }
-    for (const auto& d : devices) out.push_back({static_cast<int>(out.size()), p, d, queryDeviceInfo(d)});
+    for (const auto& d : devices) pl.devices.push_back({index++, p, d, queryDeviceInfo(d)});
   }
+  return out;
+}
+
+std::vector<DeviceListing> listDevices() {
+  std::vector<DeviceListing> out;
+  for (auto& p : listPlatforms())
+    for (auto& d : p.devices) out.push_back(std::move(d));
   if (out.empty()) throw UserError(kNoPlatformHelp);
   return out;
 }
@@ -180,6 +233,11 @@ const DeviceListing* pickDevice(const std::vector<DeviceListing>& devices, Devic
     case DeviceChoice::Kind::Cpu:
       if (auto* d = first(&DeviceInfo::isCpu)) return d;
       throw UserError(choice.origin + " cpu: no OpenCL CPU device present (install pocl-opencl-icd)");
+    case DeviceChoice::Kind::Name: {
+      std::vector<DeviceInfo> infos;
+      for (const auto& d : devices) infos.push_back(d.info);
+      return &devices[deviceIndexByName(infos, choice.name, choice.origin)];
+    }
     case DeviceChoice::Kind::Default:
       break;
   }

@@ -3,9 +3,12 @@
 // (optionally sharing objects with the current GL context), one in-order
 // profiling queue, and the program builder with its on-disk binary cache.
 //
-// Device choice: `--device gpu|cpu|N` (N indexes the list printed by
-// `manylights devices`), else $MANYLIGHTS_DEVICE, else the first GPU, else the
-// first CPU device (PoCL). Errors are UserErrors naming the flag or variable.
+// Device choice: `--device gpu|cpu|N|NAME` (N indexes the list printed by
+// `manylights devices`; NAME is a case-insensitive part of one device's
+// platform name, platform vendor or device name, e.g. `pocl`, `rusticl`,
+// `llvmpipe`), else $MANYLIGHTS_DEVICE, else the first GPU, else the first CPU
+// device (PoCL). Errors are UserErrors naming the flag or variable; a NAME
+// that matches no device or several lists the devices.
 #include <CL/opencl.hpp>
 
 #include <memory>
@@ -20,12 +23,14 @@ namespace ml {
 class ProgramBuilder;
 
 struct DeviceChoice {
-  enum class Kind { Default, Gpu, Cpu, Index };
+  enum class Kind { Default, Gpu, Cpu, Index, Name };
   Kind kind = Kind::Default;
   int index = -1;
+  std::string name;                 // Kind::Name: what to look for
   std::string origin = "--device";  // what errors name: the flag or MANYLIGHTS_DEVICE
-  // Parses "gpu", "cpu", "default" or a non-negative integer; `origin` names the
-  // flag or variable in the error message.
+  // Parses "gpu", "cpu", "default", a non-negative integer, or else a name
+  // (text starting with a digit, '-' or '+' must be an index: "-1" and "1x"
+  // are errors); `origin` names the flag or variable in the error message.
   static DeviceChoice parse(std::string_view text, std::string_view origin);
   // The --device value if non-empty, else $MANYLIGHTS_DEVICE, else Default.
   static DeviceChoice resolve(std::string_view flag_value);
@@ -53,6 +58,7 @@ struct GlShareHandles {
 
 struct DeviceInfo {
   std::string platform_name;
+  std::string platform_vendor;
   std::string platform_version;
   std::string name;
   std::string vendor;
@@ -126,6 +132,20 @@ ShareChoice chooseShareMode(std::string_view env, bool sharing_active, bool zero
 // All devices of all platforms, in a stable order. Throws UserError naming the
 // package to install when no platform is present.
 std::vector<DeviceListing> listDevices();
+
+// Every platform, with or without devices (`manylights devices`), in the order
+// and with the indices of listDevices(). Throws like listDevices().
+struct PlatformListing {
+  cl::Platform platform;
+  std::string name, vendor, version;
+  std::vector<DeviceListing> devices;
+};
+std::vector<PlatformListing> listPlatforms();
+
+// The index in `devices` of the one device whose platform name, platform
+// vendor or device name contains `name` (ASCII case-insensitive). No match or
+// several: UserError naming `origin` and listing every device.
+std::size_t deviceIndexByName(const std::vector<DeviceInfo>& devices, std::string_view name, std::string_view origin);
 
 class ClRuntime {
  public:

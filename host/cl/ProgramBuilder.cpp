@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "host/cl/ClRuntime.hpp"
+#include "host/cl/KernelCacheProbe.hpp"
 #include "host/util/EmbeddedFiles.hpp"
 #include "host/util/Error.hpp"
 
@@ -79,13 +80,28 @@ cl::Program ProgramBuilder::build(std::string_view file, const Defines& defines)
   return buildSource(key, readEmbeddedFile(key), defines);
 }
 
-cl::Program ProgramBuilder::buildSource(std::string_view name, const std::string& source, const Defines& defines) {
-  std::string expanded = expandIncludes(name, source);
+std::string ProgramBuilder::options(const Defines& defines) const {
   std::string options = baseBuildOptions(device_);
   for (const auto& [k, v] : defines) options += " -D " + k + "=" + v;
-  std::uint64_t key = fnv1a64(expanded);
-  key = fnv1a64(options, key);
-  key = fnv1a64(device_id_, key);
+  return options;
+}
+
+std::uint64_t ProgramBuilder::cacheKey(std::string_view name, const std::string& source, const Defines& defines) const {
+  std::uint64_t key = fnv1a64(expandIncludes(name, source));
+  key = fnv1a64(options(defines), key);
+  return fnv1a64(device_id_, key);
+}
+
+bool ProgramBuilder::cachesBinaries() {
+  if (!cache_.enabled()) return false;
+  if (!driver_refuses_safely_) driver_refuses_safely_ = driverRefusesBinariesSafely(device_, device_id_);
+  return *driver_refuses_safely_;
+}
+
+cl::Program ProgramBuilder::buildSource(std::string_view name, const std::string& source, const Defines& defines) {
+  const std::string expanded = expandIncludes(name, source);
+  const std::string options = this->options(defines);
+  const std::uint64_t key = cacheKey(name, source, defines);
 
   std::lock_guard lock(mutex_);
   if (auto it = memo_.find(key); it != memo_.end()) {
@@ -99,7 +115,8 @@ cl::Program ProgramBuilder::buildSource(std::string_view name, const std::string
 
 cl::Program ProgramBuilder::compile(std::string_view name, const std::string& source, const std::string& options,
                                     std::uint64_t key) {
-  if (auto cached = fromCache(options, key)) {
+  const bool binaries = cachesBinaries();
+  if (auto cached = binaries ? fromCache(options, key) : std::nullopt) {
     ++stats_.disk_hits;
     return *cached;
   }
@@ -117,7 +134,7 @@ cl::Program ProgramBuilder::compile(std::string_view name, const std::string& so
                     "\n--- build log ---\n" + log);
   }
   ++stats_.compiles;
-  storeInCache(program, key);
+  if (binaries) storeInCache(program, key);
   return program;
 }
 

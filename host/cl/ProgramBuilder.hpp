@@ -11,8 +11,10 @@
 // checksum before the driver sees it; a bad entry, or one whose binary the
 // driver refuses, is deleted with one warning line and recompiled, and a cache
 // that cannot be written is turned off with one warning line: the cache never
-// makes a run fail. Programs are also memoised per process. A failed build
-// from source throws UserError with the build log.
+// makes a run fail. On a driver that ends the process when it refuses a binary
+// (Mesa rusticl; KernelCacheProbe.hpp) binaries are neither loaded nor stored:
+// every program is built from source there. Programs are also memoised per
+// process. A failed build from source throws UserError with the build log.
 #include <CL/opencl.hpp>
 
 #include <cstdint>
@@ -55,6 +57,11 @@ class ProgramBuilder {
   // an unusable folder, or a write failed earlier in this run).
   std::string cacheDir() const { return cache_.enabled() ? cache_.dir() : std::string(); }
   const KernelCache& cache() const { return cache_; }
+  // Whether binaries go to and come from the cache: it is enabled and the
+  // driver refuses a bad binary safely (probed once per driver, in a child process).
+  bool cachesBinaries();
+  // The cache key of a build (source after includes, options, device, driver, platform).
+  std::uint64_t cacheKey(std::string_view name, const std::string& source, const Defines& defines = {}) const;
 
   // Expands #include "..." lines from embedded files (exposed for tests).
   static std::string expandIncludes(std::string_view name, const std::string& source);
@@ -62,12 +69,14 @@ class ProgramBuilder {
  private:
   cl::Program compile(std::string_view name, const std::string& source, const std::string& options,
                       std::uint64_t key);
+  std::string options(const Defines& defines) const;
   std::optional<cl::Program> fromCache(const std::string& options, std::uint64_t key);
   void storeInCache(const cl::Program& program, std::uint64_t key);
   cl::Context context_;
   cl::Device device_;
   std::string device_id_;  // device + driver + platform, part of the key
   KernelCache cache_;
+  std::optional<bool> driver_refuses_safely_;
   std::map<std::uint64_t, cl::Program> memo_;
   std::mutex mutex_;
   Stats stats_;
