@@ -75,6 +75,21 @@ TEST_P(TiledChunked, RectanglesWiderThanTheColumnCache) {
   }
 }
 
+// The largest tiles (kMaxTileSize) with depth bounds: the CPU shape's
+// one-work-item-per-tile bounds kernel walks 65,536 pixels (twice for the 2.5D
+// mask), which passes llvmpipe's loop cap (tests/driver_loop_cap_test.cpp)
+// unless a work-group shares each tile there.
+TEST_P(TiledChunked, LargestTilesWithDepthBounds) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  for (auto mode : {TileDepthMode::MinMax, TileDepthMode::Mask}) {
+    SCOPED_TRACE(tileDepthModeName(mode));
+    TileLightCuller culler(test::runtime(), kMaxTileSize, mode, GetParam());
+    expectMatchesReference(culler, randomCase(rng, kMaxTileSize + 45, kMaxTileSize + 3, 60), kMaxTileSize, mode);
+  }
+}
+
 // The same light many times (each index must appear once per tile that it
 // reaches), lights of tiny and huge radius, far away and beyond the far plane.
 TEST_P(TiledChunked, DuplicatesAndExtremes) {

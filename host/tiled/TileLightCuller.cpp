@@ -56,7 +56,11 @@ TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMod
   program_ = rt.programs().build("tiled_light_culling.cl", {{"TILE_SIZE", std::to_string(tile_size)},
                                                             {"DEPTH_MODE", std::to_string(static_cast<int>(mode))},
                                                             {"CULL_LEGACY", legacy ? "1" : "0"}});
-  bounds_ = cl::Kernel(program_, gpu_shape_ ? "tile_depth_bounds_wg" : "tile_depth_bounds");
+  // A work-group per tile also in the CPU shape where one work-item's walk of
+  // a tile's pixels (twice for the 2.5D mask) could pass the device's loop cap.
+  const std::uint64_t pixels = std::uint64_t(tile_size) * tile_size;
+  group_bounds_ = gpu_shape_ || (scan_.tuning().max_chunk && 2 * (pixels + tile_size) + 4 > kLoopCapMargin);
+  bounds_ = cl::Kernel(program_, group_bounds_ ? "tile_depth_bounds_wg" : "tile_depth_bounds");
   rects_k_ = cl::Kernel(program_, "light_rects");
   mark_ = cl::Kernel(program_, gpu_shape_ ? "cull_mark_wg" : chunked_ ? "cull_mark_chunked" : "cull_mark");
   scatter_ = cl::Kernel(program_, gpu_shape_ ? "cull_scatter_wg" : chunked_ ? "cull_scatter_chunked" : "cull_scatter");
@@ -69,12 +73,14 @@ TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMod
   rects_local_ = elementLocalSize(rects_k_, dev, info);
   grid_local_ = elementLocalSize(write_grid_, dev, info);
   element_local_ = elementLocalSize(scatter_, dev, info);
-  if (gpu_shape_) {
+  if (group_bounds_)
     bounds_local_ = fitLocalSize(bounds_, dev, std::min<std::size_t>(std::size_t(tile_size) * tile_size, 256), 1, 0,
                                  "tile_depth_bounds_wg");
+  else
+    bounds_local_ = elementLocalSize(bounds_, dev, info);
+  if (gpu_shape_) {
     mark_local_ = fitLocalSize(mark_, dev, kMarkWg, 32, 0, "cull_mark_wg");
   } else {
-    bounds_local_ = elementLocalSize(bounds_, dev, info);
     // Chunked: a work-item per chunk of lights, local size 1 (a plain loop on PoCL).
     mark_local_ = chunked_ ? 1 : elementLocalSize(mark_, dev, info);
     if (chunked_) element_local_ = 1;
@@ -163,8 +169,8 @@ std::uint32_t TileLightCuller::count(cl::CommandQueue& q, const cl::Buffer& ligh
 
   if (mode_ != TileDepthMode::None) {
     setArgs(bounds_, *depth, cam, tiles_x, tiles_y, tile_bounds_, tile_masks_, tile_boxes_, tile_lanes_);
-    // GPU: one work-group per tile; CPU: one work-item per tile.
-    launch1d(q, bounds_, gpu_shape_ ? std::size_t(n_tiles) * bounds_local_ : n_tiles, bounds_local_,
+    // A work-group per tile (GPU shape, or large tiles on a loop-capped device), else a work-item.
+    launch1d(q, bounds_, group_bounds_ ? std::size_t(n_tiles) * bounds_local_ : n_tiles, bounds_local_,
              ev("tile-depth-bounds"));
   }
   q.enqueueFillBuffer(counts_, cl_uint(0), 0, std::size_t(n_tiles) * sizeof(cl_uint));

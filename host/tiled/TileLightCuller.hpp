@@ -11,7 +11,10 @@
 // list total): everything is sized from those, so nothing can overflow or be
 // truncated. Totals that could pass 2^32 (lights x tiles, e.g. 1M lights at
 // 4K) are summed again in 64 bits; a list or mask that 32-bit offsets or the
-// device's largest allocation cannot hold is a UserError, never a wrap. The
+// device's largest allocation cannot hold is a UserError, never a wrap; so is,
+// in the CPU shape on a device that ends a work-item's loops early (llvmpipe:
+// 65,535 iterations, tests/driver_loop_cap_test.cpp), a screen where one
+// light's rectangle could pass that cap (its chunks are sized under it). The
 // order inside a tile's list is unspecified (atomics).
 //
 // Kernel shape (KernelShape, --kernel-shape): CpuChunked gives each work-item
@@ -72,6 +75,7 @@ class TileLightCuller {
   KernelShape shape_;
   bool gpu_shape_;
   bool chunked_;  // CPU shape of ChunkCounts: per-chunk counters instead of atomics
+  bool group_bounds_ = false;  // depth bounds by tile_depth_bounds_wg (a work-group per tile)
   std::size_t bounds_local_ = 1, element_local_ = 1, mark_local_ = 32, rects_local_ = 1, grid_local_ = 1;
   cl::Program program_;
   cl::Kernel bounds_, rects_k_, mark_, scatter_, write_grid_, sides_k_, totals_k_, bases_k_;

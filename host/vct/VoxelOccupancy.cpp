@@ -17,12 +17,15 @@ VoxelOccupancy::VoxelOccupancy(const compute::ComputeEnv& env, const compute::Op
 
 namespace {
 
-// Where the device ends a work-item's loops after 65,535 iterations in total
-// (llvmpipe; Tuning::max_chunk is set there, tests/driver_loop_cap_test.cpp),
-// the most lines one work-item may take: a line of distance_lines costs at
-// most edge * (ML_OCC_MAX_DISTANCE + 1) + 1 loop iterations (the outward
-// search stops below the clamp), distance_rows' 2 * edge + 1 fewer. 0: no cap.
+// Loop iterations one work-item may take where the device ends a work-item's
+// loops after 65,535 in total (llvmpipe; Tuning::max_chunk is set there,
+// tests/driver_loop_cap_test.cpp): below the cap, with room for rounding.
 constexpr std::size_t kLoopCapMargin = 60000;
+
+// The most lines per work-item under that cap (0 where the device has none):
+// a line of distance_lines costs at most edge * (ML_OCC_MAX_DISTANCE + 1) + 1
+// iterations (the outward search stops below the clamp), one of
+// distance_rows 2 * edge + 1.
 
 std::size_t linesWithinLoopCap(const compute::Tuning& t, unsigned edge) {
   if (!t.max_chunk) return 0;
