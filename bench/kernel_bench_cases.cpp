@@ -63,11 +63,14 @@ namespace {
 // std::execution::par backend).
 void addHostCopies(Bench& b, std::size_t n) {
   auto poison = [&b, n] { std::fill(b.inputs(n).hostOut().begin(), b.inputs(n).hostOut().end(), 0xDEADBEEFu); };
-  auto check = [&b, n] { return firstDifference("copy", b.inputs(n).hostOut(), b.inputs(n).keys); };
+  auto check = [&b, n] {
+    const HostWords& out = b.inputs(n).hostOut();
+    return firstDifference("copy", std::vector<std::uint32_t>(out.begin(), out.end()), b.inputs(n).keys);
+  };
   b.h.add(Case("copy.host_memcpy", n, 8.0 * n)
               .onHost()
               .before(poison)
-              .run([&b, n] { std::memcpy(b.inputs(n).hostOut().data(), b.inputs(n).keys.data(), n * 4); })
+              .run([&b, n] { std::memcpy(b.inputs(n).hostOut().data(), b.inputs(n).hostSrc().data(), n * 4); })
               .checkedBy(check));
   b.h.add(Case("copy.host_memcpy_par", n, 8.0 * n)
               .onHost()
@@ -75,7 +78,7 @@ void addHostCopies(Bench& b, std::size_t n) {
               .run([&b, n] {
                 constexpr std::size_t block = 1u << 18;
                 std::uint32_t* out = b.inputs(n).hostOut().data();
-                const std::uint32_t* in = b.inputs(n).keys.data();
+                const std::uint32_t* in = b.inputs(n).hostSrc().data();
                 std::vector<std::size_t> starts;
                 for (std::size_t i = 0; i < n; i += block) starts.push_back(i);
                 std::for_each(std::execution::par, starts.begin(), starts.end(),

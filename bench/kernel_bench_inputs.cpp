@@ -46,7 +46,12 @@ const std::vector<std::uint32_t>& SizeInputs::sortedKeys() {
   return *sorted_;
 }
 
-std::vector<std::uint32_t>& SizeInputs::hostOut() {
+HostWords& SizeInputs::hostSrc() {
+  if (host_src_.size() != n) host_src_.assign(keys.begin(), keys.end());
+  return host_src_;
+}
+
+HostWords& SizeInputs::hostOut() {
   if (host_out_.size() != n) host_out_.assign(n, 0xDEADBEEFu);
   return host_out_;
 }

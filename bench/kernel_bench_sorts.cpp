@@ -64,7 +64,10 @@ void addDeviceSorts(Bench& b, std::size_t n) {
 // The host sorts work in the size's host buffer (freed with the size's inputs).
 void addHostSorts(Bench& b, std::size_t n) {
   auto fill = [&b, n] { std::copy(b.inputs(n).keys.begin(), b.inputs(n).keys.end(), b.inputs(n).hostOut().begin()); };
-  auto check = [&b, n] { return firstDifference("sorted keys", b.inputs(n).hostOut(), b.inputs(n).sortedKeys()); };
+  auto check = [&b, n] {
+    const HostWords& out = b.inputs(n).hostOut();
+    return firstDifference("sorted keys", std::vector<std::uint32_t>(out.begin(), out.end()), b.inputs(n).sortedKeys());
+  };
   b.h.add(Case("std_sort.u32", n, 8.0 * n)
               .onHost()
               .before(fill)

@@ -20,9 +20,9 @@ One run (`manylights-kernel-bench --json RUN.json`, or --benchmark_out=RUN.json
     parallel std::sort): peer time / our time, same n, same keys, same run.
 Times are Google Benchmark's real_time (manual time): the median aggregate
 when the run had --benchmark_repetitions, else the median of the runs. A case
-labelled timing=host was timed by the host clock (host peers always; device
-cases where the device's profiling clock was unusable): such rows are marked
-"(host clock)". A case that reported an error (its output differed from the
+labelled timing=host was timed by the host clock: the host peers always, and
+device cases where the device's profiling clock was unusable; the latter are
+marked "(host clock)". A case that reported an error (its output differed from the
 C++ twin) has no figures and is listed as failed.
 
 --compare OLD NEW: per case the two times and NEW/OLD, then the derived
@@ -49,6 +49,7 @@ OUR_SORTS = ["radix_sort.u32", "bitonic_sort.u32"]
 SORT_PEERS = ["boost_compute_sort.u32", "std_sort_par.u32", "std_sort.u32"]
 COPIES = ["copy.host_memcpy", "copy.host_memcpy_par", "copy.cl_enqueue_copy", "copy.cl_kernel_uint4"]
 DEVICE_COPIES = ["copy.cl_enqueue_copy", "copy.cl_kernel_uint4"]
+HOST_CASES = {"copy.host_memcpy", "copy.host_memcpy_par", "std_sort.u32", "std_sort_par.u32"}  # always the host clock
 UNIT_SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 STANDARD_COMPARE = "/usr/share/benchmark/compare.py"
 
@@ -100,9 +101,10 @@ def summarize(path, key, entries):
 
     seconds = statistics.median([float(e["real_time"]) * UNIT_SECONDS[e["time_unit"]] for e in chosen])
     labels = {e.get("label", "") for e in entries if e.get("label")}
+    # A device case the host clock timed (the device's profiling clock was unusable).
+    host_clock = "timing=host" in labels and key[0] not in HOST_CASES
     return {"seconds": seconds, "bytes_per_second": med("bytes_per_second"),
-            "items_per_second": med("items_per_second"), "passes": med("passes"),
-            "host_clock": "timing=host" in labels, "runs": len(runs), "median_of_repetitions": bool(medians)}
+            "items_per_second": med("items_per_second"), "passes": med("passes"), "host_clock": host_clock, "runs": len(runs), "median_of_repetitions": bool(medians)}
 
 
 def ok(rec):
@@ -177,6 +179,14 @@ def size_label(n):
     return "1080p" if n == 1920 * 1080 else str(n)
 
 
+def pct(x):
+    return f"{100 * x:.3g}%"
+
+
+def times(x):
+    return f"{x:.3g}x"
+
+
 def mark(host):
     return " (host clock)" if host else ""
 
@@ -191,16 +201,16 @@ def print_figures(title, cases, figs, context):
         rec = cases[(f["case"], f["n"])]
         at = "" if f["copy_n"] == f["n"] else f" at {size_label(f['copy_n'])}"
         print(f"| {size_label(f['n'])} | {f['case']}{mark(f['host_clock'])} | {format_time(rec['seconds'])} | "
-              f"{f['bytes_per_second'] * 1e-9:.2f} | {100 * f['fraction']:.1f}% "
-              f"({f['copy']}{at}, {f['copy_bytes_per_second'] * 1e-9:.2f} GB/s) |")
+              f"{f['bytes_per_second'] * 1e-9:.3g} | {pct(f['fraction'])} "
+              f"({f['copy']}{at}, {f['copy_bytes_per_second'] * 1e-9:.3g} GB/s) |")
     print("\n| n | radix_sort.u32 | passes | bound Mkeys/s | of the bound |\n|---|---|---|---|---|")
     for r in figs["radix_bound"]:
         which = "passes used" if r["passes_used"] else "reference"
         print(f"| {size_label(r['n'])} | n / ({r['passes']} x {format_time(r['copy_seconds'])}, {r['copy']}) | "
-              f"{r['passes']} ({which}) | {r['bound_keys_per_second'] * 1e-6:.1f} | {100 * r['fraction']:.1f}% |")
+              f"{r['passes']} ({which}) | {r['bound_keys_per_second'] * 1e-6:.4g} | {pct(r['fraction'])} |")
     print("\n| n | ours | peer | speed-up |\n|---|---|---|---|")
     for s in figs["speedups"]:
-        print(f"| {size_label(s['n'])} | {s['case']} | {s['peer']} | {s['speedup']:.2f}x |")
+        print(f"| {size_label(s['n'])} | {s['case']} | {s['peer']} | {times(s['speedup'])}{mark(s['host_clock'])} |")
     for f in figs["failed"]:
         print(f"\nFAILED {f['case']}/{f['n']}: {f['error']}")
     print()
@@ -228,13 +238,12 @@ def compare(old_path, new_path):
     for s in fn["speedups"]:
         before = index.get((s["case"], s["peer"], s["n"]))
         print(f"| {size_label(s['n'])} | {s['case']} | {s['peer']} | "
-              f"{'-' if before is None else f'{before:.2f}x'} | {s['speedup']:.2f}x |")
+              f"{'-' if before is None else times(before)} | {times(s['speedup'])} |")
     print("\n| n | case | of the fastest copy, old | new |\n|---|---|---|---|")
     index = {(f["case"], f["n"]): f["fraction"] for f in fo["copy_fraction"]}
     for f in fn["copy_fraction"]:
         before = index.get((f["case"], f["n"]))
-        print(f"| {size_label(f['n'])} | {f['case']} | {'-' if before is None else f'{100 * before:.1f}%'} | "
-              f"{100 * f['fraction']:.1f}% |")
+        print(f"| {size_label(f['n'])} | {f['case']} | {'-' if before is None else pct(before)} | {pct(f['fraction'])} |")
     return fo, fn
 
 
