@@ -14,6 +14,8 @@
 #include <tuple>
 #include <vector>
 
+#include "host/compute/ComputeEnv.hpp"
+#include "host/util/Error.hpp"
 #include "shape_support.hpp"
 #include "support/FpTolerance.hpp"
 #include "support/TestDevice.hpp"
@@ -87,6 +89,24 @@ TEST_P(TiledChunked, LargestTilesWithDepthBounds) {
     SCOPED_TRACE(tileDepthModeName(mode));
     TileLightCuller culler(test::runtime(), kMaxTileSize, mode, GetParam());
     expectMatchesReference(culler, randomCase(rng, kMaxTileSize + 45, kMaxTileSize + 3, 60), kMaxTileSize, mode);
+  }
+}
+
+// Tile 1 on a 300 x 200 screen: 60,000 tiles, so a light covering them all
+// would pass llvmpipe's loop cap in one work-item of the CPU shape. There
+// count() refuses the screen with a UserError instead of giving wrong lists;
+// elsewhere the lists are right.
+TEST_P(TiledChunked, ScreensPastTheDevicesLoopCapAreRefusedNotWrong) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const CullCase c = randomCase(rng, 300, 200, 5);
+  TileLightCuller culler(test::runtime(), 1, TileDepthMode::None, GetParam());
+  const bool capped = compute::resolveTuning(compute::ComputeEnv(test::runtime()), {}).max_chunk != 0;
+  if (capped && culler.shape() == KernelShape::CpuChunked) {
+    EXPECT_THROW(test::runCuller(culler, c), UserError);
+  } else {
+    expectMatchesReference(culler, c, 1, TileDepthMode::None);
   }
 }
 
