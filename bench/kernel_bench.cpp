@@ -52,7 +52,7 @@ struct Args {
 void addOptions(CLI::App& app, Args& a) {
   app.add_option("--sizes", a.sizes_text, "comma-separated element counts (default 2^16,2^20,2^22,2^24)");
   app.add_flag("--quick", a.quick, "2^16 and 2^20 only, no 1080p cases, 0.05 s per case: a smoke run");
-  app.add_option("--device", a.device, "OpenCL device: gpu, cpu or an index (default as the app)");
+  app.add_option("--device", a.device, "OpenCL device: gpu, cpu, an index or a name such as pocl or rusticl (default as the app)");
   app.add_option("--filter", a.filter,
                  "run only the cases whose name contains this text (comma-separated: any of these)");
   app.add_option("--reps", a.reps, "repetitions (--benchmark_repetitions): mean, median, stddev and cv over them")
