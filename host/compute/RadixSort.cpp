@@ -127,6 +127,9 @@ RadixSorter::RadixSorter(const ComputeEnv& env, const Options& options)
   }
   dummy_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, 16);
   host_pages_ = !tuning_.gpu() && env_.info().isCpu();
+  // GPU shape: tuning() reports the group size the (common) 32-bit kernels
+  // run with; the 64-bit ones start from it when first needed.
+  if (tuning_.gpu()) tuning_.wg = variant(false).wg;
 }
 
 RadixSorter::Variant& RadixSorter::variant(bool wide) {

@@ -40,8 +40,9 @@ class RadixSorter {
   void sort64(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* values, std::size_t n, unsigned key_bits = 64,
               ClPassTimer* timer = nullptr);
 
-  // tuning().wg is the first guess; the kernels of each key width are fitted
-  // to the device when first built (detail::buildFitted).
+  // GPU shape: tuning().wg is what the 32-bit kernels run with (fitted to the
+  // device on construction, detail::buildFitted); the 64-bit ones are fitted
+  // when first used, from there.
   const Tuning& tuning() const { return tuning_; }
   // The work-group size the GPU-shape kernels of that key width run with
   // (built on first use; 1 for the CPU shape).
