@@ -82,11 +82,7 @@ namespace {
 void printFrameRow(const std::string& size, const std::string& lights, const std::string& tech, int tech_width,
                    const TimedFrame& t, const FrameResult* counted) {
   std::printf("%-11s %7s %-*s", size.c_str(), lights.c_str(), tech_width, tech.c_str());
-  for (std::size_t i = 0; i < t.passes.entries().size(); ++i) {
-    const auto& [name, ms] = t.passes.entries()[i];
-    std::printf(" %s=%s%s", name.c_str(), passTimeText(ms, 2).c_str(),
-                t.passes.clockAt(i) == PassClock::Host ? "(host)" : "");
-  }
+  std::printf("%s", passListText(t.passes).c_str());
   if (!counted) {
     std::printf(" | frame=%.2f\n", t.host_ms);
     return;

@@ -58,11 +58,12 @@ nlohmann::json row(RunContext& ctx, FrameRenderer& renderer, const SweepScene& s
   std::printf("%-8s %7zu %5u^3 %-5s %5u %9.2f", s.name.c_str(), s.in.lights.size(), v.grid.voxels,
               v.grid.anisotropic ? "aniso" : "iso", v.cones, voxelize);
   for (const char* p : kPasses) {
-    j[p] = t.passes.get(p);
-    sum += t.passes.get(p);
-    std::printf(" %9.2f", t.passes.get(p));
+    const double ms = t.passes.get(p);  // NaN where the device could not time it: null in JSON, n/a here
+    j[p] = PassTimings::isMissing(ms) ? nlohmann::json() : nlohmann::json(ms);
+    sum += ms;
+    std::printf(" %9s", passTimeText(ms, 2).c_str());
   }
-  std::printf(" %9.2f %8.4f %9.1f\n", sum, e.rel_rmse, double(vct::voxelBytes(v.grid)) / 1e6);
+  std::printf(" %9s %8.4f %9.1f\n", passTimeText(sum, 2).c_str(), e.rel_rmse, double(vct::voxelBytes(v.grid)) / 1e6);
   return j;
 }
 

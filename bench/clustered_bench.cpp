@@ -161,8 +161,8 @@ Timed timeAssign(ClRuntime& rt, int reps, const ClusterView& v, AssignBuffers& b
   runAssign(rt, v, buf, a, r.total, &timer);
   PassTimings passes;
   timer.collect(passes);
-  std::printf("    %s leaf %u passes (device ms):", clusterAssignName(a.method()), a.leafSize());
-  for (const auto& [name, ms] : passes.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
+  std::printf("    %s leaf %u passes (ms):", clusterAssignName(a.method()), a.leafSize());
+  std::printf("%s", passListText(passes).c_str());
   r.listed = a.listedLights(rt.queue());
   std::printf(" | hit leaves %u (%.1f lights each)\n", r.total, r.total ? double(r.listed) / double(r.total) : 0.0);
   return r;

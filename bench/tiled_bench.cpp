@@ -59,7 +59,7 @@ double timeCuller(ClRuntime& rt, const Args& a, CullInputs& in, TileCullAlgorith
   });
   if (tp) {
     std::printf("  %s passes:", algo == TileCullAlgorithm::PairAtomics ? "old" : "new");
-    for (const auto& [name, ms] : pt.entries()) std::printf(" %s=%.2f", name.c_str(), ms);
+    std::printf("%s", passListText(pt).c_str());
     std::printf("\n");
   }
   return t;

@@ -122,6 +122,12 @@ inline void write_lanes(__global float* lanes, uint t, uint n_tiles, float4 zb, 
   lanes[3 * s + t] = box.y;
   lanes[4 * s + t] = box.z;
   lanes[5 * s + t] = box.w;
+  /* The last tile's item also fills the pad, as an empty tile (rejected by
+   * every test): the loads past a row's end then read written values, so the
+   * result does not depend on memory no kernel wrote (Oclgrind checks it). */
+  if (t + 1u == n_tiles)
+    for (uint p = n_tiles; p < n_tiles + LANE_PAD; ++p)
+      for (uint plane = 0; plane < 6u; ++plane) lanes[plane * s + p] = plane == 0u ? INFINITY : -INFINITY;
 }
 
 /* CPU shape: one work-item per tile walks its pixels. */

@@ -81,4 +81,15 @@ inline std::string passTimeText(double ms, int decimals = 3) {
   return buf;
 }
 
+// Every pass on one line, " name=1.23 other=n/a sort=0.50(host)": the form the
+// bench tables print, so a missing or host-clock time reads the same everywhere.
+inline std::string passListText(const PassTimings& t, int decimals = 2) {
+  std::string out;
+  for (std::size_t i = 0; i < t.entries().size(); ++i) {
+    const auto& [name, ms] = t.entries()[i];
+    out += " " + name + "=" + passTimeText(ms, decimals) + (t.clockAt(i) == PassClock::Host ? "(host)" : "");
+  }
+  return out;
+}
+
 }  // namespace ml

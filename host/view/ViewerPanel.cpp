@@ -165,16 +165,17 @@ void drawCamera(ViewerSession& s, PanelState& state) {
 void drawTimings(ViewerSession& s) {
   const FrameResult& f = s.lastFrame();
   if (ImGui::BeginTable("passes", 2)) {
-    for (const auto& [name, ms] : f.passes.entries()) {
+    for (std::size_t i = 0; i < f.passes.entries().size(); ++i) {
+      const auto& [name, ms] = f.passes.entries()[i];
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(name.c_str());
       ImGui::TableNextColumn();
-      ImGui::Text("%8.3f ms", ms);
+      ImGui::Text("%8s ms%s", passTimeText(ms).c_str(), f.passes.clockAt(i) == PassClock::Host ? " (host)" : "");
     }
     ImGui::TableNextColumn();
     ImGui::TextUnformatted("sum of passes");
     ImGui::TableNextColumn();
-    ImGui::Text("%8.3f ms", f.passes.total());
+    ImGui::Text("%8s ms", passTimeText(f.passes.total()).c_str());
     ImGui::EndTable();
   }
   const std::vector<float> history(s.frameHistoryMs().begin(), s.frameHistoryMs().end());

@@ -204,7 +204,7 @@ void ViewerSession::render() {
   } else {
     last_ = renderer_->render(camera, *assigner_, {.pipeline = technique_->pipeline, .gi = gi_->pass()});
   }
-  history_ms_.push_back(last_.passes.total());
+  if (!PassTimings::isMissing(last_.passes.total())) history_ms_.push_back(last_.passes.total());  // no n/a points
   if (history_ms_.size() > kHistoryFrames) history_ms_.pop_front();
   if (recording_) recorded_.frames.push_back(camera);
   rendered_version_ = controller_.version();

@@ -1,0 +1,104 @@
+// Every registered technique renders the same image with the same light counts
+// on two independent OpenCL implementations: PoCL (work-items of a group run
+// one after another) and Mesa rusticl (clang -> SPIR-V -> NIR -> llvmpipe,
+// work-items as SIMD lanes). A kernel that relies on an order of work-items,
+// on reading what another item writes without a barrier, or on one compiler's
+// output gives different lists on one of them, and so a different image or
+// count here. The tiled and clustered techniques also run their GPU kernel
+// shape (work-groups cooperating through local memory), sized by each device.
+// Needs both implementations (scripts/packages.txt installs them); with one
+// missing the test is skipped saying which package to install.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/RunCommand.hpp"
+
+namespace {
+
+using ml::test::CommandResult;
+using ml::test::runManylights;
+
+const char* const kRusticlEnv = "RUSTICL_ENABLE=llvmpipe";
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<std::string> registeredTechniques() {
+  const CommandResult r = runManylights("techniques");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> names;
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) names.push_back(line.substr(0, line.find(' ')));
+  return names;
+}
+
+bool isTime(const std::string& key) { return key.size() > 3 && key.compare(key.size() - 3, 3, " ms") == 0; }
+
+// The fields of the stats JSON that must not depend on the implementation:
+// everything but times, clocks and the names of the devices.
+nlohmann::json countsOf(const nlohmann::json& stats) {
+  nlohmann::json out;
+  for (const char* key : {"technique", "lights", "light_evaluations", "lower_bound", "missed_lights",
+                          "covered_pixels", "fragment_evaluations", "memory_bytes"})
+    out[key] = stats.at(key);
+  for (const auto& [key, value] : stats.at("technique_stats").items())
+    if (!isTime(key)) out["technique_stats"][key] = value;
+  return out;
+}
+
+struct Rendered {
+  std::string image, heatmap;
+  nlohmann::json counts;
+};
+
+Rendered render(const std::string& device, const std::string& technique, const std::string& extra) {
+  const std::string base = ml::test::tempDir() + "/" + device + "-" + technique + (extra.empty() ? "" : "-gpu");
+  const std::string args = "render --device " + device + " --technique " + technique +
+                           " --size 96x64 --lights 300 --frames 1 --counts --out " + base + ".png --heatmap " +
+                           base + "-heat.png --stats-json " + base + ".json " + extra;
+  const CommandResult r = runManylights(args, kRusticlEnv);
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+  if (r.exit_code != 0) return {};
+  return {slurp(base + ".png"), slurp(base + "-heat.png"), countsOf(ml::test::readJson(base + ".json"))};
+}
+
+bool hasKernelShapes(const std::string& technique) {
+  return technique.rfind("tiled", 0) == 0 || technique.rfind("clustered", 0) == 0;
+}
+
+TEST(CrossImplementation, EveryTechniqueRendersTheSameOnPoclAndRusticl) {
+  const CommandResult devices = runManylights("devices", kRusticlEnv);
+  ASSERT_EQ(devices.exit_code, 0) << devices.err;
+  if (devices.out.find("rusticl") == std::string::npos || devices.out.find("Portable Computing Language") ==
+                                                              std::string::npos)
+    GTEST_SKIP() << "needs PoCL and Mesa rusticl (apt-get install pocl-opencl-icd mesa-opencl-icd); found:\n"
+                 << devices.out;
+  const std::vector<std::string> techniques = registeredTechniques();
+  ASSERT_GE(techniques.size(), 8u);
+  for (const std::string& t : techniques) {
+    std::vector<std::string> variants{""};
+    if (hasKernelShapes(t)) variants.push_back("--kernel-shape gpu");
+    for (const std::string& extra : variants) {
+      SCOPED_TRACE(t + " " + extra);
+      const Rendered pocl = render("pocl", t, extra);
+      const Rendered rusticl = render("rusticl", t, extra);
+      ASSERT_FALSE(pocl.image.empty());
+      EXPECT_EQ(pocl.counts, rusticl.counts);
+      EXPECT_EQ(pocl.counts.at("missed_lights"), 0);
+      EXPECT_TRUE(pocl.image == rusticl.image) << "the images differ";
+      EXPECT_TRUE(pocl.heatmap == rusticl.heatmap) << "the heat maps differ";
+    }
+  }
+}
+
+}  // namespace
