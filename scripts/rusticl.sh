@@ -38,7 +38,8 @@ fi
 [[ -x "$build/tests/manylights-tests" ]] ||
   { echo "rusticl.sh: $build/tests/manylights-tests not built (scripts/setup.sh)" >&2; exit 2; }
 export RUSTICL_ENABLE=llvmpipe
-if ! "$build/manylights" devices 2>/dev/null | grep -qi rusticl; then
+devices="$("$build/manylights" devices 2>&1 || true)"
+if [[ "${devices,,}" != *rusticl* ]]; then
   echo "rusticl.sh: no rusticl device with RUSTICL_ENABLE=llvmpipe (apt-get install mesa-opencl-icd)" >&2
   exit 2
 fi

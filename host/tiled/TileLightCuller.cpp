@@ -39,11 +39,23 @@ std::uint32_t lightsWithinLoopCap(std::uint64_t tiles_x, std::uint64_t tiles_y) 
                     "--tile, a smaller --size or --kernel-shape gpu)");
   return std::uint32_t((kLoopCapMargin - n_tiles - 1) / (per_light + 1));
 }
+// Auto on a device that caps a work-item's loops (llvmpipe: the CPU shape's
+// tuning carries a max_chunk there) is the GPU shape, whose work-items walk a
+// tile's share of the lights rather than a chunk of lights over the whole
+// screen: a default run then never meets the CPU shape's refusal above
+// (1080p at tile 16 fits one light per chunk there). Otherwise by device type.
+KernelShape tiledShape(ClRuntime& rt, KernelShape requested) {
+  const KernelShape s = resolveKernelShape(rt.info(), requested);
+  if (requested != KernelShape::Auto || s != KernelShape::CpuChunked) return s;
+  const compute::ComputeEnv env(rt);
+  const bool capped = compute::resolveTuning(env, compute::Options{KernelShape::CpuChunked}).max_chunk != 0;
+  return capped ? KernelShape::GpuWorkGroup : s;
+}
 }  // namespace
 
 TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape,
                                  TileCullAlgorithm algorithm)
-    : rt_(rt), mode_(mode), shape_(resolveKernelShape(rt.info(), shape)), scan_(rt, compute::Options{shape_}) {
+    : rt_(rt), mode_(mode), shape_(tiledShape(rt, shape)), scan_(rt, compute::Options{shape_}) {
   if (tile_size < 1 || tile_size > kMaxTileSize)
     throw UserError("--tile: tile size must be 1.." + std::to_string(kMaxTileSize) + ", got " + std::to_string(tile_size));
   grid_.tile_size = tile_size;

@@ -23,7 +23,8 @@
 // a tile's pixels per work-item for the depth bounds; GpuWorkGroup gives each
 // (light, tile) pair a work-item (an atomic count per list entry, order
 // unspecified) and each tile's depth a work-group. Both give the same grid and
-// the same lists up to order; Auto picks by device type. Both hoist the
+// the same lists up to order; Auto picks by device type, but the GPU shape
+// on a device that caps loops (the CPU shape's refusal above). Both hoist the
 // per-tile culling math (side planes, depth box) out of the per-pair loop.
 //
 // TileCullAlgorithm::PairAtomics is the culler before that rework (per-pair
