@@ -47,4 +47,5 @@ SECONDS=0
 status=0
 run_shards "$build" rusticl "RUSTICL_ENABLE=llvmpipe MANYLIGHTS_DEVICE=rusticl" "$filter" || status=1
 echo "rusticl: ${SECONDS}s, $([[ $status == 0 ]] && echo passed || echo FAILED)"
+echo "rusticl: $SHARDS_PASSED passed, $SHARDS_FAILED failed"
 exit "$status"

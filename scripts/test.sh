@@ -35,11 +35,14 @@ step "tests (Release, PoCL)"
 # The kernel tests of both shapes and the technique renders again on Mesa
 # rusticl, the second OpenCL implementation (scripts/rusticl.sh runs it all).
 if [[ "${RUSTICL:-1}" != 0 ]]; then
-  scripts/rusticl.sh --ci
+  scripts/rusticl.sh --ci | tee build/rusticl-ci.log
+  read -r p f < <(sed -n 's/^rusticl: \([0-9]*\) passed, \([0-9]*\) failed$/\1 \2/p' build/rusticl-ci.log)  || true
+  SHARDS_PASSED=$((SHARDS_PASSED + ${p:-0}))
+  SHARDS_FAILED=$((SHARDS_FAILED + ${f:-0}))
   step "tests (Release, rusticl selection)"
 fi
 
-# The GPU-shape kernel tests under the Oclgrind device simulator (races,
+# The kernel tests of both shapes under the Oclgrind device simulator (races,
 # uninitialized values, out-of-bounds accesses, API errors), at small sizes.
 if [[ "${OCLGRIND:-1}" != 0 ]]; then
   scripts/oclgrind.sh --ci
@@ -67,3 +70,5 @@ if [[ "${1:-}" != "--no-asan" ]]; then
   step "tests (ASan + UBSan)"
 fi
 echo "== total: $(($(date +%s) - start))s =="
+# Every gtest run above (PoCL, rusticl, sanitizers) in one closing line.
+echo "tests: $SHARDS_PASSED passed, $SHARDS_FAILED failed"

@@ -143,8 +143,12 @@ TEST(ProgramBuilder, SecondBuildHitsDiskCache) {
   // A source unique to this run so no earlier cache entry can exist.
   const std::string src = "__kernel void k(__global int* a) { a[get_global_id(0)] = " +
                           std::to_string(std::rand()) + "; }\n";
+  // A driver that ends the process when it refuses a binary (rusticl) gets
+  // none (host/cl/KernelCacheProbe.hpp): there the second build compiles too.
+  bool caches = false;
   {
     auto rt = ClRuntime::create(DeviceChoice::resolve(""));
+    caches = rt->programs().cachesBinaries();
     rt->programs().buildSource("cache_probe.cl", src);
     EXPECT_EQ(rt->programs().stats().compiles, 1);
     EXPECT_EQ(rt->programs().stats().disk_hits, 0);
@@ -152,8 +156,8 @@ TEST(ProgramBuilder, SecondBuildHitsDiskCache) {
   {
     auto rt = ClRuntime::create(DeviceChoice::resolve(""));
     cl::Program p = rt->programs().buildSource("cache_probe.cl", src);
-    EXPECT_EQ(rt->programs().stats().compiles, 0);
-    EXPECT_EQ(rt->programs().stats().disk_hits, 1);
+    EXPECT_EQ(rt->programs().stats().compiles, caches ? 0 : 1);
+    EXPECT_EQ(rt->programs().stats().disk_hits, caches ? 1 : 0);
     // The cached program still runs.
     cl::Buffer buf(rt->context(), CL_MEM_READ_WRITE, 4 * sizeof(int));
     cl::Kernel k(p, "k");
@@ -164,7 +168,7 @@ TEST(ProgramBuilder, SecondBuildHitsDiskCache) {
     EXPECT_EQ(out[3], std::stoi(src.substr(src.find("= ") + 2)));
     // Different defines are a different entry.
     rt->programs().buildSource("cache_probe.cl", src, {{"UNUSED", "1"}});
-    EXPECT_EQ(rt->programs().stats().compiles, 1);
+    EXPECT_EQ(rt->programs().stats().compiles, caches ? 1 : 2);
   }
   ::unsetenv("MANYLIGHTS_CACHE_DIR");
   std::filesystem::remove_all(dir);

@@ -21,8 +21,13 @@ VoxelInjector::VoxelInjector(const compute::ComputeEnv& env, const compute::Opti
 
 void VoxelInjector::build() {
   if (brute_()) return;
-  cl::Program p = compute::detail::buildShaped(
-      env_, tuning_, "vct_inject.cl", {{"VCT_SHADOWS", shadows_ ? "1" : "0"}, {"VCT_SHADOW_SKIP", skip_ ? "1" : "0"}});
+  // GPU shape: the group size the compiled kernels accept on this device.
+  const compute::detail::FittedProgram fitted =
+      compute::detail::buildFitted(env_, tuning_, "vct_inject.cl", "voxel injection", [this](std::size_t) {
+        return Defines{{"VCT_SHADOWS", shadows_ ? "1" : "0"}, {"VCT_SHADOW_SKIP", skip_ ? "1" : "0"}};
+      });
+  tuning_.wg = fitted.wg;
+  const cl::Program& p = fitted.program;
   brute_ = cl::Kernel(p, "inject_brute");
   hashed_ = cl::Kernel(p, "inject_hashed");
   if (shadows_) probe_ = cl::Kernel(p, "visibility_probe");

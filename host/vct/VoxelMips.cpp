@@ -26,9 +26,11 @@ VoxelMips::VoxelMips(const compute::ComputeEnv& env, const compute::Options& opt
 
 void VoxelMips::build() {
   if (iso_()) return;
-  cl::Program p = compute::detail::buildShaped(env_, tuning_, "vct_mips.cl");
-  iso_ = cl::Kernel(p, "mip_iso");
-  aniso_ = cl::Kernel(p, "mip_aniso");
+  // GPU shape: the group size the compiled kernels accept on this device.
+  const compute::detail::FittedProgram fitted = compute::detail::buildFitted(env_, tuning_, "vct_mips.cl", "voxel mips");
+  tuning_.wg = fitted.wg;
+  iso_ = cl::Kernel(fitted.program, "mip_iso");
+  aniso_ = cl::Kernel(fitted.program, "mip_aniso");
 }
 
 // Launches `k` (arguments 0 .. first_arg - 1 set by the caller) once per run

@@ -63,9 +63,11 @@ void VoxelOccupancy::build(cl::CommandQueue& q, unsigned edge, const cl::Buffer&
     capacity_ = n;
   }
   if (!rows_()) {
-    cl::Program p = compute::detail::buildShaped(env_, tuning_, "vct_occupancy.cl");
-    rows_ = cl::Kernel(p, "distance_rows");
-    lines_ = cl::Kernel(p, "distance_lines");
+    const compute::detail::FittedProgram fitted =
+        compute::detail::buildFitted(env_, tuning_, "vct_occupancy.cl", "voxel occupancy");
+    tuning_.wg = fitted.wg;  // GPU shape: the group size the compiled kernels accept here
+    rows_ = cl::Kernel(fitted.program, "distance_rows");
+    lines_ = cl::Kernel(fitted.program, "distance_lines");
   }
   const std::size_t lines = std::size_t(edge) * edge;
   compute::detail::setArgs(rows_, accum, cl_uint(edge), buffer_);
