@@ -8,6 +8,7 @@
 #include <memory>
 #include <random>
 
+#include "MipTraffic.hpp"
 #include "host/compute/ComputeEnv.hpp"
 #include "host/compute/HostIo.hpp"
 #include "host/vct/VoxelMips.hpp"
@@ -20,15 +21,7 @@ using compute::download;
 
 namespace {
 
-double mipBytes(unsigned edge, unsigned levels, bool aniso) {
-  double bytes = 0;
-  for (unsigned l = 1; l < levels; ++l) {
-    const double n = double(edge >> l) * double(edge >> l) * double(edge >> l);
-    const double sets = aniso ? 6 : 1, read_sets = aniso && l > 1 ? 6 : 1;
-    bytes += 16 * n * (8 * read_sets + sets);
-  }
-  return bytes;
-}
+double mipBytes(unsigned edge, unsigned levels, bool aniso) { return ml::bench::mipTrafficBytes(edge, levels, aniso); }
 
 struct VolumeInputs {
   VolumeInputs(Bench& b, unsigned edge, unsigned levels)

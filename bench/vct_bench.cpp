@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "MipTraffic.hpp"
 #include "host/bench/BenchInputs.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/cl/KernelArgs.hpp"
@@ -82,16 +83,7 @@ constexpr const char* kCopySource =
     "__kernel void copy4(__global const float4* restrict a, __global float4* restrict b, uint n) {\n"
     "  const uint i = get_global_id(0); if (i < n) b[i] = a[i]; }\n";
 
-// Bytes the mips read and write, per the header.
-double mipBytes(unsigned edge, unsigned levels, bool aniso) {
-  double b = 0;
-  for (unsigned l = 1; l < levels; ++l) {
-    const double n = double(edge >> l) * double(edge >> l) * double(edge >> l);
-    const double sets = aniso ? 6 : 1, read_sets = aniso && l > 1 ? 6 : 1;
-    b += 16 * n * (8 * read_sets + sets);
-  }
-  return b;
-}
+double mipBytes(unsigned edge, unsigned levels, bool aniso) { return ml::bench::mipTrafficBytes(edge, levels, aniso); }
 
 struct Bench {
   ClRuntime& rt;
