@@ -4,6 +4,7 @@
 //   manylights-kernel-bench [--sizes 65536,1048576,...] [--quick] [--device D] [--filter TEXT[,TEXT...]]
 //                           [--reps N] [--json F] [--profile] [--shape auto|cpu|gpu] [--chunks N]
 //                           [--radix-bits B] [--sort-chunk C] [--wg W] [--mips-edges E,...] [--mips-levels L]
+//                           [--tile-lights N,...]
 //                           [--benchmark_* flags of Google Benchmark]
 //
 // The cases and what each counts: kernel_bench_cases.hpp; timing, checks and
@@ -41,7 +42,7 @@ constexpr const char* kProgram = "manylights-kernel-bench";
 
 struct Args {
   std::string sizes_text = "65536,1048576,4194304,16777216";
-  std::string json_path, device, filter, shape = "auto", mips_edges = "128", self_test;
+  std::string json_path, device, filter, shape = "auto", mips_edges = "128", tile_lights = "10000,100000", self_test;
   unsigned mips_levels = 4;
   int reps = 0;
   bool quick = false, profile = false;
@@ -66,6 +67,8 @@ void addOptions(CLI::App& app, Args& a) {
   app.add_option("--sort-chunk", a.tune.sort_chunk, "tuning override: CPU-shape bitonic block (power of two)");
   app.add_option("--wg", a.tune.work_group_size, "tuning override: GPU-shape work-group size (power of two)");
   app.add_option("--mips-edges", a.mips_edges, "VCT mip cases: grid edges, powers of two (default 128; '' for none)");
+  app.add_option("--tile-lights", a.tile_lights,
+                 "tile culling cases at 1080p: light counts (default 10000,100000; '' for none; --quick: none)");
   app.add_option("--mips-levels", a.mips_levels, "VCT mip cases: levels (default 4)")->check(CLI::Range(2u, 8u));
   app.add_option("--check-self-test", a.self_test,
                  "test hook: undo this case's output before its check, which must then fail")
@@ -77,15 +80,21 @@ void addOptions(CLI::App& app, Args& a) {
       "Derived figures and comparisons: scripts/kernel_bench_ratios.py");
 }
 
-std::vector<std::size_t> parseSizes(const Args& a) {
-  if (a.quick) return {1u << 16, 1u << 20};
-  std::vector<std::size_t> sizes;
-  for (const auto& item : splitList(a.sizes_text)) {
+// "a,b,..." of counts in 1 .. 2^32-1; `flag` names the list in errors.
+std::vector<std::size_t> parseCounts(const std::string& text, const std::string& flag) {
+  std::vector<std::size_t> counts;
+  for (const auto& item : splitList(text)) {
     const bool digits = !item.empty() && item.size() <= 12 && item.find_first_not_of("0123456789") == std::string::npos;
     if (!digits || std::stoull(item) == 0 || std::stoull(item) >= (1ull << 32))
-      throw UserError("--sizes: '" + item + "' is not an element count in 1 .. 2^32-1");
-    sizes.push_back(std::stoull(item));
+      throw UserError(flag + ": '" + item + "' is not a count in 1 .. 2^32-1");
+    counts.push_back(std::stoull(item));
   }
+  return counts;
+}
+
+std::vector<std::size_t> parseSizes(const Args& a) {
+  if (a.quick) return {1u << 16, 1u << 20};
+  std::vector<std::size_t> sizes = parseCounts(a.sizes_text, "--sizes");
   if (sizes.empty()) throw UserError("--sizes: no sizes given");
   return sizes;
 }
@@ -176,6 +185,7 @@ int runBenchmarks(Args& a) {
                                     : compute::Shape::Auto;
   const std::vector<std::size_t> sizes = parseSizes(a);
   const std::vector<unsigned> edges = parseEdges(a);
+  const std::vector<std::size_t> tile_lights = a.quick ? std::vector<std::size_t>{} : parseCounts(a.tile_lights, "--tile-lights");
   benchutil::requireWritable("--json", a.json_path);
   std::vector<std::string> gb = gbenchArgs(a);
   std::vector<char*> gargv{const_cast<char*>(kProgram)};
@@ -193,6 +203,7 @@ int runBenchmarks(Args& a) {
   benchmark::AddCustomContext("host_threads", std::to_string(std::thread::hardware_concurrency()));
   for (const std::size_t n : sizes) kbench::addSizeCases(bench, n);
   if (!a.quick) kbench::add1080pCases(bench);
+  for (const std::size_t n : tile_lights) kbench::addTileCullCases(bench, n);
   for (const unsigned e : edges) kbench::addVctCases(bench, e, a.mips_levels);
 
   const std::size_t ran = benchmark::RunSpecifiedBenchmarks();

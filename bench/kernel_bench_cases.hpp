@@ -9,6 +9,9 @@
 //    scan, sum reduction and compaction (half the keys kept);
 //  - at 1080p (add1080pCases): scan, segmented sort of 16x16-tile-sized and
 //    of variable (1..511) segments, per-tile depth min/max;
+//  - tile light culling at 1080p (addTileCullCases, kernel_bench_tiled.cpp):
+//    our culler, with the previous culler (tile_cull_pair_atomics) and the
+//    C++ culler on TBB (tile_cull_cpp_tbb) as peers, n = lights;
 //  - VCT mips (addVctCases, kernel_bench_vct.cpp): isotropic and anisotropic
 //    mip propagation of a voxel volume.
 // Every case checks its first run against a C++ twin. bytes counts the
@@ -59,6 +62,7 @@ struct Bench {
 void addSizeCases(Bench& b, std::size_t n);
 void addSortCases(Bench& b, std::size_t n);
 void add1080pCases(Bench& b);
+void addTileCullCases(Bench& b, std::size_t lights);
 void addVctCases(Bench& b, unsigned edge, unsigned levels);
 
 }  // namespace ml::kbench

@@ -17,7 +17,9 @@ One run (`manylights-kernel-bench --json RUN.json`, or --benchmark_out=RUN.json
     bound(P) = n / (P x t_copy), for P = 4 (8-bit digits) and the passes the
     sorter made (its "passes" counter);
   - the speed-up of our sorts over each peer (Boost.Compute, std::sort,
-    parallel std::sort): peer time / our time, same n, same keys, same run.
+    parallel std::sort) and of our tile culler over its peers (the previous
+    culler with an atomic per list entry, the C++ culler on TBB): peer time /
+    our time, same n, same inputs, same run.
 Times are Google Benchmark's real_time (manual time): the median aggregate
 when the run had --benchmark_repetitions, else the median of the runs. A case
 labelled timing=host was timed by the host clock: the host peers always, and
@@ -47,9 +49,13 @@ import sys
 
 OUR_SORTS = ["radix_sort.u32", "bitonic_sort.u32"]
 SORT_PEERS = ["boost_compute_sort.u32", "std_sort_par.u32", "std_sort.u32"]
+# Ours -> its peers: every speed-up the figures list (same n, same inputs, same run).
+PEERS = {ours: SORT_PEERS for ours in OUR_SORTS}
+PEERS["tile_cull.minmax.1080p"] = ["tile_cull_pair_atomics.minmax.1080p", "tile_cull_cpp_tbb.minmax.1080p"]
 COPIES = ["copy.host_memcpy", "copy.host_memcpy_par", "copy.cl_enqueue_copy", "copy.cl_kernel_uint4"]
 DEVICE_COPIES = ["copy.cl_enqueue_copy", "copy.cl_kernel_uint4"]
-HOST_CASES = {"copy.host_memcpy", "copy.host_memcpy_par", "std_sort.u32", "std_sort_par.u32"}  # always the host clock
+HOST_CASES = {"copy.host_memcpy", "copy.host_memcpy_par", "std_sort.u32", "std_sort_par.u32",
+              "tile_cull_cpp_tbb.minmax.1080p"}  # always the host clock
 UNIT_SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 STANDARD_COMPARE = "/usr/share/benchmark/compare.py"
 
@@ -151,8 +157,8 @@ def figures(cases):
     sizes = sorted({k[1] for k in cases})
     for n in sizes:
         radix_bound(cases, n, out["radix_bound"])
-        for ours in OUR_SORTS:
-            for peer in SORT_PEERS:
+        for ours, peers in PEERS.items():
+            for peer in peers:
                 a, b = cases.get((ours, n)), cases.get((peer, n))
                 if ok(a) and ok(b):
                     out["speedups"].append({"case": ours, "peer": peer, "n": n, "speedup": b["seconds"] / a["seconds"],

@@ -32,15 +32,17 @@ using test::CommandResult;
 using test::lines;
 using test::runShell;
 
-constexpr std::size_t kN = 4099, kFrame = 1920 * 1080, kVoxels = 16 * 16 * 16;
+constexpr std::size_t kN = 4099, kFrame = 1920 * 1080, kVoxels = 16 * 16 * 16, kTileLights = 2000;
 const std::vector<std::string> kSizeCases = {
     "copy.host_memcpy",     "copy.host_memcpy_par", "copy.cl_enqueue_copy", "copy.cl_kernel_uint4",   "radix_sort.u32",
     "radix_sort.u32_pairs", "radix_sort.u64",       "bitonic_sort.u32",     "boost_compute_sort.u32", "std_sort.u32",
     "std_sort_par.u32",     "scan.exclusive.u32",   "reduce.sum.u32",       "compact.half.u32"};
 const std::vector<std::string> kFrameCases = {"scan.exclusive.u32.1080p", "segmented_sort.pairs.seg256.1080p",
                                               "segmented_sort.pairs.var256.1080p", "tile_minmax.depth16.1080p"};
+const std::vector<std::string> kTileCases = {"tile_cull.minmax.1080p", "tile_cull_pair_atomics.minmax.1080p",
+                                             "tile_cull_cpp_tbb.minmax.1080p"};
 const std::set<std::string> kHostCases = {"copy.host_memcpy", "copy.host_memcpy_par", "std_sort.u32",
-                                          "std_sort_par.u32"};
+                                          "std_sort_par.u32", "tile_cull_cpp_tbb.minmax.1080p"};
 
 CommandResult runBench(const std::string& args) { return runShell(std::string(MANYLIGHTS_KERNEL_BENCH) + " " + args); }
 CommandResult runRatios(const std::string& args) {
@@ -55,7 +57,7 @@ const TinyRun& tinyRun() {
   static const TinyRun r = [] {
     const std::string json = test::tempDir() + "/kernel-bench.json";
     return TinyRun{runBench("--sizes " + std::to_string(kN) +
-                        " --mips-edges 16 --mips-levels 3 --reps 2 --benchmark_min_time=0.01 --json " + json),
+                        " --mips-edges 16 --mips-levels 3 --tile-lights " + std::to_string(kTileLights) + " --reps 2 --benchmark_min_time=0.01 --json " + json),
                json};
   }();
   return r;
@@ -91,6 +93,7 @@ TEST(BenchKernel, GoogleBenchmarkJsonWithATimeForEveryCase) {
   for (const auto& c : kSizeCases) want.insert(caseName(c, kN));
   for (const auto& c : kFrameCases) want.insert(caseName(c, kFrame));
   for (const char* c : {"vct_mips.isotropic", "vct_mips.anisotropic"}) want.insert(caseName(c, kVoxels));
+  for (const auto& c : kTileCases) want.insert(caseName(c, kTileLights));
   // PoCL's profiling clock works: its device cases must be timed by events
   // (a marker-span check that always fell back to the host clock fails here).
   const bool profiling_device =
@@ -163,6 +166,15 @@ TEST(BenchKernel, RatioScriptComputesItsFiguresFromTheJson) {
     EXPECT_NEAR(sp.at("speedup").get<double>(), median(doc, caseName(peer, kN), "real_time") / radix, 1e-9) << peer;
   }
   EXPECT_EQ(peers, (std::set<std::string>{"boost_compute_sort.u32", "std_sort.u32", "std_sort_par.u32"}));
+  const double cull = median(doc, caseName(kTileCases[0], kTileLights), "real_time");
+  std::set<std::string> cull_peers;
+  for (const auto& sp : f.at("speedups")) {
+    if (sp.at("case") != kTileCases[0]) continue;
+    const std::string peer = sp.at("peer");
+    cull_peers.insert(peer);
+    EXPECT_NEAR(sp.at("speedup").get<double>(), median(doc, caseName(peer, kTileLights), "real_time") / cull, 1e-9);
+  }
+  EXPECT_EQ(cull_peers, (std::set<std::string>{kTileCases[1], kTileCases[2]}));
 
   double t_any = 0, t_device = 0;
   const double best = fastestCopy(
@@ -198,10 +210,11 @@ TEST(BenchKernel, CompareModeReadsTwoRuns) {
 }
 
 TEST(BenchKernel, OutputUndoneBeforeItsCheckReportsAnErrorNotATime) {
-  for (const std::string c : {"radix_sort.u32", "scan.exclusive.u32", "reduce.sum.u32", "copy.cl_kernel_uint4"}) {
+  for (const std::string c :
+       {"radix_sort.u32", "scan.exclusive.u32", "reduce.sum.u32", "copy.cl_kernel_uint4", "tile_cull.minmax.1080p"}) {
     SCOPED_TRACE(c);
     const std::string json = test::tempDir() + "/undone-" + c + ".json";
-    const CommandResult r = runBench("--sizes " + std::to_string(kN) + " --mips-edges '' --filter " + c + "/" +
+    const CommandResult r = runBench("--sizes " + std::to_string(kN) + " --tile-lights " + std::to_string(kN) + " --mips-edges '' --filter " + c + "/" +
                                      " --benchmark_min_time=0.01 --check-self-test " + c + " --json " + json);
     EXPECT_EQ(r.exit_code, 1) << r.err << r.out;
     EXPECT_NE(r.err.find("differs from its C++ twin"), std::string::npos) << r.err;
@@ -218,7 +231,7 @@ TEST(BenchKernel, OutputUndoneBeforeItsCheckReportsAnErrorNotATime) {
 
 TEST(BenchKernel, BadFlagsAreOneLineAndExitTwo) {
   for (const std::string args : {"--nope", "--benchmark_nope=1", "--sizes 0", "--sizes 12,x", "--mips-edges 12",
-                                 "--shape wide", "--filter a --benchmark_filter=b"}) {
+                                 "--shape wide", "--filter a --benchmark_filter=b", "--tile-lights 0", "--tile-lights x"}) {
     SCOPED_TRACE(args);
     const CommandResult r = runBench(args);
     EXPECT_EQ(r.exit_code, 2) << r.err << r.out;
