@@ -1,6 +1,6 @@
 // Helpers shared by the technique benchmarks (tiled, clustered, hashed):
 // medians, repeated timing, JSON output and the error-reporting main().
-// Comma lists use ml::splitList (host/bench/BenchInputs.hpp), as the CLI does.
+// Comma lists use ml::splitList (host/run/SceneInputs.hpp), as the CLI does.
 #pragma once
 
 #include <algorithm>
@@ -15,7 +15,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "host/bench/BenchTypes.hpp"
+#include "host/run/RunRecords.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml::benchutil {

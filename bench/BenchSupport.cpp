@@ -5,10 +5,10 @@
 
 #include "BenchCommon.hpp"
 #include "gl/FrameRenderer.hpp"
-#include "host/app/InputChecks.hpp"
-#include "host/app/RenderCommand.hpp"
+#include "host/run/InputChecks.hpp"
+#include "host/run/ImageSize.hpp"
 #include "host/assign/BruteForceAssigner.hpp"
-#include "host/bench/BenchInputs.hpp"
+#include "host/run/SceneInputs.hpp"
 #include "host/techniques/Registry.hpp"
 
 namespace ml::benchutil {

@@ -21,8 +21,8 @@
 #include <utility>
 #include <vector>
 
-#include "host/app/SceneInputs.hpp"
-#include "host/bench/RunLayer.hpp"
+#include "host/run/SceneInputs.hpp"
+#include "host/run/RunLayer.hpp"
 
 namespace ml::benchutil {
 

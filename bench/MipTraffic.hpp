@@ -1,5 +1,5 @@
 #pragma once
-// Bytes the voxel mips (kernels/vct_mips.cl) read and write for a grid of
+// Bytes the voxel mips (kernels/vct/vct_mips.cl) read and write for a grid of
 // `edge`^3 voxels and `levels` levels: per parent voxel of level l >= 1, its 8
 // children's 16-byte texels (6 direction sets from an anisotropic level 2 up,
 // one set below) read and its own 1 or 6 written. The bandwidth figure of the

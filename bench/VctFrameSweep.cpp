@@ -2,8 +2,8 @@
 
 #include <cstdio>
 
-#include "host/app/SceneInputs.hpp"
-#include "host/bench/RunLayer.hpp"
+#include "host/run/SceneInputs.hpp"
+#include "host/run/RunLayer.hpp"
 #include "host/reference/IndirectReference.hpp"
 #include "host/techniques/Registry.hpp"
 #include "host/util/DataPaths.hpp"

@@ -17,7 +17,7 @@
 #include <memory>
 #include <tuple>
 
-#include "host/bench/BenchInputs.hpp"
+#include "host/run/SceneInputs.hpp"
 #include "host/cl/ClPassTimer.hpp"
 #include "host/clustered/ClusteredAssigner.hpp"
 #include "BenchCommon.hpp"

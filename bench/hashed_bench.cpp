@@ -19,8 +19,8 @@
 #include <thread>
 
 #include "HashedBuildStats.hpp"
-#include "host/bench/BenchInputs.hpp"
-#include "host/bench/OutputFiles.hpp"
+#include "host/run/SceneInputs.hpp"
+#include "host/run/OutputFiles.hpp"
 #include "host/scene/LightAnimator.hpp"
 #include "host/techniques/Registry.hpp"
 #include "BenchCommon.hpp"
@@ -33,7 +33,7 @@ using json = nlohmann::ordered_json;
 using LightSets = std::vector<std::pair<std::string, std::vector<gpu::PointLight>>>;
 
 // The thesis suite's Spaceship Indoor scene where the tests look for the suite
-// (tests/suite_thesis_test.cpp): $MANYLIGHTS_THESIS_SUITE, else the shared
+// (tests/suite/suite_thesis_test.cpp): $MANYLIGHTS_THESIS_SUITE, else the shared
 // data folder next to the checkout. No machine's absolute path.
 std::string defaultSuiteScene() {
   std::filesystem::path root = std::filesystem::path(MANYLIGHTS_SOURCE_DIR) / ".." / "shared" / "data" / "thesis-suite";

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "BenchCommon.hpp"
-#include "host/bench/BenchInputs.hpp"
+#include "host/run/SceneInputs.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/util/Error.hpp"
 #include "kernel_bench_cases.hpp"

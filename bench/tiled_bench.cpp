@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "host/bench/BenchInputs.hpp"
+#include "host/run/SceneInputs.hpp"
 #include "host/cl/ClPassTimer.hpp"
 #include "host/tiled/TileCullerReference.hpp"
 #include "host/tiled/TileLightCuller.hpp"

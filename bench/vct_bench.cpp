@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "MipTraffic.hpp"
-#include "host/bench/BenchInputs.hpp"
+#include "host/run/SceneInputs.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/cl/KernelArgs.hpp"
 #include "host/cl/KernelLimits.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // What each fuzz target does with one input, shared by the libFuzzer harnesses
 // (fuzz/fuzz_*.cpp) and the regression test that replays the inputs they
-// found (tests/fuzz_regression_test.cpp). Contract of every entry point: it
+// found (tests/fuzz/fuzz_regression_test.cpp). Contract of every entry point: it
 // returns normally or throws ml::UserError; anything else (another exception,
 // a crash, a sanitizer report, a hang) is a bug of the loader it drives.
 //
@@ -23,7 +23,7 @@
 #include <string_view>
 #include <vector>
 
-#include "host/app/Cli.hpp"
+#include "host/cli/Cli.hpp"
 #include "host/scene/Camera.hpp"
 #include "host/scene/GltfLights.hpp"
 #include "host/scene/LightSet.hpp"

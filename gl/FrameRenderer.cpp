@@ -49,10 +49,10 @@ const ShaderProgram& FrameRenderer::program(const std::string& kind, const Light
   if (count) defines.emplace_back("COUNT_LIGHTS", "1");
   const ShaderAliases aliases = {{"lookup.glsl", a.lookupShader()}};
   std::vector<std::string> files;
-  if (kind == "depth") files = {"geometry.vert", "depth_only.frag"};
-  else if (kind == "forward") files = {"geometry.vert", "forward.frag"};
-  else if (kind == "gbuffer") files = {"geometry.vert", "gbuffer.frag"};
-  else if (kind == "deferred") files = {"fullscreen.vert", "deferred.frag"};
+  if (kind == "depth") files = {"common/geometry.vert", "common/depth_only.frag"};
+  else if (kind == "forward") files = {"common/geometry.vert", "common/forward.frag"};
+  else if (kind == "gbuffer") files = {"common/geometry.vert", "common/gbuffer.frag"};
+  else if (kind == "deferred") files = {"common/fullscreen.vert", "common/deferred.frag"};
   else throw std::logic_error("FrameRenderer: unknown shader kind '" + kind + "'");
   auto [it, ok] = programs_.emplace(key, ShaderProgram(files, defines, aliases));
   (void)ok;

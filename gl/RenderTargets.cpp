@@ -126,7 +126,7 @@ RenderTargets::RenderTargets(unsigned width, unsigned height) : width_(width), h
   checkComplete(output_fbo_, "output");
 
   albedo_ = makeTexture2d(GL_RGBA8, width, height);
-  normal_ = makeTexture2d(GL_RG16, width, height);  // octahedral normals (gl/shaders/octahedral.glsl)
+  normal_ = makeTexture2d(GL_RG16, width, height);  // octahedral normals (gl/shaders/common/octahedral.glsl)
   gbuffer_depth_ = makeTexture2d(GL_DEPTH_COMPONENT32F, width, height);
   glCreateFramebuffers(1, &gbuffer_fbo_);
   glNamedFramebufferTexture(gbuffer_fbo_, GL_COLOR_ATTACHMENT0, albedo_, 0);

@@ -1,7 +1,10 @@
 #pragma once
 // A linked GL program built from gl/shaders/ files (embedded; see
 // EmbeddedFiles.hpp). Each stage gets "#version 450 core", the host's defines,
-// then the file with `#include "x.glsl"` lines expanded from gl/shaders/.
+// then the file with `#include "x.glsl"` lines expanded from gl/shaders/. Files
+// and includes are named by their path under gl/shaders/ ("common/forward.frag",
+// `#include "vct/vct_cones.glsl"`); a name that is no shader file there is read
+// from host/shared/ (`#include "shading_bindings.h"`).
 // Compile and link errors throw UserError with the file name and the log.
 #include <epoxy/gl.h>
 
@@ -13,15 +16,15 @@
 
 namespace ml {
 
-// Include aliases: {"lookup.glsl", "lookup_tiled.glsl"} makes `#include "lookup.glsl"`
-// read lookup_tiled.glsl. This is how a technique plugs its light-list lookup
+// Include aliases: {"lookup.glsl", "tiled/lookup_tiled.glsl"} makes `#include "lookup.glsl"`
+// read tiled/lookup_tiled.glsl. This is how a technique plugs its light-list lookup
 // into the shared forward/deferred shaders.
 using ShaderAliases = std::vector<std::pair<std::string, std::string>>;
 
 class ShaderProgram {
  public:
   ShaderProgram() = default;
-  // stages: e.g. {"forward.vert", "forward.frag"}; the stage comes from the extension
+  // stages: e.g. {"common/geometry.vert", "common/forward.frag"}; the stage comes from the extension
   // (.vert .frag .comp .geom).
   ShaderProgram(const std::vector<std::string>& files, const ShaderDefines& defines = {},
                 const ShaderAliases& aliases = {});

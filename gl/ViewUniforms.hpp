@@ -1,5 +1,5 @@
 #pragma once
-// The camera uniforms of gl/shaders/common.glsl (u_view, u_proj, the inverse
+// The camera uniforms of gl/shaders/common/common.glsl (u_view, u_proj, the inverse
 // view u_inv_view, u_viewport), set the one way the frame's programs and the GI
 // passes that reconstruct positions from its depth both need.
 #include <glm/glm.hpp>

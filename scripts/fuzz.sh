@@ -6,8 +6,8 @@
 # small files of data/; the grown corpus stays in build-fuzz/corpus/<target>/
 # (so later runs start where this one stopped). A crash, hang (> 10 s per
 # input) or OOM (> 2 GB) leaves its input in build-fuzz/artifacts/<target>/;
-# fix the loader, then add the input under tests/fuzz_regressions/<target>/
-# (tests/fuzz_regression_test.cpp replays them). Exit 1 if anything crashed.
+# fix the loader, then add the input under tests/fuzz/fuzz_regressions/<target>/
+# (tests/fuzz/fuzz_regression_test.cpp replays them). Exit 1 if anything crashed.
 # Uses ccache when installed. Env: FUZZ_JOBS (build jobs, default nproc),
 # FUZZ_PARALLEL (targets fuzzed at once, default nproc).
 set -euo pipefail

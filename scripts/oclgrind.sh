@@ -45,7 +45,7 @@
 #     memoryDeallocated hook);
 #   - write 100 elements of a 101-element buffer, fill the last one, read the
 #     100 by kernel: 100 reports (a partial host store replaces the shadow).
-# With the shim: 0 reports for both, and tests/compute_oclgrind_canary_test.cpp
+# With the shim: 0 reports for both, and tests/compute/compute_oclgrind_canary_test.cpp
 # (run first, below) proves that races, uninitialized values and
 # out-of-bounds accesses are still reported in this exact setup.
 set -euo pipefail

@@ -11,12 +11,14 @@
 #include <fstream>
 #include <map>
 
-#include "host/bench/RunLayer.hpp"
+#include "host/run/RunLayer.hpp"
 #include "host/app/GiOptions.hpp"
-#include "host/app/InputChecks.hpp"
+#include "host/gi/Registry.hpp"
+#include "host/run/InputChecks.hpp"
 #include "host/app/InputFlags.hpp"
 #include "host/app/RenderCommand.hpp"
-#include "host/bench/OutputFiles.hpp"
+#include "host/run/ImageSize.hpp"
+#include "host/run/OutputFiles.hpp"
 #include "host/bench/BenchRunner.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/scene/LightAnimator.hpp"
@@ -83,11 +85,10 @@ bool isRegistryParam(const std::string& key) {
   return false;
 }
 
-// The GI side's descriptor of --gi (null for none); UserError for an unknown mode.
+// The GI pass's descriptor of --gi (null for none); UserError for an unknown name.
 const GiDescriptor* benchGi(const BenchArgs& a) {
   if (a.gi == "none") return nullptr;
-  if (a.gi == "vct") return &vctGiDescriptor();
-  throw UserError("--gi: expected none|vct, got '" + a.gi + "'");
+  return &findGi(a.gi, "--gi");
 }
 
 // The technique variants of --techniques x the --param / --KEY sweeps, every
@@ -111,13 +112,13 @@ std::vector<TechniqueVariant> benchVariants(const BenchArgs& a, std::vector<GiVa
     addSweep(sweep, key, splitList(list));
   }
   const GiDescriptor* desc = benchGi(a);
-  const ParamSweep gi_sweep = splitGiSweep(sweep, desc, {&vctGiDescriptor()}, "--param");
+  const ParamSweep gi_sweep = splitGiSweep(sweep, desc, giDescriptors(), "--param");
   gi = expandGiVariants(desc, gi_sweep, "--param");
   for (const auto& [key, values] : sweep)  // neither a technique's key nor the GI's: name both lists
     if (desc && !isRegistryParam(key)) {
       std::string keys;
-      for (const auto& k : desc->keys) keys += (keys.empty() ? "" : "|") + k;
-      throw UserError("--param: unknown parameter '" + key + "' (neither a technique's nor --gi " + desc->mode +
+      for (const ParamSpec& p : desc->params) keys += (keys.empty() ? "" : "|") + p.key;
+      throw UserError("--param: unknown parameter '" + key + "' (neither a technique's nor --gi " + desc->name +
                       "'s: " + keys + ")");
     }
   return expandVariants(tech_names, sweep, "--param");
@@ -132,9 +133,11 @@ std::string paramKeysHelp() {
     for (const auto& f : p.families) families += (families.empty() ? "" : ", ") + f;
     s += "  " + p.spec.key + " (" + p.spec.allowed() + "; default " + p.spec.default_value + "): " + families + "\n";
   }
-  std::string gi_keys;
-  for (const auto& k : vctGiDescriptor().keys) gi_keys += (gi_keys.empty() ? "" : ", ") + k;
-  s += "  with --gi vct also its settings (as render's --gi vct flags): " + gi_keys + "\n";
+  for (const GiDescriptor* d : giDescriptors()) {
+    std::string gi_keys;
+    for (const ParamSpec& p : d->params) gi_keys += (gi_keys.empty() ? "" : ", ") + p.key;
+    s += "  with --gi " + d->name + " also its settings (as render's --gi " + d->name + " flags): " + gi_keys + "\n";
+  }
   return s;
 }
 
@@ -201,7 +204,7 @@ void printSummaries(const std::vector<RunSummary>& sums) {
 }
 
 // The JSON's "meta": the command, device, scene, camera and the plan.
-nlohmann::ordered_json benchMeta(const BenchArgs& a, const BenchScene& scene, const BenchPlan& plan,
+nlohmann::ordered_json benchMeta(const BenchArgs& a, const RunScene& scene, const BenchPlan& plan,
                                  const RunContext& ctx) {
   const Camera& c0 = scene.cameras.frames.front();
   nlohmann::ordered_json meta;
@@ -332,11 +335,11 @@ void addMeasureFlags(CLI::App& cmd, BenchArgs& a) {
 // The GI pass in every frame and its reference.
 void addBenchGiFlags(CLI::App& cmd, BenchArgs& a) {
   cmd.add_option("--gi", a.gi,
-                 "none or vct: voxel cone tracing in every frame (its passes timed); --param also sweeps its "
-                 "settings (render's --gi vct flags: voxels, levels, cones, ...)")
+                 "none or a GI pass (" + giNames() + ") in every frame (its passes timed); --param also sweeps its "
+                 "settings (render's flags of that pass)")
       ->capture_default_str();
   cmd.add_flag("--gi-reference", a.gi_reference,
-               "--gi vct: trace the ray-traced reference once per size, light set and frame; records get gi_rel_rmse");
+               "with --gi: trace the ray-traced reference once per size, light set and frame; records get gi_rel_rmse");
   cmd.add_option("--gi-samples", a.gi_samples, "--gi-reference: hemisphere samples per pixel")->capture_default_str();
   cmd.add_option("--gi-seed", a.gi_seed, "--gi-reference: seed of the hemisphere samples")->capture_default_str();
 }
@@ -378,7 +381,8 @@ namespace {
 
 // --gi's combinations with the other flags (its settings are checked by benchVariants).
 void checkBenchGiFlags(const BenchArgs& a) {
-  if (a.gi_reference && a.gi != "vct") throw UserError("--gi-reference: only with --gi vct");
+  if (a.gi_reference && !(benchGi(a) && benchGi(a)->reference_shadows))
+    throw UserError("--gi-reference: only with a --gi pass that a reference can check");
   if (a.gi_samples == 0 || a.gi_samples > kMaxGiSamples)
     throw UserError("--gi-samples: expected 1.." + std::to_string(kMaxGiSamples) + ", got " +
                     std::to_string(a.gi_samples));
@@ -434,7 +438,7 @@ SceneInputArgs benchSceneArgs(const BenchArgs& a) {
   return sa;
 }
 
-BenchPlan benchPlan(const BenchArgs& a, const CheckedBenchFlags& c, const BenchScene& scene, const std::string& where) {
+BenchPlan benchPlan(const BenchArgs& a, const CheckedBenchFlags& c, const RunScene& scene, const std::string& where) {
   BenchPlan plan;
   plan.variants = c.variants;
   plan.gi = c.gi;
@@ -458,7 +462,7 @@ BenchPlan benchPlan(const BenchArgs& a, const CheckedBenchFlags& c, const BenchS
   return plan;
 }
 
-void printBenchHeader(const RunContext& ctx, const BenchScene& scene, const BenchPlan& plan) {
+void printBenchHeader(const RunContext& ctx, const RunScene& scene, const BenchPlan& plan) {
   const Camera& c0 = scene.cameras.frames.front();
   ctx.printDevices();
   std::printf("scene: %s [%s] (%zu triangles, %zu camera frames; fovy %g, near %g, far %g)\n",
@@ -491,7 +495,7 @@ void printGiErrors(const std::vector<FrameRecord>& records) {
 // every finished run (meta "complete": false), so an interrupted sweep still
 // leaves usable files that do not pass for a whole run; the named files
 // appear, atomically, only when every record is in, and the .partial files go.
-std::vector<FrameRecord> runAndWrite(const BenchArgs& a, const RunContext& ctx, const BenchScene& scene,
+std::vector<FrameRecord> runAndWrite(const BenchArgs& a, const RunContext& ctx, const RunScene& scene,
                                      const BenchPlan& plan, Progress::Mode progress_mode,
                                      const std::string& json_path) {
   nlohmann::ordered_json meta = benchMeta(a, scene, plan, ctx);
@@ -527,7 +531,7 @@ int runBench(const BenchArgs& a) {
   const std::string where = "--lights";
   // Everything that can be checked without rendering is checked first.
   const CheckedBenchFlags checked = checkBenchFlags(a, where);
-  const BenchScene scene = loadBenchScene(benchSceneArgs(a));
+  const RunScene scene = loadRunScene(benchSceneArgs(a));
   const Camera& c0 = scene.cameras.frames.front();
   if (!(c0.far_plane > c0.near_plane)) throw UserError("--near/--far: far must exceed near");
   const BenchPlan plan = benchPlan(a, checked, scene, where);

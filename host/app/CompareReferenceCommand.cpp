@@ -9,12 +9,12 @@
 
 #include "gl/FrameRenderer.hpp"
 #include "host/app/InputFlags.hpp"
-#include "host/bench/BenchInputs.hpp"
-#include "host/bench/BenchTypes.hpp"
-#include "host/bench/OutputFiles.hpp"
-#include "host/bench/Progress.hpp"
+#include "host/run/SceneInputs.hpp"
+#include "host/run/RunRecords.hpp"
+#include "host/run/OutputFiles.hpp"
+#include "host/run/Progress.hpp"
 #include "host/bench/ReferenceComparison.hpp"
-#include "host/bench/RunLayer.hpp"
+#include "host/run/RunLayer.hpp"
 #include "host/scene/LightSet.hpp"
 #include "host/suite/ThesisReference.hpp"
 #include "host/techniques/Registry.hpp"
@@ -102,7 +102,7 @@ std::size_t selectSeriesFrames(std::vector<SeriesRun>& runs, const FrameRange& r
   return total;
 }
 
-void printPlan(const ThesisReference& ref, const std::vector<SeriesRun>& runs, const BenchScene& scene,
+void printPlan(const ThesisReference& ref, const std::vector<SeriesRun>& runs, const RunScene& scene,
                const CompareReferenceArgs& a) {
   std::printf("thesis reference: %s (scene %s, %s)\n", ref.frames_dir.c_str(), ref.scene.c_str(), ref.pipeline.c_str());
   for (const auto& n : ref.notes) std::printf("note: %s\n", n.c_str());
@@ -119,7 +119,7 @@ void printPlan(const ThesisReference& ref, const std::vector<SeriesRun>& runs, c
 // one renderer per viewport, each light file loaded once.
 class SeriesRenderer {
  public:
-  SeriesRenderer(RunContext& ctx, const BenchScene& scene, const CompareReferenceArgs& a, Progress& progress)
+  SeriesRenderer(RunContext& ctx, const RunScene& scene, const CompareReferenceArgs& a, Progress& progress)
       : ctx_(ctx), scene_(scene), a_(a), progress_(progress) {}
 
   void run(SeriesRun& r) {
@@ -162,7 +162,7 @@ class SeriesRenderer {
   }
 
   RunContext& ctx_;
-  const BenchScene& scene_;
+  const RunScene& scene_;
   const CompareReferenceArgs& a_;
   Progress& progress_;
   std::size_t done_ = 0;
@@ -217,7 +217,7 @@ int runCompareReference(const CompareReferenceArgs& a) {
 
   SceneInputArgs sa = a.inputs;
   sa.scene = a.suite;
-  const BenchScene scene = loadBenchScene(sa, "--suite");
+  const RunScene scene = loadRunScene(sa, "--suite");
   const std::size_t total_steps = selectSeriesFrames(runs, sel.range, a.frame_offset, scene.cameras.frames.size());
   printPlan(ref, runs, scene, a);
 

@@ -12,7 +12,7 @@
 
 #include <string>
 
-#include "host/bench/BenchInputs.hpp"
+#include "host/run/SceneInputs.hpp"
 
 namespace ml {
 

@@ -1,6 +1,6 @@
 #include "host/app/InputFlags.hpp"
 
-#include "host/app/InputChecks.hpp"
+#include "host/run/InputChecks.hpp"
 #include "host/util/ThesisSeed.hpp"
 
 namespace ml {

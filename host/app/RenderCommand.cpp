@@ -4,15 +4,15 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cstdio>
 #include <random>
 
 #include "gl/FrameRenderer.hpp"
-#include "host/bench/RunLayer.hpp"
-#include "host/app/InputChecks.hpp"
+#include "host/run/RunLayer.hpp"
+#include "host/run/InputChecks.hpp"
 #include "host/app/InputFlags.hpp"
-#include "host/bench/OutputFiles.hpp"
+#include "host/run/ImageSize.hpp"
+#include "host/run/OutputFiles.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/scene/LightAnimator.hpp"
 #include "host/util/Error.hpp"
@@ -20,17 +20,6 @@
 #include "host/util/ImageIO.hpp"
 
 namespace ml {
-
-void parseSize(const std::string& text, const std::string& flag, unsigned& w, unsigned& h) {
-  const auto x = text.find('x');
-  auto num = [&](std::string_view s, unsigned& v) {
-    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    return ec == std::errc() && p == s.data() + s.size();
-  };
-  if (x == std::string::npos || !num(std::string_view(text).substr(0, x), w) ||
-      !num(std::string_view(text).substr(x + 1), h) || w == 0 || h == 0 || w > 16384 || h > 16384)
-    throw UserError(flag + ": expected WIDTHxHEIGHT with 1..16384 pixels each, got '" + text + "'");
-}
 
 namespace {
 
@@ -124,8 +113,8 @@ void checkRenderFlags(const RenderArgs& a, const TechniqueInfo& tech) {
   if (!(a.ratio_max > 1.0 && a.ratio_max <= 1e6))
     throw UserError("--ratio-max: expected a ratio above 1 (up to 1e6), got " + std::to_string(a.ratio_max));
   if (a.no_shading && !a.out.empty()) throw UserError("--out: there is no shaded image with --no-shading");
-  if (a.no_shading && a.gi.mode == "vct")
-    throw UserError("--gi: vct adds to the shaded image; there is none with --no-shading");
+  if (a.no_shading && giPassOf(a.gi))
+    throw UserError("--gi: " + a.gi.mode + " adds to the shaded image; there is none with --no-shading");
   for (const auto& [flag, file] : {std::pair{"--heatmap", &a.heatmap}, std::pair{"--ratio-map", &a.ratio_map}})
     if (a.no_shading && !file->empty())
       throw UserError(std::string(flag) + ": light evaluations are not counted with --no-shading");
@@ -234,30 +223,14 @@ RenderRun renderFrames(const RenderArgs& a, const TechniqueInfo& tech, const Sce
   return run;
 }
 
+// The pass's own fields (GiPass::stats), then the reference's.
 void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j) {
-  if (a.mode == "vct") {
-    const vct::VctGiSettings& v = a.vct;
-    j["gi_vct"] = {{"voxels", v.grid.voxels},  {"levels", v.grid.levels}, {"anisotropic", v.grid.anisotropic},
-                   {"cones", v.cones},         {"cone_aperture", v.aperture_deg}, {"gi_scale", v.gi_scale},
-                   {"specular", v.specular},   {"vct_shadows", v.shadows}, {"revoxelize", v.revoxelize}};
-    j["voxel_bytes"] = gi.voxel_bytes;
-    j["vct_updates"] = gi.vct_updates;
-    j["vct_voxelizations"] = gi.vct_voxelizations;
-    j["vct_reused"] = gi.vct_reused;  // frames that reused the volume: their vct-inject etc. count 0 ms in the medians
-    j["vct_list_builds"] = gi.list_builds;
-    j["vct_list_updates"] = gi.list_updates;
-    j["vct_list_update_bytes"] = gi.list_update_bytes;  // uploaded per incremental update, mean
-    j["vct_list_image_bytes"] = gi.list_image_bytes;
-    j["gi_transport"] = v.shadows == "voxel"
-                            ? "one bounce, diffuse; visibility of the lights in the injected direct light through "
-                              "level-0 voxel opacity (--vct-shadows voxel)"
-                            : "one bounce, diffuse; no visibility in the injected direct light";
-  }
+  for (const auto& [key, value] : gi.stats.json.items()) j[key] = value;
   if (!gi.has_reference) return;
   j["gi_samples"] = a.samples;
   j["gi_shadows"] = giShadows(a);
   j["gi_reference_ms"] = gi.ms;
-  if (a.mode == "vct") {
+  if (gi.has_pass) {
     j["gi_reference_transport"] = giShadows(a) == "ray"
                                       ? "one bounce, diffuse; visibility of the lights from the bounce points "
                                         "(--gi-shadows ray)"
@@ -334,7 +307,7 @@ int runRender(const RenderArgs& a) {
   FrameRenderer renderer(*ctx.cl, inputs.scene, width, height);
   renderer.setLights(inputs.lights);
   auto assigner = makeAssigner(tech, *ctx.cl, params, &inputs.scene);
-  const std::unique_ptr<GiPass> gi = makeGiPass(a.gi, *ctx.cl, inputs.scene);
+  const std::unique_ptr<GiPass> gi = makeFrameGiPass(a.gi, *ctx.cl, inputs.scene);
   RenderRun run = renderFrames(a, tech, inputs, renderer, *assigner, gi.get());
   run.gi = runGi(a.gi, inputs, inputs.cameras.frames[a.frame], width, height, a.out, gi.get());
   if (!run.stats.empty()) {

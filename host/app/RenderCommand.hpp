@@ -11,7 +11,7 @@
 #include <string>
 
 #include "host/app/GiOptions.hpp"
-#include "host/app/SceneInputs.hpp"
+#include "host/run/SceneInputs.hpp"
 #include "host/techniques/Registry.hpp"
 
 namespace ml {
@@ -47,8 +47,5 @@ void addTechniqueFlags(CLI::App& cmd, std::map<std::string, std::string>& params
                        std::map<std::string, std::string>* views);
 CLI::App* addRenderCommand(CLI::App& app, RenderArgs& args);
 int runRender(const RenderArgs& args);
-
-// "1280x720" -> (1280, 720); UserError naming `flag` otherwise.
-void parseSize(const std::string& text, const std::string& flag, unsigned& w, unsigned& h);
 
 }  // namespace ml

@@ -3,9 +3,10 @@
 #include <cstdlib>
 #include <optional>
 
-#include "host/app/InputChecks.hpp"
+#include "host/run/InputChecks.hpp"
 #include "host/app/InputFlags.hpp"
 #include "host/app/RenderCommand.hpp"
+#include "host/run/ImageSize.hpp"
 #include "host/techniques/Registry.hpp"
 #include "host/util/Error.hpp"
 #include "host/view/Viewer.hpp"

@@ -8,7 +8,7 @@
 #include <map>
 #include <string>
 
-#include "host/app/SceneInputs.hpp"
+#include "host/run/SceneInputs.hpp"
 
 namespace ml {
 

@@ -9,7 +9,7 @@ namespace ml {
 class BruteForceAssigner final : public LightAssigner {
  public:
   void assign(const FrameInputs&) override {}
-  std::string lookupShader() const override { return "lookup_brute.glsl"; }
+  std::string lookupShader() const override { return "assign/lookup_brute.glsl"; }
   void bindForShading(const ShaderProgram&) const override {}
 };
 

@@ -4,7 +4,7 @@
 // by a property of its surface point (hashed shading's octree cell) and not
 // only by what the technique stored per pixel (clustered's cluster map).
 // Built by the run layer from the frame just rendered (frameDebugView in
-// host/bench/RunLayer.hpp), the same way for `render --NAME-view` and the
+// host/run/RunLayer.hpp), the same way for `render --NAME-view` and the
 // viewer, so both show the same image.
 #include <glm/glm.hpp>
 

@@ -199,7 +199,7 @@ std::uint32_t boundAtPixel(const LightGrid& grid, const gpu::BoundParams& p, flo
 }
 
 ExactLowerBound::ExactLowerBound(ClRuntime& rt) : rt_(rt) {
-  program_ = rt.programs().build("exact_lower_bound.cl");
+  program_ = rt.programs().build("assign/exact_lower_bound.cl");
   kernel_ = cl::Kernel(program_, "exact_lower_bound");
   params_ = cl::Buffer(rt.context(), CL_MEM_READ_ONLY, sizeof(gpu::BoundParams));
 }

@@ -14,7 +14,7 @@
 // twice the band's smallest radius, so a light sits in at most 27 cells and a
 // point tests each level's one cell: exact (the kernel applies the predicate
 // to every listed light), and ~1 s for 1M lights at 1080p on two CPU cores.
-// kernels/exact_lower_bound.cl is the device side; boundAtPixel its C++ twin.
+// kernels/assign/exact_lower_bound.cl is the device side; boundAtPixel its C++ twin.
 #include <CL/opencl.hpp>
 #include <glm/glm.hpp>
 
@@ -42,7 +42,7 @@ gpu::BoundParams boundParams(const glm::mat4& view, const glm::mat4& proj, unsig
 
 // Window depth of pixel (x, y) -> world position; false for background
 // (depth 1). Twin of window_to_world in the kernel and of windowToView /
-// viewToWorld in gl/shaders/common.glsl.
+// viewToWorld in gl/shaders/common/common.glsl.
 bool windowToWorld(float depth, unsigned x, unsigned y, const gpu::BoundParams& p, glm::vec3& world);
 
 // The kernel's per-pixel value, in C++ (0 for background).
@@ -67,7 +67,7 @@ class ExactLowerBound {
   LightGrid grid_;
   std::uint32_t longest_list_ = 0;  // entries of the grid's longest cell list
   // Loop iterations per work-item and launch, all loops together: under
-  // llvmpipe's 65,535 with a margin (kernels/exact_lower_bound.cl).
+  // llvmpipe's 65,535 with a margin (kernels/assign/exact_lower_bound.cl).
   static constexpr std::uint32_t kLoopCap = 60000;
   cl::Buffer params_, levels_, cell_start_, entries_, spheres_;
 };

@@ -12,7 +12,7 @@
 // a light to evaluate (false past the end, or for an entry the technique
 // skips). nextLight must not loop: llvmpipe caps the loop iterations of a
 // shader invocation at 65,535 in total, so the shader's one list loop
-// visits 32 entries per iteration (gl/shaders/shading.glsl). A cursor rather
+// visits 32 entries per iteration (gl/shaders/common/shading.glsl). A cursor rather
 // than (offset, count) lets a list be stored compressed (clustered shading's
 // hit masks).
 // Every technique's lists must be conservative: each light whose sphere
@@ -65,7 +65,7 @@ class LightAssigner {
   virtual ~LightAssigner() = default;
   virtual bool needsDepth() const { return false; }
   virtual void assign(const FrameInputs& in) = 0;
-  virtual std::string lookupShader() const = 0;  // e.g. "lookup_tiled.glsl"
+  virtual std::string lookupShader() const = 0;  // e.g. "tiled/lookup_tiled.glsl" (under gl/shaders/)
   virtual ShaderDefines shaderDefines() const { return {}; }
   virtual void bindForShading(const ShaderProgram& program) const = 0;
   // Bytes of the light-assignment structures (not the light list itself).

@@ -2,7 +2,7 @@
 // What a technique and the GL renderer agree on without either including the
 // other's folder: the pipeline a technique runs in, and the defines its GLSL
 // lookup is compiled with. gl/ includes this header; host/assign includes
-// nothing from gl/ (tests/arch_include_graph_test.cpp keeps the folders acyclic).
+// nothing from gl/ (tests/arch/arch_include_graph_test.cpp keeps the folders acyclic).
 //   forward : [depth pre-pass -> depth export] -> assign (CL) -> forward shading
 //   deferred: G-buffer -> [depth export] -> assign (CL) -> full-screen shading
 #include <string>

@@ -7,9 +7,9 @@
 
 #include "gl/FrameRenderer.hpp"
 #include "host/cl/ClRuntime.hpp"
-#include "host/bench/RunLayer.hpp"
+#include "host/run/RunLayer.hpp"
 #include "host/scene/LightAnimator.hpp"
-#include "host/bench/OutputFiles.hpp"
+#include "host/run/OutputFiles.hpp"
 #include "host/reference/IndirectReference.hpp"
 
 namespace ml {
@@ -26,7 +26,7 @@ using GiReferences = std::map<std::size_t, std::vector<float>>;
 
 // One (size, light set, variant, GI variant) run over the plan's frames.
 struct Run {
-  const BenchScene& scene;
+  const RunScene& scene;
   const BenchPlan& plan;
   FrameRenderer& renderer;
   const LightSetInput& lights;
@@ -50,7 +50,8 @@ double giRelRmse(const Run& run, const GiPass& pass, std::size_t frame) {
   return indirectRelRmse(pass.indirectRgba(), it->second).rel_rmse;
 }
 
-FrameRecord recordOf(const Run& run, std::size_t frame) {
+// `gi`: the run's GI pass (its voxel memory), null without one.
+FrameRecord recordOf(const Run& run, std::size_t frame, const GiPass* gi) {
   FrameRecord r;
   r.run = run.label;
   r.technique = run.variant.technique;
@@ -64,7 +65,7 @@ FrameRecord recordOf(const Run& run, std::size_t frame) {
   r.frame = frame;
   r.gi = run.gi.mode;
   r.gi_settings = run.gi.settings;
-  r.voxel_bytes = run.gi.voxel_bytes;
+  if (gi) r.voxel_bytes = gi->stats().data_bytes;
   return r;
 }
 
@@ -88,7 +89,7 @@ void runFrames(ClRuntime& cl, const Run& run, Progress* progress, std::size_t& d
   for (std::size_t frame : plan.frames) {
     if (progress) progress->update(done, run.label + " frame " + std::to_string(frame));
     const Camera& cam = run.scene.cameras.frames[frame];
-    FrameRecord r = recordOf(run, frame);
+    FrameRecord r = recordOf(run, frame, gi.get());
     if (plan.counts) {
       animate();
       setCounts(r, countedRender(renderer, *assigner, options, cam));
@@ -117,7 +118,7 @@ std::size_t planSteps(const BenchPlan& plan) {
   return plan.sizes.size() * plan.light_sets.size() * plan.variants.size() * plan.gi.size() * plan.frames.size();
 }
 
-std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const BenchPlan& plan, Progress* progress,
+std::vector<FrameRecord> runBench(ClRuntime& cl, const RunScene& scene, const BenchPlan& plan, Progress* progress,
                                   const std::function<void(const FrameRecord&)>& on_record) {
   std::vector<FrameRecord> records;
   std::size_t done = 0;

@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "host/bench/BenchInputs.hpp"
-#include "host/bench/BenchTypes.hpp"
+#include "host/run/SceneInputs.hpp"
+#include "host/run/RunRecords.hpp"
 #include "host/bench/GiSweep.hpp"
-#include "host/bench/Progress.hpp"
+#include "host/run/Progress.hpp"
 
 namespace ml {
 
@@ -55,7 +55,7 @@ std::size_t planSteps(const BenchPlan& plan);  // renders of frames the progress
 
 // Records in loop order (size, light set, variant, GI variant, frame). `on_record` sees
 // each record as soon as it exists (e.g. to stream it).
-std::vector<FrameRecord> runBench(ClRuntime& cl, const BenchScene& scene, const BenchPlan& plan, Progress* progress,
+std::vector<FrameRecord> runBench(ClRuntime& cl, const RunScene& scene, const BenchPlan& plan, Progress* progress,
                                   const std::function<void(const FrameRecord&)>& on_record = {});
 
 }  // namespace ml

@@ -1,26 +1,38 @@
 #include "host/bench/GiSweep.hpp"
 
-#include <algorithm>
-
+#include "host/gi/Registry.hpp"
 #include "host/util/Error.hpp"
 
 namespace ml {
+namespace {
 
-bool GiDescriptor::owns(const std::string& key) const {
-  return std::find(keys.begin(), keys.end(), key) != keys.end();
+GiVariant resolve(const GiDescriptor& d, const SettingList& given, const std::string& flag) {
+  GiVariant v;
+  v.mode = d.name;
+  ParamValues params;
+  try {
+    params = giParams(d, given);
+  } catch (const UserError& e) {
+    throw UserError(flag + " " + paramsText(given) + ": " + e.what());
+  }
+  v.settings = giSettingList(d, params);
+  v.make = [&d, params](ClRuntime& cl, const Scene& scene) { return makeGiPass(d, cl, params, scene); };
+  return v;
 }
+
+}  // namespace
 
 ParamSweep splitGiSweep(ParamSweep& sweep, const GiDescriptor* gi, const std::vector<const GiDescriptor*>& all,
                         const std::string& flag) {
   ParamSweep gi_sweep, rest;
   for (auto& s : sweep) {
-    if (gi && gi->owns(s.first)) {
+    if (gi && gi->param(s.first)) {
       gi_sweep.push_back(std::move(s));
       continue;
     }
     for (const GiDescriptor* d : all)
-      if (d->owns(s.first))
-        throw UserError(flag + ": '" + s.first + "' is a --gi " + d->mode + " setting (add --gi " + d->mode + ")");
+      if (d->param(s.first))
+        throw UserError(flag + ": '" + s.first + "' is a --gi " + d->name + " setting (add --gi " + d->name + ")");
     rest.push_back(std::move(s));
   }
   sweep = std::move(rest);
@@ -33,7 +45,7 @@ std::vector<GiVariant> expandGiVariants(const GiDescriptor* gi, const ParamSweep
   for (const auto& s : sweep) axes.push_back(&s);
   std::vector<GiVariant> out;
   for (const auto& labels : sweepPoints(axes)) {
-    GiVariant v = gi->resolve(labels, flag);
+    GiVariant v = resolve(*gi, labels, flag);
     v.labels = labels;
     out.push_back(std::move(v));
   }

@@ -1,49 +1,37 @@
 #pragma once
 // A global-illumination pass as a sweep dimension of `bench`, without
-// host/bench naming any GI pass's settings: the GI side describes itself
-// (GiDescriptor: the keys --param may sweep, and how one point of the sweep
-// becomes a pass), the way a technique's descriptor lists its parameters.
+// host/bench naming any GI pass or its settings: the pass's descriptor
+// (gl/GiDescriptor.hpp, from host/gi/Registry) lists the keys --param may
+// sweep, and host/gi turns one point of the sweep into checked parameters.
 //  - splitGiSweep(): the --param keys the GI side owns leave the technique
-//    sweep; a GI key without a GI mode is refused naming the mode to add.
+//    sweep; a GI key without its pass's --gi is refused naming the pass to add.
 //  - expandGiVariants(): the product over the GI keys, every point resolved
-//    (each value parsed, the settings checked as a whole) before anything
-//    renders; UserError naming `flag` and the key.
-#include <cstddef>
+//    (each value checked, then the whole set) before anything renders;
+//    UserError "<flag> key=value,...: <the pass's line naming --KEY>".
 #include <functional>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "gl/GiPass.hpp"
-#include "host/bench/BenchTypes.hpp"
+#include "gl/GiDescriptor.hpp"
+#include "host/run/RunRecords.hpp"
 #include "host/scene/Scene.hpp"
 
 namespace ml {
 
 class ClRuntime;
 
-using SettingList = std::vector<std::pair<std::string, std::string>>;
-
-// One point of a GI sweep: the mode and all its settings (defaults, then the sweep's).
+// One point of a GI sweep: the pass and all its settings (defaults, then the sweep's).
 struct GiVariant {
   std::string mode = "none";
-  SettingList settings;  // every setting, as the GI side writes it back
+  SettingList settings;  // every setting, as host/gi writes it (switches on|off)
   SettingList labels;    // the swept keys, for the run label
   std::function<std::unique_ptr<GiPass>(ClRuntime&, const Scene&)> make;  // empty: no GI pass
-  std::size_t voxel_bytes = 0;
-};
-
-struct GiDescriptor {
-  std::string mode;               // "vct": what --gi names
-  std::vector<std::string> keys;  // the settings --param may sweep
-  // The variant of `given` over the defaults; UserError naming `flag` and the key.
-  std::function<GiVariant(const SettingList& given, const std::string& flag)> resolve;
-  bool owns(const std::string& key) const;
 };
 
 // Moves the keys `gi` owns out of `sweep` into the returned GI sweep. `all`
-// lists every GI descriptor (to name the mode a key needs when gi is null).
+// lists every GI descriptor (to name the pass a key needs when gi is null).
 ParamSweep splitGiSweep(ParamSweep& sweep, const GiDescriptor* gi, const std::vector<const GiDescriptor*>& all,
                         const std::string& flag);
 // {none} without a GI pass; otherwise one variant per point of `sweep`.

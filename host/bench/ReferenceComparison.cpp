@@ -8,8 +8,8 @@
 #include <map>
 #include <set>
 
-#include "host/bench/BenchTypes.hpp"
-#include "host/bench/OutputFiles.hpp"
+#include "host/run/RunRecords.hpp"
+#include "host/run/OutputFiles.hpp"
 
 namespace ml {
 namespace {

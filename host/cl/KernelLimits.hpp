@@ -22,14 +22,10 @@
 #include <string>
 
 #include "host/cl/ClRuntime.hpp"
-#include "host/compute/ComputeEnv.hpp"
+#include "host/cl/KernelShape.hpp"
 
 namespace ml {
 
-// The shape of the technique kernels, as of the compute primitives
-// (compute::Shape): CpuChunked = a work-item per element or tile with private
-// state, GpuWorkGroup = work-groups cooperating through local memory.
-using KernelShape = compute::Shape;
 // "auto" | "cpu" | "gpu"; UserError naming `flag` otherwise.
 KernelShape parseKernelShape(const std::string& s, const std::string& flag = "--kernel-shape");
 const char* kernelShapeName(KernelShape s);  // "auto" | "cpu" | "gpu"

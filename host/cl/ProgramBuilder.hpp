@@ -1,8 +1,9 @@
 #pragma once
-// Builds OpenCL programs from the embedded kernels/*.cl with host-chosen defines.
+// Builds OpenCL programs from the embedded kernels/<feature>/*.cl with host-chosen defines.
 //
-// `#include "x.h"` / `#include "x.cl"` lines are expanded from the embedded
-// host/shared/ headers and kernels/ before compiling, so the text that is hashed
+// `#include "x.h"` / `#include "feature/x.cl"` lines are expanded from the embedded
+// host/shared/ headers and kernels/ (a .cl path is relative to kernels/, e.g.
+// "common/view_frustum.cl") before compiling, so the text that is hashed
 // is the text that is compiled. Built binaries are cached on disk under
 // $MANYLIGHTS_CACHE_DIR/kernels (default $XDG_CACHE_HOME/manylights/kernels or
 // ~/.cache/manylights/kernels; `off` disables), keyed by a hash of source,
@@ -47,7 +48,7 @@ class ProgramBuilder {
   ProgramBuilder(cl::Context context, cl::Device device, const DeviceInfo& info);
   ProgramBuilder(cl::Context context, cl::Device device, const DeviceInfo& info, KernelCache cache);
 
-  // Builds kernels/<file> (e.g. "scan.cl").
+  // Builds kernels/<file> (e.g. "compute/scan.cl").
   cl::Program build(std::string_view file, const Defines& defines = {});
   // Builds arbitrary source text; `name` labels errors and the cache entry.
   cl::Program buildSource(std::string_view name, const std::string& source, const Defines& defines = {});

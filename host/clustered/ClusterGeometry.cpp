@@ -8,7 +8,7 @@
 #include "host/tiled/TileGeometry.hpp"
 #include "host/util/Error.hpp"
 
-// Must round like kernels/cluster_assign.cl, which has FP_CONTRACT OFF: the
+// Must round like kernels/clustered/*.cl, which have FP_CONTRACT OFF: the
 // default x86-64 target has no FMA, so GCC cannot contract here either.
 
 namespace ml {

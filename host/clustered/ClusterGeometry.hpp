@@ -1,6 +1,6 @@
 #pragma once
-// Cluster grid and the cluster math shared with kernels/cluster_keys.cl and
-// kernels/cluster_assign.cl, written once for the host so the tests can hold
+// Cluster grid and the cluster math shared with kernels/clustered/cluster_keys.cl and
+// kernels/clustered/cluster_bounds.cl, written once for the host so the tests can hold
 // the kernels to it exactly (both sides compile without FP contraction).
 //
 // Key layout (32 bits, low to high): slice k (kBits), tile column i (xBits),
@@ -63,7 +63,7 @@ ClusterBox clusterBox(std::uint32_t key, const gpu::CameraParams& cam, const Clu
 // Explicit bounds: per unique cluster the view-space AABB of the centres of
 // the pixels mapped to it (cluster_of: pixel -> cluster index or
 // kClusterInvalid), widened relative to its extent (see kClusterDepthEps). Mirrors
-// cluster_pixel_boxes in kernels/cluster_assign.cl exactly.
+// cluster_pixel_boxes in kernels/clustered/cluster_bounds.cl exactly.
 std::vector<ClusterBox> pixelBoxes(const float* depth, const std::vector<std::uint32_t>& cluster_of,
                                    std::uint32_t clusters, const gpu::CameraParams& cam);
 // View-space sphere (z negative in front of the camera).

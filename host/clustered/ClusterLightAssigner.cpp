@@ -67,27 +67,31 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
       record_budget_(kDefaultRecordBudget),
       scan_(rt, compute::Options{shape_, max_group}),
       radix_(rt, compute::Options{shape_, max_group}) {
-  program_ = rt.programs().build("cluster_assign.cl", {{"LEAF_SIZE", std::to_string(leaf_size_) + "u"},
-                                                      {"MORTON_AXIS_BITS", std::to_string(kMortonAxisBits) + "u"}});
-  // Kernels that serve both shapes (a work-item per light or cluster).
-  view_ = cl::Kernel(program_, "light_view");
-  boxes_ = cl::Kernel(program_, "cluster_boxes");
-  morton_ = cl::Kernel(program_, "light_morton");
-  order_k_ = cl::Kernel(program_, "cluster_order");
-  finish_ = cl::Kernel(program_, "cluster_boxes_finish");
-  // The tiled kernel's write_grid turns (offsets, counts) into LightRanges.
-  keys_program_ = rt.programs().build("tiled_light_culling.cl", {{"TILE_SIZE", "16"}, {"DEPTH_MODE", "0"}});
-  ranges_ = cl::Kernel(keys_program_, "write_grid");
+  const std::string leaf = std::to_string(leaf_size_) + "u";
+  bounds_program_ = rt.programs().build("clustered/cluster_bounds.cl");
+  bvh_program_ = rt.programs().build("clustered/light_bvh.cl",
+                                     {{"LEAF_SIZE", leaf}, {"MORTON_AXIS_BITS", std::to_string(kMortonAxisBits) + "u"}});
+  lists_program_ = rt.programs().build("clustered/cluster_assign.cl", {{"LEAF_SIZE", leaf}});
+  // Kernels that serve both shapes (a work-item per light or cluster);
+  // write_grid (common/light_grid.cl) turns (offsets, counts) into LightRanges.
+  view_ = cl::Kernel(bounds_program_, "light_view");
+  boxes_ = cl::Kernel(bounds_program_, "cluster_boxes");
+  finish_ = cl::Kernel(bounds_program_, "cluster_boxes_finish");
+  morton_ = cl::Kernel(bvh_program_, "light_morton");
+  order_k_ = cl::Kernel(lists_program_, "cluster_order");
+  ranges_ = cl::Kernel(lists_program_, "write_grid");
   // One kernel of each pass per shape.
-  auto shaped = [&](const std::string& name) { return cl::Kernel(program_, (gpu_ ? name + "_wg" : name).c_str()); };
-  pixel_boxes_ = shaped("cluster_pixel_boxes");
-  pack_ = shaped("pack_leaves");
-  level_ = shaped("bvh_level");
-  blocks_ = shaped("node_blocks");
-  bounds_part_ = shaped("light_bounds_partial");
-  bounds_final_ = shaped("light_bounds_final");
-  count_k_ = shaped("assign_count");
-  fill_k_ = shaped("assign_fill");
+  auto shaped = [&](const cl::Program& p, const std::string& name) {
+    return cl::Kernel(p, (gpu_ ? name + "_wg" : name).c_str());
+  };
+  pixel_boxes_ = shaped(bounds_program_, "cluster_pixel_boxes");
+  pack_ = shaped(bvh_program_, "pack_leaves");
+  level_ = shaped(bvh_program_, "bvh_level");
+  blocks_ = shaped(bvh_program_, "node_blocks");
+  bounds_part_ = shaped(bvh_program_, "light_bounds_partial");
+  bounds_final_ = shaped(bvh_program_, "light_bounds_final");
+  count_k_ = shaped(lists_program_, "assign_count");
+  fill_k_ = shaped(lists_program_, "assign_fill");
   fitLocalSizes();
   block_start_ = checkedBuffer(rt, CL_MEM_READ_ONLY, kMaxLevels * 4, "cluster BVH");
   frame_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "cluster BVH");

@@ -1,5 +1,6 @@
 #pragma once
-// Lights -> unique clusters on the device (kernels/cluster_assign.cl):
+// Lights -> unique clusters on the device (kernels/clustered/: cluster_bounds.cl,
+// light_bvh.cl, cluster_assign.cl, one program each):
 //
 //   ClusterLightAssigner a(rt, ClusterAssignMethod::Bvh);
 //   a.boxes(q, cam, grid, unique_keys, clusters, timer, &pixels);  // explicit bounds (null: sub-frustum)
@@ -12,7 +13,7 @@
 // means light leaf_lights[slot + b] reaches the cluster box. A record stands
 // for all the hits of one leaf (11 lights on average at 100k lights, 720p), so
 // the lists are several times smaller than index lists, and the device never
-// expands them: the shader walks the masks (gl/shaders/lookup_clustered.glsl).
+// expands them: the shader walks the masks (gl/shaders/clustered/lookup_clustered.glsl).
 //
 // Lights are packed leafSize() to a leaf (structure of arrays) and tested a
 // leaf at a time into a hit mask. Brute: every cluster tests every leaf of the
@@ -129,7 +130,7 @@ class ClusterLightAssigner {
   unsigned leaf_size_;
   KernelShape shape_;
   bool gpu_ = false;
-  cl::Program program_, keys_program_;
+  cl::Program bounds_program_, bvh_program_, lists_program_;  // the three parts of the pass
   cl::Kernel view_, boxes_, pixel_boxes_, morton_, pack_, level_, blocks_, count_k_, fill_k_, ranges_;
   cl::Kernel bounds_part_, bounds_final_, order_k_, finish_;
   // Work-group sizes: per-element kernels, and the GPU shape's groups (per

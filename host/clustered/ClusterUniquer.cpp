@@ -40,7 +40,7 @@ ClusterUniquer::ClusterUniquer(ClRuntime& rt, UniqueMethod method, unsigned page
   // sorted element, reading and writing consecutive elements: that suits a GPU
   // as it is and PoCL vectorizes it across work-items, so one shape serves both;
   // the shape reaches the primitives (scan, compaction, sorts).
-  program_ = rt.programs().build("cluster_keys.cl");
+  program_ = rt.programs().build("clustered/cluster_keys.cl");
   keys_k_ = cl::Kernel(program_, "cluster_keys");
   mark_ = cl::Kernel(program_, "page_mark");
   store_ = cl::Kernel(program_, "page_store");

@@ -1,5 +1,5 @@
 #pragma once
-// Cluster keys and unique clusters on the device (kernels/cluster_keys.cl):
+// Cluster keys and unique clusters on the device (kernels/clustered/cluster_keys.cl):
 //
 //   ClusterUniquer u(rt, UniqueMethod::PageTable);
 //   u.keys(q, depth, cam, grid);             // per-pixel keys into keyBuffer()

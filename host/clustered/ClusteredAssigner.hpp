@@ -30,7 +30,7 @@ class ClusteredAssigner final : public LightAssigner {
                     ClusterBounds bounds = ClusterBounds::Pixels, KernelShape shape = KernelShape::Auto);
   bool needsDepth() const override { return true; }
   void assign(const FrameInputs& in) override;
-  std::string lookupShader() const override { return "lookup_clustered.glsl"; }
+  std::string lookupShader() const override { return "clustered/lookup_clustered.glsl"; }
   void bindForShading(const ShaderProgram& program) const override;
   std::size_t memoryBytes() const override;
   std::vector<std::pair<std::string, double>> stats() const override;

@@ -17,7 +17,7 @@ BitonicSorter::BitonicSorter(const ComputeEnv& env, const Options& options)
     // Keys and values of a 2 * WG block in local memory.
     while (tuning_.wg > 1 && 2 * tuning_.wg * 8 > env_.info().local_mem_size) tuning_.wg /= 2;
   }
-  const detail::FittedProgram p = detail::buildFitted(env_, tuning_, "bitonic_sort.cl", "bitonic sort");
+  const FittedProgram p = buildFitted(env_, tuning_, "compute/bitonic_sort.cl", "bitonic sort");
   if (tuning_.gpu()) tuning_.wg = p.wg;
   block_ = tuning_.gpu() ? 2 * tuning_.wg : tuning_.cpu_sort_chunk;
   block_sort_ = cl::Kernel(p.program, "bitonic_block_sort");

@@ -10,7 +10,7 @@
 // CPUs, a work-group's local memory on GPUs) are sorted and merged there; the
 // merge stages that cross blocks run as one global pass each. n that is not a
 // power of two is handled as if padded with maximum keys, without a padding
-// buffer (see kernels/prim_bitonic_network.cl). Enqueued on `q`, non-blocking; no
+// buffer (see kernels/compute/prim_bitonic_network.cl). Enqueued on `q`, non-blocking; no
 // scratch memory. Not thread-safe.
 #include <CL/opencl.hpp>
 

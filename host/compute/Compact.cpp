@@ -11,7 +11,7 @@ Compactor::Compactor(ClRuntime& rt, const Options& options) : Compactor(ComputeE
 
 Compactor::Compactor(const ComputeEnv& env, const Options& options)
     : env_(env), tuning_(resolveTuning(env, options)), scanner_(env, options) {
-  const detail::FittedProgram p = detail::buildFitted(env_, tuning_, "compact.cl", "compact");
+  const FittedProgram p = buildFitted(env_, tuning_, "compute/compact.cl", "compact");
   if (tuning_.gpu()) tuning_.wg = p.wg;
   compact_count_ = cl::Kernel(p.program, "compact_count");
   unique_count_ = cl::Kernel(p.program, "unique_count");

@@ -20,7 +20,7 @@ bool isPow2(std::size_t v) { return v && !(v & (v - 1)); }
 
 // llvmpipe (Mesa rusticl's CPU device) ends a work-item's loops after 65,535
 // iterations in total, all loops of the launch together, and the kernel goes
-// on with wrong results (tests/driver_loop_cap_test.cpp): the CPU-shape radix
+// on with wrong results (tests/driver/driver_loop_cap_test.cpp): the CPU-shape radix
 // scatter of 16,400-key chunks lost the payload copy of its one-digit chunks.
 // There the loops of the branch a work-item did not take run too, masked off
 // (the copy path paid for the scatter loop), and chunks up to 13,120 keys
@@ -135,21 +135,6 @@ ComputeEnv ComputeEnv::forQueue(const cl::CommandQueue& queue) {
 
 namespace detail {
 
-void checkCount(std::size_t n, const char* what) {
-  if (n > 0xFFFFFFFFull) throw std::invalid_argument(std::string(what) + ": n must fit in 32 bits");
-}
-
-void checkBuffer(const cl::Buffer& buf, std::size_t bytes, const char* what) {
-  if (bytes == 0) return;
-  if (!buf()) throw std::invalid_argument(std::string(what) + ": null buffer");
-  const std::size_t size = buf.getInfo<CL_MEM_SIZE>();
-  if (size < bytes)
-    throw std::invalid_argument(std::string(what) + ": buffer holds " + std::to_string(size) + " bytes, " +
-                                std::to_string(bytes) + " needed");
-}
-
-bool sameBuffer(const cl::Buffer& a, const cl::Buffer& b) { return a() == b(); }
-
 cl::Buffer& Scratch::ensure(const ComputeEnv& env, std::size_t bytes) {
   bytes = std::max<std::size_t>(bytes, 4);
   if (bytes <= capacity_) return buf_;
@@ -162,72 +147,6 @@ cl::Buffer& Scratch::ensure(const ComputeEnv& env, std::size_t bytes) {
   buf_ = cl::Buffer(env.context(), CL_MEM_READ_WRITE, grown);
   capacity_ = grown;
   return buf_;
-}
-
-void launch(cl::CommandQueue& q, const cl::Kernel& k, std::size_t global, std::size_t local, ClPassTimer* timer,
-            const char* name) {
-  if (global == 0) return;
-  q.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(roundUp(global, local)), cl::NDRange(local), nullptr,
-                         timer ? timer->next(name) : nullptr);
-}
-
-namespace {
-
-// The largest power of two <= wg that every kernel of `p` accepts, judged by
-// what the driver reports for the build at hand (0 when even 1 does not fit).
-std::size_t acceptedWg(const ComputeEnv& env, cl::Program p, const std::size_t built) {
-  std::size_t wg = built;
-  std::vector<cl::Kernel> kernels;
-  p.createKernels(&kernels);
-  const cl_ulong device_local = env.device().getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
-  for (const cl::Kernel& k : kernels) {
-    const std::size_t max_wg = k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(env.device());
-    if (max_wg < wg) wg = max_wg ? prevPow2(max_wg) : 0;
-    // The __local arrays are sized by WG: half the items, about half the bytes.
-    if (k.getWorkGroupInfo<CL_KERNEL_LOCAL_MEM_SIZE>(env.device()) > device_local) wg = std::min(wg, built / 2);
-  }
-  return wg;
-}
-
-void noteLowered(const char* what, std::size_t requested, std::size_t wg, const std::string& device) {
-  static std::mutex mutex;
-  static auto* noted = new std::set<std::string>();
-  const std::string key = std::string(what) + " " + std::to_string(requested) + " " + std::to_string(wg) + device;
-  std::lock_guard lock(mutex);
-  if (!noted->insert(key).second) return;
-  std::cerr << "note: " << what << ": work_group_size " << requested << " lowered to " << wg
-            << ", the most its kernels run with on '" << device << "'\n";
-}
-
-}  // namespace
-
-FittedProgram buildFitted(const ComputeEnv& env, const Tuning& t, const char* file, const char* what,
-                          const std::function<Defines(std::size_t wg)>& extra) {
-  if (!t.gpu()) return {buildShaped(env, t, file, extra ? extra(1) : Defines{}), 1};
-  Tuning fitted = t;
-  for (;;) {
-    cl::Program p = buildShaped(env, fitted, file, extra ? extra(fitted.wg) : Defines{});
-    const std::size_t accepted = acceptedWg(env, p, fitted.wg);
-    if (accepted == fitted.wg) {
-      if (t.requested_wg > fitted.wg) noteLowered(what, t.requested_wg, fitted.wg, env.info().name);
-      return {p, fitted.wg};
-    }
-    if (accepted == 0)
-      throw UserError(std::string(what) + ": the device '" + env.info().name +
-                      "' runs its work-group kernels with no group size at all; use the CPU shape");
-    fitted.wg = accepted;
-  }
-}
-
-cl::Program buildShaped(const ComputeEnv& env, const Tuning& t, const char* file, Defines extra) {
-  Defines d;
-  d.emplace_back("ML_GPU", t.gpu() ? "1" : "0");
-  if (t.gpu()) {
-    d.emplace_back("WG", std::to_string(t.wg));
-    d.emplace_back("ITEMS", std::to_string(t.items));
-  }
-  for (auto& e : extra) d.push_back(std::move(e));
-  return env.programs().build(file, d);
 }
 
 }  // namespace detail

@@ -11,7 +11,7 @@
 // Shape::Auto picks by CL_DEVICE_TYPE. No kernel spin-waits on another
 // work-group; multi-pass designs are reduce-then-scan. The GPU shape's group
 // size is compiled in (WG) and fitted per program to what its kernels accept
-// on the device (CL_KERNEL_WORK_GROUP_SIZE, local memory; detail::buildFitted):
+// on the device (CL_KERNEL_WORK_GROUP_SIZE, local memory; buildFitted):
 // a size is lowered, never refused.
 #include <CL/opencl.hpp>
 
@@ -20,11 +20,12 @@
 #include <string>
 
 #include "host/cl/ClRuntime.hpp"
+#include "host/cl/KernelShape.hpp"
 #include "host/cl/ProgramBuilder.hpp"
 
 namespace ml::compute {
 
-enum class Shape { Auto, CpuChunked, GpuWorkGroup };
+using Shape = KernelShape;  // host/cl/KernelShape.hpp
 
 const char* shapeName(Shape s);
 
@@ -42,7 +43,7 @@ struct Options {
 // Resolved tuning (never Shape::Auto).
 struct Tuning {
   Shape shape = Shape::CpuChunked;
-  std::size_t wg = 1;            // GpuWorkGroup work-group size (first guess; see detail::buildFitted)
+  std::size_t wg = 1;            // GpuWorkGroup work-group size (first guess; see buildFitted)
   std::size_t requested_wg = 0;  // Options::work_group_size, 0 when from the device
   std::size_t items = 4;         // GpuWorkGroup elements per work-item in a tile
   std::size_t chunks = 16;       // CpuChunked work-items per launch (upper bound)

@@ -1,6 +1,8 @@
 #pragma once
-// Internal helpers of the compute primitives: argument checks, grown scratch
-// buffers, kernel launches with optional pass timing. Not part of the API.
+// Internal helpers of the compute primitives: grown scratch buffers, the
+// process-wide shared objects, short names for the launch API. Not part of the
+// API: code outside host/compute uses host/cl/Launch.hpp and
+// host/compute/FittedProgram.hpp.
 #include <CL/opencl.hpp>
 
 #include <cstddef>
@@ -14,12 +16,14 @@
 
 #include "host/cl/ClPassTimer.hpp"
 #include "host/cl/KernelArgs.hpp"
+#include "host/cl/Launch.hpp"
 #include "host/compute/ComputeEnv.hpp"
+#include "host/compute/FittedProgram.hpp"
 
 namespace ml::compute::detail {
 
-inline std::size_t ceilDiv(std::size_t a, std::size_t b) { return (a + b - 1) / b; }
-inline std::size_t roundUp(std::size_t a, std::size_t b) { return ceilDiv(a, b) * b; }
+using ml::ceilDiv;
+using ml::roundUp;
 inline std::size_t nextPow2(std::size_t v) {
   std::size_t p = 1;
   while (p < v) p <<= 1;
@@ -31,11 +35,10 @@ inline std::size_t prevPow2(std::size_t v) {
   return p;
 }
 
-// Throws std::invalid_argument when `buf` is smaller than `bytes` or n does not
-// fit the 32-bit indices the kernels use.
-void checkBuffer(const cl::Buffer& buf, std::size_t bytes, const char* what);
-void checkCount(std::size_t n, const char* what);
-bool sameBuffer(const cl::Buffer& a, const cl::Buffer& b);
+// Argument checks and launches: the public ones of host/cl/Launch.hpp.
+inline void checkBuffer(const cl::Buffer& buf, std::size_t bytes, const char* what) { requireBuffer(buf, bytes, what); }
+inline void checkCount(std::size_t n, const char* what) { requireCount(n, what); }
+using ml::sameBuffer;
 
 // A device buffer that only grows. ensure() reallocates (dropping contents)
 // when too small and throws UserError when the device cannot allocate that
@@ -51,37 +54,14 @@ class Scratch {
   std::size_t capacity_ = 0;
 };
 
-// Enqueues a 1D range (global rounded up to local), timed under `name` when a
-// timer is given.
-void launch(cl::CommandQueue& q, const cl::Kernel& k, std::size_t global, std::size_t local, ClPassTimer* timer,
-            const char* name);
+inline void launch(cl::CommandQueue& q, const cl::Kernel& k, std::size_t global, std::size_t local,
+                   ClPassTimer* timer, const char* name) {
+  launchTimed(q, k, global, local, timer, name);
+}
 
 using ml::setArgs;
 
-// Builds kernels/<file> with the shape defines; returns the program.
-cl::Program buildShaped(const ComputeEnv& env, const Tuning& t, const char* file, Defines extra = {});
-
-// A program whose every kernel runs on this device with `wg` work-items per
-// group (the WG it was compiled with; 1 for the CPU shape).
-struct FittedProgram {
-  cl::Program program;
-  std::size_t wg = 1;
-};
-// Builds kernels/<file> as buildShaped() does, with `extra(wg)` on top. GPU
-// shape: starts at t.wg; while a kernel of the program reports a
-// CL_KERNEL_WORK_GROUP_SIZE below WG, or CL_KERNEL_LOCAL_MEM_SIZE over the
-// device's local memory (its __local arrays scale with WG), rebuilds with the
-// largest power of two that allows. The limits are per kernel and only known
-// once compiled (rusticl's llvmpipe runs many of them with at most 32 items
-// though the device says 1024), so no caller can pick a size beforehand and
-// a too-large one is lowered, never refused: with one note on stderr when it
-// lowers a size the caller asked for (t.requested_wg). UserError naming
-// `what` when not even one work-item fits.
-FittedProgram buildFitted(const ComputeEnv& env, const Tuning& t, const char* file, const char* what,
-                          const std::function<Defines(std::size_t wg)>& extra = {});
-
-// u32 helper: kernels index with uint.
-inline cl_uint u32(std::size_t v) { return static_cast<cl_uint>(v); }
+using ml::u32;
 
 // The process-wide object behind a free-function wrapper: one T per (context,
 // device) of `q`, built on first use and never destroyed (CL objects must not

@@ -136,8 +136,8 @@ RadixSorter::Variant& RadixSorter::variant(bool wide) {
   Variant& v = wide ? v64_ : v32_;
   if (!v.hist()) {
     // Built on first use: most callers need only one key width.
-    const detail::FittedProgram p =
-        detail::buildFitted(env_, tuning_, "radix_sort.cl", "radix sort", [&](std::size_t) -> Defines {
+    const FittedProgram p =
+        buildFitted(env_, tuning_, "compute/radix_sort.cl", "radix sort", [&](std::size_t) -> Defines {
           return {{"KEY64", wide ? "1" : "0"}, {"RADIX_BITS", std::to_string(tuning_.radix_bits)}};
         });
     v.hist = cl::Kernel(p.program, "radix_hist");

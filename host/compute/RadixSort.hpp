@@ -41,7 +41,7 @@ class RadixSorter {
               ClPassTimer* timer = nullptr);
 
   // GPU shape: tuning().wg is what the 32-bit kernels run with (fitted to the
-  // device on construction, detail::buildFitted); the 64-bit ones are fitted
+  // device on construction, buildFitted); the 64-bit ones are fitted
   // when first used, from there.
   const Tuning& tuning() const { return tuning_; }
   // The work-group size the GPU-shape kernels of that key width run with

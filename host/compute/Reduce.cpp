@@ -29,8 +29,8 @@ Reducer::Reducer(const ComputeEnv& env, const Options& options) : env_(env), tun
 Reducer::Kernels& Reducer::kernels(int kind) {
   Kernels& k = kernels_[kind];
   if (!k.seg()) {
-    const detail::FittedProgram fitted = detail::buildFitted(
-        env_, tuning_, "reduce.cl", "reduce", [&](std::size_t) -> Defines { return {{"ELEM_KIND", std::to_string(kind)}}; });
+    const FittedProgram fitted = buildFitted(
+        env_, tuning_, "compute/reduce.cl", "reduce", [&](std::size_t) -> Defines { return {{"ELEM_KIND", std::to_string(kind)}}; });
     const cl::Program& p = fitted.program;
     k.wg = fitted.wg;
     const char* ops[3] = {"min", "max", "sum"};

@@ -8,7 +8,7 @@ using detail::u32;
 Scanner::Scanner(ClRuntime& rt, const Options& options) : Scanner(ComputeEnv(rt), options) {}
 
 Scanner::Scanner(const ComputeEnv& env, const Options& options) : env_(env), tuning_(resolveTuning(env, options)) {
-  const detail::FittedProgram p = detail::buildFitted(env_, tuning_, "scan.cl", "scan");
+  const FittedProgram p = buildFitted(env_, tuning_, "compute/scan.cl", "scan");
   if (tuning_.gpu()) tuning_.wg = p.wg;
   reduce_ = cl::Kernel(p.program, "scan_reduce");
   tiles_ = cl::Kernel(p.program, "scan_tiles");

@@ -20,8 +20,8 @@ SegmentedSorter::SegmentedSorter(const ComputeEnv& env, const Options& options)
     const std::size_t c = std::min<std::size_t>(16 * wg, detail::prevPow2(env_.info().local_mem_size / 16));
     return std::max<std::size_t>(c, 2);
   };
-  const detail::FittedProgram p =
-      detail::buildFitted(env_, tuning_, "segmented_sort.cl", "segmented sort", [&](std::size_t wg) -> Defines {
+  const FittedProgram p =
+      buildFitted(env_, tuning_, "compute/segmented_sort.cl", "segmented sort", [&](std::size_t wg) -> Defines {
         if (!tuning_.gpu()) return {};
         return {{"SEG_LOCAL", std::to_string(capacity(wg))}};
       });
@@ -48,7 +48,7 @@ void SegmentedSorter::run(cl::CommandQueue& q, cl::Buffer& keys, cl::Buffer* val
   std::size_t global, local, last_arg;
   if (tuning_.gpu()) {
     // The GPU kernel's stage loops run to a launch-wide power-of-two bound
-    // (see kernels/segmented_sort.cl for why): exact for fixed sizes; with
+    // (see kernels/compute/segmented_sort.cl for why): exact for fixed sizes; with
     // offsets, whose lengths the host does not know, the caller's bound or n.
     local = tuning_.wg;
     global = num_segments * local;

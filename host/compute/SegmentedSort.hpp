@@ -16,7 +16,7 @@
 // memory beyond, so any segment length works). Built for many small segments;
 // one huge segment is better served by RadixSorter / BitonicSorter. On the GPU
 // shape every work-group steps through the stages of the longest possible
-// segment, skipping those beyond its own (see kernels/segmented_sort.cl): that
+// segment, skipping those beyond its own (see kernels/compute/segmented_sort.cl): that
 // bound is next_pow2(segment_size) for fixed sizes and, with offsets,
 // next_pow2(max_segment) when the caller states one (e.g. the pixels of a
 // screen tile: 55 barrier steps for 32x32 instead of 231 for next_pow2(n) at

@@ -37,7 +37,7 @@ class HashedAssigner final : public LightAssigner {
   HashedAssigner& operator=(const HashedAssigner&) = delete;
 
   void assign(const FrameInputs& in) override;
-  std::string lookupShader() const override { return "lookup_hashed.glsl"; }
+  std::string lookupShader() const override { return "hashed/lookup_hashed.glsl"; }
   void bindForShading(const ShaderProgram& program) const override;
   std::size_t memoryBytes() const override;
   std::vector<std::pair<std::string, double>> stats() const override;

@@ -207,7 +207,7 @@ LinklessOctree::GpuImage LinklessOctree::packGpuImage() const {
 }
 
 LinklessOctree::Cell LinklessOctree::cellAt(const glm::vec3& world) const {
-  // Mirrors lightListFor() in gl/shaders/lookup_hashed.glsl.
+  // Mirrors lightListFor() in gl/shaders/hashed/lookup_hashed.glsl.
   const glm::vec3 q = b_.cellCoordF(world);
   const float n = float(1u << b_.depth);
   if (!(q.x >= 0.0f && q.y >= 0.0f && q.z >= 0.0f && q.x < n && q.y < n && q.z < n)) return {};

@@ -7,7 +7,7 @@
 // directions over x's hemisphere (Latin-hypercube stratified in both
 // dimensions, seeded per pixel from `seed`, so the image does not depend on
 // thread scheduling); at each secondary hit y the direct diffuse radiance of
-// the renderer's shading model (gl/shaders/shading.glsl, without its ambient
+// the renderer's shading model (gl/shaders/common/shading.glsl, without its ambient
 // term and 0.9 weight):
 //     B(y) = albedo(y) * sum_i I_i * max(0, n_y . l_i) * clamp(1 - d_i / r_i, 0, 1)^2
 // optionally only over lights visible from y (a shadow ray each); then

@@ -2,7 +2,7 @@
  * once. Kernels include it as `#include "gpu_types.h"` (resolved by
  * ProgramBuilder from the embedded copy); C++ includes "host/shared/gpu_types.h"
  * and sees the same structs in namespace ml::gpu, with static size checks.
- * GLSL mirrors these layouts in std430 blocks (see gl/shaders/common.glsl). */
+ * GLSL mirrors these layouts in std430 blocks (see gl/shaders/common/common.glsl). */
 #ifndef MANYLIGHTS_GPU_TYPES_H
 #define MANYLIGHTS_GPU_TYPES_H
 
@@ -34,7 +34,7 @@ ML_STATIC_ASSERT(sizeof(PointLight) == 32, "PointLight must be 32 bytes (std430 
 ML_STATIC_ASSERT(alignof(PointLight) == 16, "PointLight must be 16-byte aligned");
 
 /* One tile's or cluster's list: a range of entries (tiled: light indices;
- * clustered: hit records, see kernels/cluster_assign.cl). */
+ * clustered: hit records, see kernels/clustered/cluster_assign.cl). */
 typedef struct LightRange {
   ml_uint offset;
   ml_uint count;
@@ -66,7 +66,7 @@ inline float linear_depth(float d, const CameraParams* cam) {
 #else
 inline float linear_depth(float d, const CameraParams& cam) { return depth_to_distance(d, cam.proj[10], cam.proj[14]); }
 #endif
-/* The exact lower bound (kernels/exact_lower_bound.cl): the frame's inverse
+/* The exact lower bound (kernels/assign/exact_lower_bound.cl): the frame's inverse
  * view matrix and projection (column-major, as uploaded to the shaders) and viewport. */
 typedef struct BoundParams {
   float inv_view[16];

@@ -1,5 +1,5 @@
 /* Binding points of the shading programs, numbered once for C++ and GLSL:
- * gl/shaders/common.glsl and the lookup_*.glsl files declare their buffers,
+ * gl/shaders/common/common.glsl and the lookup_*.glsl files declare their buffers,
  * material.glsl and deferred.frag their samplers, with these names (GLSL
  * includes this file as "shading_bindings.h"), and FrameRenderer, SceneGpu
  * and the assigners bind with them. Shader storage: 0 and 7 are the frame's;

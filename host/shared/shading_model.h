@@ -1,4 +1,4 @@
-/* The renderer's direct-light model (gl/shaders/shading.glsl), declared once
+/* The renderer's direct-light model (gl/shaders/common/shading.glsl), declared once
  * for C++ (namespace ml::gpu) and OpenCL C so that voxel light injection and
  * its C++ twin evaluate each light with the same operations:
  *   colour = base * (ML_SHADE_AMBIENT + ML_SHADE_DIRECT * sum_i I_i * w_i),

@@ -1,7 +1,7 @@
 /* Binding points of the test-only GL compute programs, numbered once for C++
  * and GLSL (as shading_bindings.h does for the renderer's programs):
- * gl/shaders/test_xor.comp (tests/gl_shared_buffer_test.cpp: dst = src ^ key)
- * and gl/shaders/test_octahedral.comp (tests/gbuffer_normal_test.cpp: the
+ * gl/shaders/test/test_xor.comp (tests/gl/gl_shared_buffer_test.cpp: dst = src ^ key)
+ * and gl/shaders/test/test_octahedral.comp (tests/gl/gbuffer_normal_test.cpp: the
  * G-buffer normal encoding). Each program has its own numbering. */
 #ifndef MANYLIGHTS_TEST_SHADER_BINDINGS_H
 #define MANYLIGHTS_TEST_SHADER_BINDINGS_H

@@ -44,7 +44,7 @@
 #define ML_IMAGE_VCT_UPSAMPLE_INDIRECT 1
 #define ML_IMAGE_VCT_UPSAMPLE_AO 2
 
-/* Tests only (gl/shaders/test_vct_cones.comp, tests/vct_furnace_test.cpp):
+/* Tests only (gl/shaders/test/test_vct_cones.comp, tests/vct/vct_furnace_test.cpp):
  * the points and normals traceDiffuse runs at, and its results. */
 #define ML_BINDING_TEST_CONES_POINTS 1
 #define ML_BINDING_TEST_CONES_NORMALS 2

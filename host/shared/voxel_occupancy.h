@@ -1,7 +1,7 @@
 /* The empty-space distance volume of a level-0 voxel grid, declared once for
  * C++ (namespace ml::gpu) and OpenCL C: what the voxel-shadow march
- * (kernels/vct_inject.cl) reads to skip empty space, built by
- * kernels/vct_occupancy.cl (twin: host/vct/OccupancyTwin.hpp).
+ * (kernels/vct/vct_inject.cl) reads to skip empty space, built by
+ * kernels/vct/vct_occupancy.cl (twin: host/vct/OccupancyTwin.hpp).
  *
  * One uchar per voxel of the edge^3 grid, x fastest (x + e * (y + e * z)):
  * the Chebyshev (L-infinity) distance in voxels from the voxel to the nearest

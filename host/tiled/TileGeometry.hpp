@@ -1,6 +1,6 @@
 #pragma once
 // Tile culling math shared by the C++ reference culler: the same tests as
-// kernels/tiled_light_culling.cl, written once for the host so tests can hold
+// kernels/tiled/tiled_light_culling.cl, written once for the host so tests can hold
 // the kernel to them exactly. Depth modes: none (screen-space only, the main
 // thesis's tiled variant), min/max depth bounds, 2.5D depth mask (32 bins).
 #include <cstdint>

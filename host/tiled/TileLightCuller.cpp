@@ -23,7 +23,7 @@ constexpr std::size_t kMaxChunkCounters = std::size_t(1) << 24;  // chunks x til
 constexpr std::uint64_t kLoopCapMargin = 60000;  // loop iterations a work-item may take where the device caps them
 
 // Where the device ends a work-item's loops after 65,535 iterations in total
-// (llvmpipe; Tuning::max_chunk is set there, tests/driver_loop_cap_test.cpp),
+// (llvmpipe; Tuning::max_chunk is set there, tests/driver/driver_loop_cap_test.cpp),
 // the most lights per chunk whose loops stay under the cap: the chunk's
 // counter row (n_tiles iterations), then per light at most what a light
 // covering the whole screen takes in mark_light (mask words, the cached
@@ -65,7 +65,7 @@ TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMod
   gpu_shape_ = shape_ == KernelShape::GpuWorkGroup;
   const bool legacy = algorithm == TileCullAlgorithm::PairAtomics;
   chunked_ = !gpu_shape_ && !legacy;
-  program_ = rt.programs().build("tiled_light_culling.cl", {{"TILE_SIZE", std::to_string(tile_size)},
+  program_ = rt.programs().build("tiled/tiled_light_culling.cl", {{"TILE_SIZE", std::to_string(tile_size)},
                                                             {"DEPTH_MODE", std::to_string(static_cast<int>(mode))},
                                                             {"CULL_LEGACY", legacy ? "1" : "0"}});
   // A work-group per tile also in the CPU shape where one work-item's walk of

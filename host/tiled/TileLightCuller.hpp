@@ -1,5 +1,5 @@
 #pragma once
-// GPU-side tile light culling (kernels/tiled_light_culling.cl), independent of
+// GPU-side tile light culling (kernels/tiled/tiled_light_culling.cl), independent of
 // GL so it can be tested and benchmarked on plain CL buffers:
 //
 //   TileLightCuller culler(rt, 16, TileDepthMode::MinMax);
@@ -13,7 +13,7 @@
 // 4K) are summed again in 64 bits; a list or mask that 32-bit offsets or the
 // device's largest allocation cannot hold is a UserError, never a wrap; so is,
 // in the CPU shape on a device that ends a work-item's loops early (llvmpipe:
-// 65,535 iterations, tests/driver_loop_cap_test.cpp), a screen where one
+// 65,535 iterations, tests/driver/driver_loop_cap_test.cpp), a screen where one
 // light's rectangle could pass that cap (its chunks are sized under it). The
 // order inside a tile's list is unspecified (atomics).
 //

@@ -17,7 +17,7 @@ class TiledAssigner final : public LightAssigner {
   TiledAssigner(ClRuntime& rt, unsigned tile_size, TileDepthMode mode, KernelShape shape = KernelShape::Auto);
   bool needsDepth() const override { return culler_.mode() != TileDepthMode::None; }
   void assign(const FrameInputs& in) override;
-  std::string lookupShader() const override { return "lookup_tiled.glsl"; }
+  std::string lookupShader() const override { return "tiled/lookup_tiled.glsl"; }
   ShaderDefines shaderDefines() const override;
   void bindForShading(const ShaderProgram& program) const override;
   std::size_t memoryBytes() const override;

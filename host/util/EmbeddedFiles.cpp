@@ -10,8 +10,8 @@
 namespace ml {
 namespace {
 
-// "kernels/x.cl" -> "<src>/kernels/x.cl", "shared/x.h" -> "<src>/host/shared/x.h",
-// "shaders/x" -> "<src>/gl/shaders/x".
+// "kernels/f/x.cl" -> "<src>/kernels/f/x.cl", "shared/x.h" -> "<src>/host/shared/x.h",
+// "shaders/f/x" -> "<src>/gl/shaders/f/x".
 std::string diskPath(const std::string& root, std::string_view name) {
   std::string n(name);
   if (n.rfind("shared/", 0) == 0) return root + "/host/" + n;

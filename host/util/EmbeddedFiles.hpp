@@ -1,6 +1,7 @@
 #pragma once
-// Text files compiled into the binary (kernels/*.cl, host/shared/*.h, gl/shaders/*),
-// keyed "kernels/<name>", "shared/<name>", "shaders/<name>". Setting the environment
+// Text files compiled into the binary (kernels/**.cl, host/shared/*.h, gl/shaders/**),
+// keyed by the path under their layer's root: "kernels/<feature>/<name>",
+// "shared/<name>", "shaders/<feature>/<name>" (cmake/embed_files.cmake). Setting the environment
 // variable MANYLIGHTS_SOURCE_DIR=<repo> makes lookups read the files from disk
 // instead, so kernels and shaders can be edited without rebuilding; a file the
 // tree lacks falls back to the embedded copy. A value that is not a manylights

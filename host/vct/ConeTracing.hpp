@@ -1,5 +1,5 @@
 #pragma once
-// The diffuse cone set and the uniforms of gl/shaders/vct_cones.glsl, shared
+// The diffuse cone set and the uniforms of gl/shaders/vct/vct_cones.glsl, shared
 // by the frame's trace pass (VctGiPass) and the tests that trace given points.
 // Contract of diffuseCones(count):
 //  - count directions on the hemisphere around +z (the normal, tangent frame),
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "gl/ShaderProgram.hpp"
-#include "gl/VoxelTextures.hpp"
+#include "host/vct/VoxelTextures.hpp"
 #include "host/shared/voxel_types.h"
 
 namespace ml::vct {

@@ -3,7 +3,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "host/compute/Detail.hpp"
+#include "host/cl/Launch.hpp"
+#include "host/compute/FittedProgram.hpp"
 #include "host/compute/HostIo.hpp"
 #include "host/util/Error.hpp"
 
@@ -57,13 +58,13 @@ void HashedListsCl::setArgs(cl::Kernel& k, cl_uint first) const {
 
 std::vector<hashed::LinklessOctree::Range> HashedListsCl::lookup(cl::CommandQueue& q,
                                                                  const std::vector<gpu::ml_float4>& points) {
-  if (!probe_()) probe_ = cl::Kernel(env_.programs().build("vct_inject.cl", {{"ML_GPU", "0"}}), "hashed_lookup_probe");
+  if (!probe_()) probe_ = cl::Kernel(env_.programs().build("vct/vct_inject.cl", {{"ML_GPU", "0"}}), "hashed_lookup_probe");
   cl::Buffer in = compute::upload(env_.context(), q, points);
   cl::Buffer out(env_.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(points.size() * 16, 16));
   compute::poison(q, out);
-  ml::setArgs(probe_, in, compute::detail::u32(points.size()), out);
+  ml::setArgs(probe_, in, u32(points.size()), out);
   setArgs(probe_, 3);
-  compute::detail::launch(q, probe_, points.size(), 1, nullptr, "");
+  launchTimed(q, probe_, points.size(), 1, nullptr, "");
   const auto words = compute::download<std::uint32_t>(q, out, points.size() * 4);
   std::vector<hashed::LinklessOctree::Range> r(points.size());
   for (std::size_t i = 0; i < r.size(); ++i) r[i] = {words[4 * i], words[4 * i + 1], words[4 * i + 2]};

@@ -1,6 +1,6 @@
 #pragma once
 // The hashed structure's light lists as OpenCL buffers, for kernels that
-// look lights up in world space (kernels/hashed_lookup.cl, the OpenCL port of
+// look lights up in world space (kernels/hashed/hashed_lookup.cl, the OpenCL port of
 // lookup_hashed.glsl). upload() writes what hashed::GpuUploadPlan says (the
 // rules of the GL copy, HashedAssigner): the whole image
 // (LinklessOctree::packGpuImage() and the light index list) after a build or a

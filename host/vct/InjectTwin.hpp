@@ -1,5 +1,5 @@
 #pragma once
-// The C++ twin of kernels/vct_inject.cl's inject_brute: resolve every
+// The C++ twin of kernels/vct/vct_inject.cl's inject_brute: resolve every
 // level-0 voxel of the accumulation buffer and light it with every light,
 // with the kernel's float operations in its order (resolveVoxel(), then
 // shading_model.h per light in index order). It is also what inject_hashed
@@ -25,7 +25,7 @@ bool resolveVoxel(const gpu::VoxelAccum& a, unsigned i, const gpu::VoxelGridPara
 
 // 1 when no filled level-0 voxel lies between `s` (one voxel off its surface
 // along its normal) and the light position `lp`, else 0: the kernel's
-// voxel_visibility(), same float operations (kernels/vct_inject.cl), as its
+// voxel_visibility(), same float operations (kernels/vct/vct_inject.cl), as its
 // plain march: every sample in turn, which the kernel's skipping march must
 // equal. `tested` (if given) gets the number of samples it looked at.
 float voxelVisibility(const std::vector<gpu::VoxelAccum>& accum, const gpu::VoxelGridParams& g, const Surfel& s,

@@ -1,5 +1,5 @@
 #pragma once
-// The C++ twin of kernels/vct_occupancy.cl: the empty-space distance volume
+// The C++ twin of kernels/vct/vct_occupancy.cl: the empty-space distance volume
 // (host/shared/voxel_occupancy.h) of a level-0 accumulation grid of `edge`
 // voxels per axis (any edge 1 .. ML_VOXEL_MAX_EDGE), equal to the kernels'
 // buffer byte for byte. Written from the passes' definitions (every pair of a

@@ -46,8 +46,8 @@ VctGiPass::VctGiPass(ClRuntime& rt, const VctGiSettings& s, const Aabb& scene_bo
     : s_((checkVctGiSettings(s), s)),
       pipeline_(rt, pipelineOptions(s), scene_bounds),
       cones_(diffuseCones(s.cones)),
-      trace_({"vct_trace.comp"}, traceDefines(s)),
-      upsample_({"vct_upsample.comp"}) {}
+      trace_({"vct/vct_trace.comp"}, traceDefines(s)),
+      upsample_({"vct/vct_upsample.comp"}) {}
 
 VctGiPass::~VctGiPass() { freeImages(); }
 

@@ -14,7 +14,7 @@
 //                  for the pass's life (the viewer builds a new pass on any
 //                  change) and the volume does not depend on the resolution;
 //                  the hashed lists follow moved lights incrementally;
-//   addIndirect(): `vct-trace` (gl/shaders/vct_trace.comp: diffuse cones, the
+//   addIndirect(): `vct-trace` (gl/shaders/vct/vct_trace.comp: diffuse cones, the
 //                  ambient occlusion and, with `specular`, a specular cone, at
 //                  gi_scale of the frame's resolution) and `vct-upsample`
 //                  (vct_upsample.comp: depth/normal-aware to full resolution,
@@ -26,6 +26,10 @@
 // (bounce light without that weight), hence a 1/0.9 scale, so that it is
 // compared with the reference as is. The specular cone adds
 // kSpecularWeight x its radiance (a dielectric coat, F0 0.04, aperture 10 deg).
+// stats() (VctGiPassReport.cpp): the settings, the voxel memory, the
+// updates, reuses and list uploads for render's printout and stats JSON;
+// extraImages(): the ambient occlusion ("ao"); view(): the voxel volume as
+// cubes or a slice (VoxelView), drawn by a VoxelViewPass made on first use.
 // checkVctGiSettings(): UserError with one line naming the flag.
 #include <cstdint>
 #include <memory>
@@ -35,6 +39,7 @@
 #include "gl/GiPass.hpp"
 #include "host/vct/ConeTracing.hpp"
 #include "host/vct/VctPipeline.hpp"
+#include "host/vct/VoxelView.hpp"
 
 namespace ml::vct {
 
@@ -67,6 +72,9 @@ class VctGiPass final : public GiPass {
   std::vector<float> indirectRgba() const override;
   std::size_t memoryBytes() const override;  // voxel volumes (voxelBytes) + textures + images
   GiUpdateCounts updateCounts() const override { return {volumeUpdates(), volumeReuses()}; }
+  GiStats stats() const override;
+  std::vector<GiImage> extraImages() const override;
+  GiViewImage view(const ParamValues& view, const GiViewInputs& in) override;
   std::vector<float> ambientOcclusion() const;  // last frame, one float per pixel, 0 on the sky
   const VctGiSettings& settings() const { return s_; }
   const VctPipeline& pipeline() const { return pipeline_; }  // the voxel volume, for debug views
@@ -89,6 +97,7 @@ class VctGiPass final : public GiPass {
   unsigned width_ = 0, height_ = 0, lo_w_ = 0, lo_h_ = 0;
   std::uint64_t volume_lights_ = 0;  // lights_version of the last update; 0: none yet
   std::size_t reuses_ = 0;
+  std::unique_ptr<VoxelViewPass> voxel_view_;  // made by the first view()
   GLuint lo_irradiance_ = 0, lo_geometry_ = 0, lo_specular_ = 0, indirect_ = 0, ao_ = 0;
 };
 

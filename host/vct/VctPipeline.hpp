@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "gl/SceneGpu.hpp"
-#include "gl/VoxelTextures.hpp"
-#include "gl/VoxelizePass.hpp"
+#include "host/vct/VoxelTextures.hpp"
+#include "host/vct/VoxelizePass.hpp"
 #include "host/compute/ComputeEnv.hpp"
 #include "host/hashed/HashedStructure.hpp"
 #include "host/util/PassTimings.hpp"

@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "host/compute/Detail.hpp"
+#include "host/cl/Launch.hpp"
+#include "host/compute/FittedProgram.hpp"
 #include "host/compute/HostIo.hpp"
 #include "host/vct/VoxelGrid.hpp"
 
 namespace ml::vct {
 
-using compute::detail::u32;
 
 VoxelInjector::VoxelInjector(const compute::ComputeEnv& env, const compute::Options& options, bool shadows,
                              bool skip_empty)
@@ -22,8 +22,8 @@ VoxelInjector::VoxelInjector(const compute::ComputeEnv& env, const compute::Opti
 void VoxelInjector::build() {
   if (brute_()) return;
   // GPU shape: the group size the compiled kernels accept on this device.
-  const compute::detail::FittedProgram fitted =
-      compute::detail::buildFitted(env_, tuning_, "vct_inject.cl", "voxel injection", [this](std::size_t) {
+  const compute::FittedProgram fitted =
+      compute::buildFitted(env_, tuning_, "vct/vct_inject.cl", "voxel injection", [this](std::size_t) {
         return Defines{{"VCT_SHADOWS", shadows_ ? "1" : "0"}, {"VCT_SHADOW_SKIP", skip_ ? "1" : "0"}};
       });
   tuning_.wg = fitted.wg;
@@ -55,10 +55,10 @@ std::size_t VoxelInjector::prepare(cl::Kernel& k, cl::CommandQueue& q, const gpu
   s.levels = g.levels;
   checkVoxelGrid(s);
   const std::size_t n = std::size_t(g.edge) * g.edge * g.edge;
-  compute::detail::checkBuffer(accum, n * sizeof(gpu::VoxelAccum), "VoxelInjector accumulation buffer");
-  compute::detail::checkBuffer(radiance, n * 16, "VoxelInjector radiance volume");
-  compute::detail::checkBuffer(lights, light_count * sizeof(gpu::PointLight), "VoxelInjector lights");
-  compute::detail::checkCount(light_count, "VoxelInjector lights");
+  requireBuffer(accum, n * sizeof(gpu::VoxelAccum), "VoxelInjector accumulation buffer");
+  requireBuffer(radiance, n * 16, "VoxelInjector radiance volume");
+  requireBuffer(lights, light_count * sizeof(gpu::PointLight), "VoxelInjector lights");
+  requireCount(light_count, "VoxelInjector lights");
   build();
   std::size_t chunk = 1, global = n;
   local = tuning_.wg;
@@ -69,16 +69,16 @@ std::size_t VoxelInjector::prepare(cl::Kernel& k, cl::CommandQueue& q, const gpu
     chunk = tuning_.cpuChunk(n, 64);
     // Where the device ends a work-item's loops after 65,535 iterations in
     // total (llvmpipe; Tuning::max_chunk is set there,
-    // tests/driver_loop_cap_test.cpp), a voxel per work-item, as in the GPU
+    // tests/driver/driver_loop_cap_test.cpp), a voxel per work-item, as in the GPU
     // shape: one voxel's light loop (with shadows, times its marches) is the
     // least a work-item can take, and a chunk of them passed the cap with a
     // few hundred lights.
     if (tuning_.max_chunk) chunk = 1;
-    global = compute::detail::ceilDiv(n, chunk);
+    global = ceilDiv(n, chunk);
     local = 1;
   }
   const auto& o = g.origin_voxel_size;
-  compute::detail::setArgs(k, accum, occupancyFor(q, g, accum, timer, occupancy), radiance,
+  setArgs(k, accum, occupancyFor(q, g, accum, timer, occupancy), radiance,
                            cl_float4{{o.x, o.y, o.z, o.w}}, cl_uint(log2Exact(g.edge)), u32(n), u32(chunk), lights);
   return global;
 }
@@ -89,7 +89,7 @@ void VoxelInjector::brute(cl::CommandQueue& q, const gpu::VoxelGridParams& g, co
   std::size_t local = 1;
   const std::size_t global = prepare(brute_, q, g, accum, lights, light_count, radiance, local, timer, occupancy);
   brute_.setArg(8, u32(light_count));
-  compute::detail::launch(q, brute_, global, local, timer, "vct-inject");
+  launchTimed(q, brute_, global, local, timer, "vct-inject");
 }
 
 void VoxelInjector::hashed(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
@@ -98,7 +98,7 @@ void VoxelInjector::hashed(cl::CommandQueue& q, const gpu::VoxelGridParams& g, c
   std::size_t local = 1;
   const std::size_t global = prepare(hashed_, q, g, accum, lights, light_count, radiance, local, timer, occupancy);
   lists.setArgs(hashed_, 8);
-  compute::detail::launch(q, hashed_, global, local, timer, "vct-inject");
+  launchTimed(q, hashed_, global, local, timer, "vct-inject");
 }
 
 std::vector<VoxelInjector::MarchResult> VoxelInjector::march(cl::CommandQueue& q, const gpu::VoxelGridParams& g,
@@ -108,7 +108,7 @@ std::vector<VoxelInjector::MarchResult> VoxelInjector::march(cl::CommandQueue& q
   if (!shadows_) throw std::logic_error("VoxelInjector::march: built without shadows");
   if (pn.size() != 2 * lp.size()) throw std::invalid_argument("VoxelInjector::march: pn needs two float4 per query");
   const std::size_t n = lp.size();
-  compute::detail::checkBuffer(accum, std::size_t(g.edge) * g.edge * g.edge * sizeof(gpu::VoxelAccum),
+  requireBuffer(accum, std::size_t(g.edge) * g.edge * g.edge * sizeof(gpu::VoxelAccum),
                                "VoxelInjector accumulation buffer");
   build();
   const auto& o = g.origin_voxel_size;
@@ -117,9 +117,9 @@ std::vector<VoxelInjector::MarchResult> VoxelInjector::march(cl::CommandQueue& q
   cl::Buffer pnb = compute::upload(env_.context(), q, padded(pn)), lpb = compute::upload(env_.context(), q, padded(lp));
   cl::Buffer out(env_.context(), CL_MEM_READ_WRITE, std::max<std::size_t>(n, 1) * 8);
   compute::poison(q, out);
-  compute::detail::setArgs(probe_, accum, occupancyFor(q, g, accum, nullptr, nullptr), cl_float4{{o.x, o.y, o.z, o.w}},
+  setArgs(probe_, accum, occupancyFor(q, g, accum, nullptr, nullptr), cl_float4{{o.x, o.y, o.z, o.w}},
                            cl_uint(log2Exact(g.edge)), pnb, lpb, u32(n), out);
-  if (n) compute::detail::launch(q, probe_, n, 1, nullptr, "");
+  if (n) launchTimed(q, probe_, n, 1, nullptr, "");
   const auto words = compute::download<cl_uint>(q, out, 2 * n);
   std::vector<MarchResult> r(n);
   for (std::size_t i = 0; i < n; ++i) r[i] = {words[2 * i] != 0, words[2 * i + 1]};

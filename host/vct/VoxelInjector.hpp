@@ -1,5 +1,5 @@
 #pragma once
-// Resolve + light injection on the device (kernels/vct_inject.cl): level 0 of
+// Resolve + light injection on the device (kernels/vct/vct_inject.cl): level 0 of
 // the radiance/opacity volume from the accumulation buffer and the lights.
 //  - brute(): every light for every filled voxel (the reference, and the
 //    bench's peer).

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "host/compute/Detail.hpp"
+#include "host/cl/Launch.hpp"
+#include "host/compute/FittedProgram.hpp"
 #include "host/vct/VoxelGrid.hpp"
 
 namespace ml::vct {
 
-using compute::detail::u32;
 
 namespace {
 
@@ -27,7 +27,7 @@ VoxelMips::VoxelMips(const compute::ComputeEnv& env, const compute::Options& opt
 void VoxelMips::build() {
   if (iso_()) return;
   // GPU shape: the group size the compiled kernels accept on this device.
-  const compute::detail::FittedProgram fitted = compute::detail::buildFitted(env_, tuning_, "vct_mips.cl", "voxel mips");
+  const compute::FittedProgram fitted = compute::buildFitted(env_, tuning_, "vct/vct_mips.cl", "voxel mips");
   tuning_.wg = fitted.wg;
   iso_ = cl::Kernel(fitted.program, "mip_iso");
   aniso_ = cl::Kernel(fitted.program, "mip_aniso");
@@ -50,36 +50,36 @@ void VoxelMips::launchTrees(cl::CommandQueue& q, cl::Kernel& k, cl_uint first_ar
     if (tuning_.gpu()) {
       local = tuning_.wg;
       tops = std::max<std::size_t>(1, local >> (3 * (depth - 1)));
-      global = compute::detail::ceilDiv(std::size_t(1) << (3 * top_log2), tops) * local;
+      global = ceilDiv(std::size_t(1) << (3 * top_log2), tops) * local;
     } else {
       const std::size_t slices = std::size_t(1) << top_log2;
-      tops = compute::detail::ceilDiv(slices, std::min<std::size_t>(slices, tuning_.chunks));
-      global = compute::detail::ceilDiv(slices, tops);
+      tops = ceilDiv(slices, std::min<std::size_t>(slices, tuning_.chunks));
+      global = ceilDiv(slices, tops);
     }
     cl_uint a = first_arg;
     for (cl_uint v : {cl_uint(edge_log2), cl_uint(l0), cl_uint(depth), u32(tops)}) k.setArg(a++, v);
-    compute::detail::launch(q, k, global, local, timer, "vct-mips");
+    launchTimed(q, k, global, local, timer, "vct-mips");
   }
 }
 
 void VoxelMips::isotropic(cl::CommandQueue& q, const gpu::VoxelGridParams& g, cl::Buffer& radiance,
                           ClPassTimer* timer) {
   checkGrid(g);
-  compute::detail::checkBuffer(radiance, std::size_t(gpu::voxel_level_offset(g.edge, g.levels)) * 16,
+  requireBuffer(radiance, std::size_t(gpu::voxel_level_offset(g.edge, g.levels)) * 16,
                                "VoxelMips radiance volume");
   build();
-  compute::detail::setArgs(iso_, radiance);
+  setArgs(iso_, radiance);
   launchTrees(q, iso_, 1, g, timer);
 }
 
 void VoxelMips::anisotropic(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& radiance,
                             cl::Buffer& aniso, ClPassTimer* timer) {
   checkGrid(g);
-  compute::detail::checkBuffer(radiance, std::size_t(g.edge) * g.edge * g.edge * 16, "VoxelMips radiance level 0");
-  compute::detail::checkBuffer(aniso, std::size_t(gpu::voxel_aniso_index(g.edge, g.levels, 0, 0)) * 16,
+  requireBuffer(radiance, std::size_t(g.edge) * g.edge * g.edge * 16, "VoxelMips radiance level 0");
+  requireBuffer(aniso, std::size_t(gpu::voxel_aniso_index(g.edge, g.levels, 0, 0)) * 16,
                                "VoxelMips anisotropic volume");
   build();
-  compute::detail::setArgs(aniso_, radiance, aniso);
+  setArgs(aniso_, radiance, aniso);
   launchTrees(q, aniso_, 2, g, timer);
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Voxel mip propagation on the device (kernels/vct_mips.cl): levels 1 ..
+// Voxel mip propagation on the device (kernels/vct/vct_mips.cl): levels 1 ..
 // levels - 1 of the radiance/opacity volume from its level 0 (isotropic:
 // child pairs composited along each axis, the most opaque axis kept) and of
 // the 6-direction volume (anisotropic, Crassin 2011; its level 1 from

@@ -1,5 +1,5 @@
 #pragma once
-// The C++ twins of kernels/vct_mips.cl: the same filters with the same float
+// The C++ twins of kernels/vct/vct_mips.cl: the same filters with the same float
 // operations in the same order, one voxel at a time (tests compare the
 // kernels with these bit for bit; see VoxelMips.hpp for the filters).
 //  - mipIsotropicTwin(): fills levels 1 .. levels - 1 of `radiance` (all

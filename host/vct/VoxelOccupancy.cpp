@@ -4,13 +4,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "host/compute/Detail.hpp"
+#include "host/cl/Launch.hpp"
+#include "host/compute/FittedProgram.hpp"
 #include "host/shared/voxel_occupancy.h"
 #include "host/shared/voxel_types.h"
 
 namespace ml::vct {
 
-using compute::detail::u32;
 
 VoxelOccupancy::VoxelOccupancy(const compute::ComputeEnv& env, const compute::Options& options)
     : env_(env), tuning_(compute::resolveTuning(env, options)) {}
@@ -19,7 +19,7 @@ namespace {
 
 // Loop iterations one work-item may take where the device ends a work-item's
 // loops after 65,535 in total (llvmpipe; Tuning::max_chunk is set there,
-// tests/driver_loop_cap_test.cpp): below the cap, with room for rounding.
+// tests/driver/driver_loop_cap_test.cpp): below the cap, with room for rounding.
 constexpr std::size_t kLoopCapMargin = 60000;
 
 // The most lines per work-item under that cap (0 where the device has none):
@@ -42,12 +42,12 @@ void VoxelOccupancy::launchLines(cl::CommandQueue& q, cl::Kernel& k, cl_uint lin
     // work-item still splits a 16^3 grid's 256 lines among the work-items.
     chunk = tuning_.cpuChunk(lines, 16);
     if (const std::size_t cap = linesWithinLoopCap(tuning_, edge)) chunk = std::min(chunk, cap);
-    global = compute::detail::ceilDiv(lines, chunk);
+    global = ceilDiv(lines, chunk);
     local = 1;
   }
   k.setArg(lines_arg, u32(lines));
   k.setArg(lines_arg + 1, u32(chunk));
-  compute::detail::launch(q, k, global, local, timer, "vct-occupancy");
+  launchTimed(q, k, global, local, timer, "vct-occupancy");
 }
 
 void VoxelOccupancy::build(cl::CommandQueue& q, unsigned edge, const cl::Buffer& accum, ClPassTimer* timer) {
@@ -55,7 +55,7 @@ void VoxelOccupancy::build(cl::CommandQueue& q, unsigned edge, const cl::Buffer&
     throw std::invalid_argument("VoxelOccupancy: grid edge " + std::to_string(edge) + " is not in 1.." +
                                 std::to_string(ML_VOXEL_MAX_EDGE));
   const std::size_t n = std::size_t(edge) * edge * edge;
-  compute::detail::checkBuffer(accum, n * sizeof(gpu::VoxelAccum), "VoxelOccupancy accumulation buffer");
+  requireBuffer(accum, n * sizeof(gpu::VoxelAccum), "VoxelOccupancy accumulation buffer");
   if (n > capacity_) {
     buffer_ = tmp_ = cl::Buffer();  // release first: the old and new buffers need not coexist
     buffer_ = cl::Buffer(env_.context(), CL_MEM_READ_WRITE, n);
@@ -63,18 +63,18 @@ void VoxelOccupancy::build(cl::CommandQueue& q, unsigned edge, const cl::Buffer&
     capacity_ = n;
   }
   if (!rows_()) {
-    const compute::detail::FittedProgram fitted =
-        compute::detail::buildFitted(env_, tuning_, "vct_occupancy.cl", "voxel occupancy");
+    const compute::FittedProgram fitted =
+        compute::buildFitted(env_, tuning_, "vct/vct_occupancy.cl", "voxel occupancy");
     tuning_.wg = fitted.wg;  // GPU shape: the group size the compiled kernels accept here
     rows_ = cl::Kernel(fitted.program, "distance_rows");
     lines_ = cl::Kernel(fitted.program, "distance_lines");
   }
   const std::size_t lines = std::size_t(edge) * edge;
-  compute::detail::setArgs(rows_, accum, cl_uint(edge), buffer_);
+  setArgs(rows_, accum, cl_uint(edge), buffer_);
   launchLines(q, rows_, 3, lines, edge, timer);
-  compute::detail::setArgs(lines_, buffer_, tmp_, cl_uint(edge), cl_uint(edge));
+  setArgs(lines_, buffer_, tmp_, cl_uint(edge), cl_uint(edge));
   launchLines(q, lines_, 4, lines, edge, timer);
-  compute::detail::setArgs(lines_, tmp_, buffer_, cl_uint(edge), u32(lines));
+  setArgs(lines_, tmp_, buffer_, cl_uint(edge), u32(lines));
   launchLines(q, lines_, 4, lines, edge, timer);
   edge_ = edge;
 }

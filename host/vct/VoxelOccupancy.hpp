@@ -1,6 +1,6 @@
 #pragma once
 // The empty-space distance volume of a level-0 accumulation grid on the
-// device (kernels/vct_occupancy.cl; layout host/shared/voxel_occupancy.h): a
+// device (kernels/vct/vct_occupancy.cl; layout host/shared/voxel_occupancy.h): a
 // byte per voxel, its Chebyshev distance to the nearest filled voxel (clamped),
 // which the voxel-shadow march of VoxelInjector reads to skip empty space. Built once per voxelization (the
 // geometry, not the lights, decides it), timed as "vct-occupancy". Both

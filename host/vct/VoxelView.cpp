@@ -59,7 +59,7 @@ std::vector<float> voxelViewDisplay(const std::vector<float>& rgba, VoxelViewKin
   return px;
 }
 
-VoxelViewPass::VoxelViewPass() : program_({"voxel_view.comp"}) {}
+VoxelViewPass::VoxelViewPass() : program_({"vct/voxel_view.comp"}) {}
 
 std::vector<float> VoxelViewPass::render(const VoxelVolume& volume, VoxelViewKind kind, unsigned level,
                                          const VoxelViewCamera& camera) {

@@ -15,7 +15,7 @@
 // voxel with opacity > 0 as above, an empty one 0. Anisotropic volumes at
 // levels >= 1 show the mean of the 6 directions' premultiplied values (what
 // an average cone sees; the cubes show the isotropic mips). GL compute shader
-// gl/shaders/voxel_view.comp reading the volume's SharedBuffers (GL owns them
+// gl/shaders/vct/voxel_view.comp reading the volume's SharedBuffers (GL owns them
 // between updates); voxelViewPixelTwin (VoxelViewTwin.hpp) is its C++ twin.
 // parseVoxelView / checkVoxelLevel: UserError naming --voxel-view / --voxel-level;
 // so is a volume buffer larger than the GL's shader storage block limit (the

@@ -1,5 +1,5 @@
 #pragma once
-// C++ twin of gl/shaders/voxel_view.comp (host/vct/VoxelView.hpp): one pixel
+// C++ twin of gl/shaders/vct/voxel_view.comp (host/vct/VoxelView.hpp): one pixel
 // of the voxel view from the volume read back to the host (`radiance`: every
 // level, voxel_types.h layout; `accum`: level 0). The same operations in the
 // same order as the shader, so the two differ only where rounding moves a ray

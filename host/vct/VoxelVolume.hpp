@@ -6,7 +6,7 @@
 //  - radiance:  every level, one float4 per voxel at voxel_level_offset():
 //               rgb = outgoing radiance premultiplied by opacity, a = opacity
 //               (level 0: the lit voxel, opacity 1 or 0; levels >= 1: the
-//               mips, kernels/vct_mips.cl);
+//               mips, kernels/vct/vct_mips.cl);
 //  - anisotropic (only when the settings ask for it): levels >= 1, 6 float4
 //               per voxel, premultiplied as above (voxel_aniso_index()).
 // Buffers are sized once by the settings (checked with checkVoxelGrid());

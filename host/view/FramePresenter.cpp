@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "gl/GlCheck.hpp"
-#include "host/bench/OutputFiles.hpp"
+#include "host/run/OutputFiles.hpp"
 #include "host/view/ViewerSession.hpp"
 
 namespace ml {

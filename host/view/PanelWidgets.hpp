@@ -5,7 +5,10 @@
 #include <imgui.h>
 
 #include <cstdio>
+#include <functional>
 #include <string>
+
+#include "host/assign/TechniqueDescriptor.hpp"
 
 #include "host/util/Error.hpp"
 #include "host/view/ViewerPanel.hpp"
@@ -30,8 +33,15 @@ inline bool inputText(const char* label, std::string& text) {
   return done;
 }
 
-// The GI section (ViewerGiPanel.cpp): none / vct, every VCT setting of the
-// settings table (drawn by type), the voxel view's kind and level.
+// One parameter's widget from its spec (ParamSpecWidget.cpp), for the
+// technique's and the GI pass's parameters alike: a switch a checkbox, a
+// choice a combo, counts and text a field committed on Enter (its edit kept in
+// state.edits under `id`); `set` is attempted with the new text.
+void drawParamSpec(PanelState& state, const ParamSpec& p, const std::string& value, const std::string& id,
+                   const std::function<void(const std::string&)>& set);
+
+// The GI section (ViewerGiPanel.cpp): none or a registered GI pass, its
+// parameters and view parameters, all drawn from its descriptor.
 class ViewerSession;
 void drawGi(ViewerSession& s, PanelState& state);
 

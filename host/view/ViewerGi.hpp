@@ -1,62 +1,62 @@
 #pragma once
-// The viewer's global illumination: none or voxel cone tracing (the frame's
-// GiPass, host/vct/VctGiPass), its settings set by key through the one VCT
-// settings table (host/vct/VctSettingsTable.hpp, as `render --gi vct`'s flags
-// are), and its two view modes: the indirect light (as render's
-// <out>_gi_vct.png) and the voxel volume as cubes (a view kind and a level, as
-// render's --voxel-view / --voxel-level), or one plane of it (render's
-// --voxel-slice). A refused value (unknown key, bad
-// text, a setting checkVctGiSettings rejects, a pass that cannot be built)
-// throws UserError and leaves the last working state in place. When --levels
-// drops below the shown voxel level, the voxel view shows the coarsest level.
+// The viewer's global illumination: none or a registered GI pass
+// (host/gi/Registry.hpp; the frame's GiPass), its parameters set by key as
+// render's flags of that pass are (giParams: each value against its spec,
+// then the whole set), its view parameters likewise (giViewParams), and its
+// two view modes: the indirect light (as render's <out>_gi_NAME.png) and the
+// pass's own view (GiPass::view, e.g. the voxel volume, as render's view
+// flags write it). A refused value (unknown key, bad text, a set the pass
+// rejects, a pass that cannot be built) throws UserError and leaves the last
+// working state in place. After a parameter change the view values are
+// brought back in range (the descriptor's fit_view: e.g. the shown voxel
+// level follows --levels down). One pass is selected even while GI is off
+// (at first the registry's first): its parameters can be set then and are
+// used when it is turned on. Parameters given for a pass are kept per pass,
+// so switching passes and back restores them.
+#include <map>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
+#include "gl/GiDescriptor.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/scene/Camera.hpp"
 #include "host/scene/Scene.hpp"
-#include "host/vct/VctGiPass.hpp"
-#include "host/vct/VoxelView.hpp"
 
 namespace ml {
 
 class ViewerGi {
  public:
-  ViewerGi(ClRuntime& cl, const Aabb& scene_bounds);
+  ViewerGi(ClRuntime& cl, const Scene& scene);
   ~ViewerGi();
 
-  void setMode(const std::string& mode);  // none | vct
+  void setMode(const std::string& mode);  // none | a registered GI pass
   void setParam(const std::string& key, const std::string& value);
-  void setVoxelView(const std::string& kind);  // albedo | radiance | opacity
-  void setVoxelLevel(unsigned level);          // below the levels setting
-  void setVoxelSlice(const std::string& slice);  // x|y|z[:position] (VoxelSlice.hpp), or none: cubes
+  void setView(const std::string& key, const std::string& value);  // a view parameter of the pass
 
   bool on() const { return pass_ != nullptr; }
   const std::string& mode() const { return mode_; }
-  const vct::VctGiSettings& settings() const { return settings_; }
-  vct::VoxelViewKind voxelView() const { return voxel_kind_; }
-  unsigned voxelLevel() const { return voxel_level_; }
-  const std::optional<vct::VoxelSlice>& voxelSlice() const { return voxel_slice_; }
+  const GiDescriptor& descriptor() const { return *descriptor_; }  // the selected pass, on or off
+  // The selected pass's parameters and view values (its defaults when none was given).
+  const ParamValues& params() const { return params_; }
+  const ParamValues& view() const { return view_; }
   GiPass* pass() { return pass_.get(); }  // null when none
 
   // Of the last frame rendered with pass(): displayed RGBA, rows bottom-up.
   std::vector<float> indirectImage() const;
-  std::vector<float> voxelImage(const Camera& camera, unsigned width, unsigned height);
+  std::vector<float> viewImage(const Camera& camera, unsigned width, unsigned height);
 
  private:
-  void rebuild(const vct::VctGiSettings& s);
+  void select(const GiDescriptor& d, bool build);
+  void rebuild(const ParamValues& params);
 
   ClRuntime& cl_;
-  Aabb bounds_;
+  const Scene& scene_;
   std::string mode_ = "none";
-  vct::VctGiSettings settings_;
-  std::unique_ptr<vct::VctGiPass> pass_;
-  std::unique_ptr<vct::VoxelViewPass> voxel_view_;
-  vct::VoxelViewKind voxel_kind_ = vct::VoxelViewKind::Radiance;
-  unsigned voxel_level_ = 0;
-  std::optional<vct::VoxelSlice> voxel_slice_;
+  const GiDescriptor* descriptor_;
+  std::map<std::string, SettingList> given_, view_given_;  // per pass name, as set (the last value per key wins)
+  ParamValues params_, view_;
+  std::unique_ptr<GiPass> pass_;
 };
 
 }  // namespace ml

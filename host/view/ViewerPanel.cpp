@@ -33,23 +33,7 @@ void drawDevices(ViewerSession& s) {
 }
 
 void drawParam(ViewerSession& s, PanelState& state, const ParamSpec& p) {
-  const std::string value = s.params().text(p.key);
-  const std::string label = p.key + "##param";
-  if (p.type == ParamType::Switch) {
-    bool on = s.params().on(p.key);
-    if (ImGui::Checkbox(label.c_str(), &on)) attempt(state, [&] { s.setParam(p.key, on ? "on" : "off"); });
-  } else if (p.type == ParamType::Choice) {
-    if (ImGui::BeginCombo(label.c_str(), value.c_str())) {
-      for (const std::string& c : p.choices)
-        if (ImGui::Selectable(c.c_str(), c == value)) attempt(state, [&] { s.setParam(p.key, c); });
-      ImGui::EndCombo();
-    }
-  } else {  // Count and Text: typed, checked against the spec on Enter
-    auto [it, fresh] = state.edits.try_emplace(p.key, value);
-    if (inputText(label.c_str(), it->second)) attempt(state, [&] { s.setParam(p.key, it->second); });
-    (void)fresh;
-  }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s)", p.help.c_str(), p.allowed().c_str());
+  drawParamSpec(state, p, s.params().text(p.key), p.key, [&](const std::string& v) { s.setParam(p.key, v); });
 }
 
 void drawTechnique(ViewerSession& s, PanelState& state) {

@@ -4,6 +4,7 @@
 #include <map>
 #include <sstream>
 
+#include "host/gi/Registry.hpp"
 #include "host/util/Error.hpp"
 #include "host/view/ViewerSession.hpp"
 
@@ -14,17 +15,29 @@ using nlohmann::json;
 
 enum class Shape { String, Count, Number, Bool, Object, Pair, Triple };
 
+// The GI passes' view parameters are verbs too (their keys, e.g. voxel_level):
+// a count is a JSON number, anything else a string.
+void addGiViewVerbs(std::map<std::string, Shape>& v) {
+  for (const GiDescriptor* d : giDescriptors())
+    for (const ParamSpec& p : d->view_params) v.emplace(p.key, p.type == ParamType::Count ? Shape::Count : Shape::String);
+}
+
+bool isGiViewVerb(const std::string& verb) { return giViewParamOwner(verb) != nullptr; }
+
 // Every verb and the shape of its value.
 const std::map<std::string, Shape>& verbs() {
-  static const std::map<std::string, Shape> v = {
+  static const std::map<std::string, Shape> v = [] {
+    std::map<std::string, Shape> m = {
       {"technique", Shape::String},   {"param", Shape::Object},      {"lights", Shape::Count},
       {"animate", Shape::Pair},       {"view", Shape::String},       {"heatmap_max", Shape::Count},
       {"camera_frame", Shape::Count}, {"orbit", Shape::Pair},        {"fly", Shape::Triple},
       {"wait", Shape::Count},         {"screenshot", Shape::String}, {"screenshot_window", Shape::String},
       {"panel", Shape::Bool},         {"counts", Shape::Bool},       {"record", Shape::String},
       {"record_save", Shape::String}, {"ratio_max", Shape::Number},  {"play", Shape::Bool},
-      {"gi", Shape::String},          {"gi_param", Shape::Object},   {"voxel_view", Shape::String},
-      {"voxel_level", Shape::Count},  {"voxel_slice", Shape::String}};
+      {"gi", Shape::String},          {"gi_param", Shape::Object}};
+    addGiViewVerbs(m);
+    return m;
+  }();
   return v;
 }
 
@@ -151,9 +164,7 @@ void ViewerScript::run(const ScriptAction& a, ViewerSession& s, ScriptWindowActi
     else if (a.verb == "gi") s.setGi(v.get<std::string>());
     else if (a.verb == "gi_param")
       for (const auto& [k, x] : v.items()) s.setGiParam(k, x.get<std::string>());
-    else if (a.verb == "voxel_view") s.setVoxelView(v.get<std::string>());
-    else if (a.verb == "voxel_level") s.setVoxelLevel(v.get<unsigned>());
-    else if (a.verb == "voxel_slice") s.setVoxelSlice(v.get<std::string>());
+    else if (isGiViewVerb(a.verb)) s.setGiView(a.verb, v.is_string() ? v.get<std::string>() : v.dump());
   } catch (const UserError& e) {
     throw UserError(a.where + ": " + e.what());
   }

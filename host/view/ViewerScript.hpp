@@ -15,10 +15,10 @@
 //   {"screenshot_window": "w.png"}      (the window as shown, panel included)
 //   {"panel": false}                    {"counts": true}
 //   {"record": "start"}                 {"record_save": "path.json"}
-//   {"gi": "vct"}                       {"gi_param": {"voxels": "32"}}  (render's --gi vct flags, by key)
-//   {"view": "indirect"}                {"view": "voxels"}              (with gi vct)
-//   {"voxel_view": "radiance"}          {"voxel_level": 1}
-//   {"voxel_slice": "z:0.5"}            {"voxel_slice": "none"}         (render's --voxel-slice; none: cubes)
+//   {"gi": NAME}                        {"gi_param": {KEY: "VALUE"}}   (a GI pass and its render flags, by key)
+//   {"view": "indirect"}                {"view": VIEW}                 (with a GI pass; VIEW: its view_name)
+//   {VIEW_KEY: VALUE}                   (a GI pass's view parameter, e.g. {"voxel_level": 1}: a number
+//                                        for a count, else a string; host/gi/Registry.hpp)
 // Loading checks the file's shape (UserError naming the file and the action's
 // index); values are checked when they run, as the panel's are.
 #include <cstddef>

@@ -1,6 +1,6 @@
 #include "host/view/ViewerSession.hpp"
 
-#include "host/bench/OutputFiles.hpp"
+#include "host/run/OutputFiles.hpp"
 #include "host/util/Error.hpp"
 #include "host/util/ThesisSeed.hpp"
 
@@ -16,7 +16,7 @@ ViewerSession::ViewerSession(RunContext& ctx, ViewerSetup setup)
   renderer_ = std::make_unique<FrameRenderer>(*ctx_.cl, setup_.scene, setup_.width, setup_.height);
   lights_ = setup_.lights;
   renderer_->setLights(lights_);
-  gi_ = std::make_unique<ViewerGi>(*ctx_.cl, setup_.scene.bounds);
+  gi_ = std::make_unique<ViewerGi>(*ctx_.cl, setup_.scene);
   given_ = setup_.params;
   controller_.set(cameras_.frames.front());
   setTechnique(setup_.technique);
@@ -95,13 +95,19 @@ std::vector<ViewMode> ViewerSession::viewModes() const {
                                  {"bound-heatmap", "heat map: lower bound (lights in range)"},
                                  {"ratio-map", "evaluations / lower bound"}};
   for (const DebugViewSpec& v : technique_->descriptor->debug_views) modes.push_back({v.name, v.name + " view"});
-  if (gi_->on()) modes.insert(modes.end(), {{"indirect", "indirect light (vct)"}, {"voxels", "voxels (vct)"}});
+  if (gi_->on()) {
+    const GiDescriptor& d = gi_->descriptor();
+    modes.push_back({"indirect", "indirect light (" + d.name + ")"});
+    if (!d.view_name.empty()) modes.push_back({d.view_name, d.view_name + " (" + d.name + ")"});
+  }
   return modes;
 }
 
 void ViewerSession::setGi(const std::string& mode) {
   gi_->setMode(mode);
-  if (!gi_->on() && (view_mode_ == "indirect" || view_mode_ == "voxels")) view_mode_ = "shaded";
+  bool offered = false;  // the GI views go with their pass
+  for (const ViewMode& m : viewModes()) offered |= m.name == view_mode_;
+  if (!offered) view_mode_ = "shaded";
   stale_ = true;
 }
 
@@ -110,18 +116,8 @@ void ViewerSession::setGiParam(const std::string& key, const std::string& value)
   stale_ = true;
 }
 
-void ViewerSession::setVoxelView(const std::string& kind) {
-  gi_->setVoxelView(kind);
-  stale_ = true;
-}
-
-void ViewerSession::setVoxelLevel(unsigned level) {
-  gi_->setVoxelLevel(level);
-  stale_ = true;
-}
-
-void ViewerSession::setVoxelSlice(const std::string& slice) {
-  gi_->setVoxelSlice(slice);
+void ViewerSession::setGiView(const std::string& key, const std::string& value) {
+  gi_->setView(key, value);
   stale_ = true;
 }
 
@@ -215,7 +211,8 @@ std::vector<float> ViewerSession::image() {
   if (stale_ || controller_.version() != rendered_version_) render();
   if (view_mode_ == "shaded") return renderer_->targets().readColor();
   if (view_mode_ == "indirect") return gi_->indirectImage();
-  if (view_mode_ == "voxels") return gi_->voxelImage(controller_.camera(), width(), height());
+  if (gi_->on() && view_mode_ == gi_->descriptor().view_name)
+    return gi_->viewImage(controller_.camera(), width(), height());
   if (const auto kind = heatmapKind()) {
     const double top = *kind == HeatmapKind::Ratio ? ratio_max_ : double(heatmap_max_);
     FrameHeatmap map = frameHeatmap(*renderer_, technique_->pipeline, {*kind, top});

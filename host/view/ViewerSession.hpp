@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "gl/FrameRenderer.hpp"
-#include "host/bench/RunLayer.hpp"
+#include "host/run/RunLayer.hpp"
 #include "host/scene/Camera.hpp"
 #include "host/scene/LightAnimator.hpp"
 #include "host/techniques/Registry.hpp"
@@ -41,7 +41,8 @@ struct ViewerSetup {
 // A view mode: the shaded image, a heat map of the counted frame (lights
 // evaluated, lights in range = the exact lower bound, or their ratio), a
 // debug view of the technique (DebugViewSpec name, e.g. "cluster"), or, with
-// gi vct, "indirect" (the indirect light) and "voxels" (ViewerGi).
+// a GI pass on, "indirect" (the indirect light) and the pass's own view
+// (its descriptor's view_name, e.g. "voxels"; ViewerGi).
 struct ViewMode {
   std::string name;   // "shaded", "heatmap", "bound-heatmap", "ratio-map", or a debug view's name
   std::string label;  // for the panel
@@ -62,12 +63,11 @@ class ViewerSession {
   void setLightCount(std::uint64_t count);
   void setAnimation(double fraction, double speed);
   void setViewMode(const std::string& name);
-  // Global illumination (ViewerGi): none|vct, a VCT setting by key, the voxel view.
+  // Global illumination (ViewerGi): none or a GI pass, its parameters and
+  // view parameters by key (host/gi/Registry.hpp).
   void setGi(const std::string& mode);
   void setGiParam(const std::string& key, const std::string& value);
-  void setVoxelView(const std::string& kind);
-  void setVoxelLevel(unsigned level);
-  void setVoxelSlice(const std::string& slice);  // x|y|z[:position], or none (cubes)
+  void setGiView(const std::string& key, const std::string& value);
   const ViewerGi& gi() const { return *gi_; }
   void setHeatmapMax(std::uint32_t max_value);  // the count heat maps' top; 0: the frame's maximum
   void setRatioMax(double max_ratio);           // the ratio map's top (above 1; UserError otherwise)

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gl/FrameRenderer.hpp"
-#include "host/app/SceneInputs.hpp"
+#include "host/run/SceneInputs.hpp"
 
 namespace ml::test {
 

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "host/app/Cli.hpp"
+#include "host/cli/Cli.hpp"
 
 namespace ml::test {
 namespace {

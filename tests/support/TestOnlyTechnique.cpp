@@ -2,7 +2,7 @@
 // names with a parameter of its own, registered at start-up. It is the whole
 // diff a new technique needs outside its shaders and kernels: an assigner, a
 // descriptor and one registration (a built-in one adds a line to
-// host/techniques/Registry.cpp instead). tests/techniques_registry_test.cpp
+// host/techniques/Registry.cpp instead). tests/assign/techniques_registry_test.cpp
 // finds it in `techniques`, `render --help`, `bench --help` and the checks.
 #include "host/techniques/Registry.hpp"
 
@@ -13,7 +13,7 @@ class KnobBruteAssigner final : public LightAssigner {
  public:
   explicit KnobBruteAssigner(unsigned knob) : knob_(knob) {}
   void assign(const FrameInputs&) override {}
-  std::string lookupShader() const override { return "lookup_brute.glsl"; }
+  std::string lookupShader() const override { return "assign/lookup_brute.glsl"; }
   void bindForShading(const ShaderProgram&) const override {}
   std::vector<std::pair<std::string, double>> stats() const override { return {{"test knob", double(knob_)}}; }
 
