@@ -59,7 +59,7 @@ jobs="${OCLGRIND_JOBS:-2}"
 # the primitives (scan, reduce, compact/unique, radix, bitonic, segmented
 # sort), then those of the tiled and clustered kernels. Left out for time
 # (about 4 minutes in all on two cores is the budget of this CI step):
-#   - Shapes/ClusteredAssign.*/gpu (the cluster_assign.cl GPU shape: seven
+#   - Shapes/ClusteredAssign.*/gpu (the kernels/clustered/ GPU shape: seven
 #     assigners over three frames; over 100 CPU-s unoptimized, unfinished);
 #     scripts/oclgrind.sh 'Shapes/ClusteredAssign.*/gpu' runs it;
 #   - the radix sort tests but Gpu_Pairs32 (which runs both GPU kernels,
@@ -80,7 +80,7 @@ cpu_opts="-cl-opt-disable -Drestrict="
 # The CPU shape (a work-item per chunk, private state) runs with the same
 # checks, but three kernel families only with --data-races: Oclgrind 21.10's
 # --uninitialized plugin crashes the process (segfault, no report) on the
-# 8-wide vector swizzles of the CPU sorting networks (prim_bitonic_network.cl:
+# 8-wide vector swizzles of the CPU sorting networks (compute/prim_bitonic_network.cl:
 # bitonic and segmented sort, and cluster unique's sort methods); with
 # --data-races they report nothing. Left out for time (over 150 s each under
 # the simulator): ComputeRadixSort.CpuWideDigitsAndBalancedPasses,
