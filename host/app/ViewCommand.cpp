@@ -22,7 +22,7 @@ CLI::App* addViewCommand(CLI::App& app, ViewArgs& a) {
   cmd->add_option("--size", a.size, "WIDTHxHEIGHT of the window and the rendered frame")->capture_default_str();
   cmd->add_option("--script", a.script,
                   "JSON list of actions to play (technique, param, lights, view, camera_frame, orbit, fly, wait, "
-                  "screenshot, record, ...), then exit; see README \"Viewer\"");
+                  "screenshot, record, ...), then exit; see docs/viewer.md");
   addTechniqueFlags(*cmd, a.params, nullptr);
   cmd->footer("Keys: WASD/QE fly, right drag looks (fly) or left drag turns (orbit), scroll zooms, F1 hides the "
               "panel, Esc quits.");

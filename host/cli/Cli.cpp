@@ -102,7 +102,7 @@ int runCli(int argc, char** argv) {
                  isAllocationFailure(e.err()) ? " (the device is out of memory: lower --lights or --size)" : "");
     return 2;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "manylights: error: out of host memory (lower --lights or --size; README, \"Bad input\")\n");
+    std::fprintf(stderr, "manylights: error: out of host memory (lower --lights or --size; docs/usage.md, \"Bad input\")\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "manylights: internal error: %s\n", e.what());

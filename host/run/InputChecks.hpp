@@ -28,7 +28,7 @@ inline constexpr const char* kLightDensityHelp =
     "K = 0.5 N/V 4/3 pi r^3 (1+jitter^2), 0.5 for surfaces bounding the volumes; not with --light-radius";
 
 // The hard light-count limits, for the --lights help of render and bench
-// (README, "Scaling to a million lights"): kMaxLights and kHostBytesPerLight
+// (docs/scaling.md): kMaxLights and kHostBytesPerLight
 // (LightSet.hpp), hashed::kMaxHashedLights and the octree's build-memory limit
 // (host/hashed/OctreeBounds.hpp), checkDeviceLightLimits. Every other structure
 // grows with its lists.

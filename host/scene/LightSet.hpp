@@ -67,7 +67,7 @@ LightVolumeSet loadLightVolumesJson(const std::string& path);
 //    the file's surface_inset, so that they do at any radius), where a
 //    sphere keeps about half its volume inside: kSurfaceCoverage.
 //   K = kSurfaceCoverage * count / V * 4/3 pi r^3 (1 + j^2), solved for r.
-// Measured on data/default at 1920x1080 (README, "Scaling to a million
+// Measured on data/default at 1920x1080 (docs/scaling.md, "Scaling to a million
 // lights"): the mean lower bound per covered pixel is 1.1..1.35 K from 1k to
 // 1M lights.
 constexpr double kSurfaceCoverage = 0.5;
@@ -93,7 +93,7 @@ std::vector<gpu::PointLight> loadLightsJson(const std::string& path);
 void saveLightsJson(const std::string& path, const std::vector<gpu::PointLight>& lights);
 
 // Light-count limits, checked before lights are generated or loaded into a
-// renderer (README, "Bad input"):
+// renderer (docs/usage.md, "Bad input"):
 //  - kMaxLights: the most lights any technique takes. A ceiling well inside
 //    the 32-bit light indices, counts and sort keys used throughout, at 4 GiB
 //    of light data (32 bytes each), more than one buffer of common OpenCL

@@ -139,7 +139,7 @@ nlohmann::json renderStats(const TempDir& dir, const std::string& args) {
 
 // The acceptance check of the calibration: at 2k and 64k lights (radius 3.2x
 // apart) the mean bound per covered pixel is within [0.75 K, 1.5 K]
-// (README, "Scaling to a million lights": 1.1-1.35 K from 1k to 1M at 1920x1080).
+// (docs/scaling.md: 1.1-1.35 K from 1k to 1M at 1920x1080).
 TEST(LightDensity, MeanLowerBoundStaysNearTheDensity) {
   TempDir dir;
   const double k = 8.0;
