@@ -5,7 +5,7 @@
 //  - adds exactly albedo x its colour to the frame (fresh random colour per
 //    run; tolerance: float rounding of one addition, 1e-6 relative);
 //  - renders through `render` (its files and stats fields) and `bench --gi`
-//    (one record per swept value), run in this binary;
+//    (one record per swept value), run in this binary (in a child process);
 //  - is driven by the viewer's GI state as VCT is (the panel's widgets and
 //    script keys come from the same descriptor).
 #include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR
@@ -18,6 +18,9 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
+#include <cstdlib>
+#include <iterator>
 #include <string>
 
 #include "gl/FrameRenderer.hpp"
@@ -27,6 +30,7 @@
 #include "host/view/ViewerGi.hpp"
 #include "support/BruteReference.hpp"
 #include "support/InProcessCli.hpp"
+#include "support/RunCommand.hpp"
 #include "support/TempDir.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
@@ -111,29 +115,50 @@ TEST(GiRegistry, AmbientPassAddsAlbedoTimesItsColour) {
   EXPECT_LE(worst_err, 1.0) << "frame - direct differs from albedo x colour beyond 1e-6 relative at pixel " << worst;
 }
 
-TEST(GiRegistry, RenderAndBenchRunTheTestPass) {
-  test::TempDir tmp;
+// The child half of RenderAndBenchRunTheTestPass, run by it in a process of
+// its own (never alone: disabled): `render` and `bench` in-process close the
+// EGL display this binary's GL tests share (EglContext terminates it), so
+// they must not run inside the test process. Writes into $ML_GI_CHILD_DIR.
+TEST(GiRegistryChild, DISABLED_RenderAndBenchInThisProcess) {
+  const char* dir = std::getenv("ML_GI_CHILD_DIR");
+  ASSERT_NE(dir, nullptr);
+  const std::string d = dir;
   std::vector<std::string> render = cornellArgs("render");
-  const std::string out = tmp.file("a.png"), stats = tmp.file("a.json");
   render.insert(render.end(), {"--size", "48x32", "--frames", "1", "--gi", test::kAmbientGiName, "--ambient",
-                               "0.5:0.25:1", "--out", out, "--stats-json", stats});
+                               "0.5:0.25:1", "--out", d + "/a.png", "--stats-json", d + "/a.json"});
   const auto r = runCliInProcess(render);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"a_gi_test-ambient.exr", "a_gi_test-ambient.png"})
-    EXPECT_TRUE(std::filesystem::exists(tmp.file(f))) << f;
-  const nlohmann::json j = nlohmann::json::parse(std::ifstream(stats));
-  EXPECT_EQ(j.at("gi"), test::kAmbientGiName);
-  EXPECT_EQ(j.at("gi_ambient"), nlohmann::json({0.5, 0.25, 1.0}));
-  EXPECT_TRUE(has(r.out, "gi test-ambient: ")) << r.out;
-
+  std::ofstream(d + "/render.out") << r.exit_code << "\n" << r.out << r.err;
   std::vector<std::string> bench = cornellArgs("bench");
-  const std::string json = tmp.file("b.json");
   bench.insert(bench.end(), {"--techniques", "deferred", "--size", "48x32", "--frames", "0", "--progress", "none",
                              "--gi", test::kAmbientGiName, "--param", "ambient=0:0:0,1:1:1", "--no-counts", "--json",
-                             json});
+                             d + "/b.json"});
   const auto b = runCliInProcess(bench);
-  ASSERT_EQ(b.exit_code, 0) << b.err;
-  const auto recs = nlohmann::json::parse(std::ifstream(json)).at("records");
+  std::ofstream(d + "/bench.out") << b.exit_code << "\n" << b.out << b.err;
+}
+
+std::string fileText(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(GiRegistry, RenderAndBenchRunTheTestPass) {
+  test::TempDir tmp;
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  const auto child = test::runShell("ML_GI_CHILD_DIR=" + tmp.file("") + " " + self +
+                                    " --gtest_filter=GiRegistryChild.DISABLED_RenderAndBenchInThisProcess"
+                                    " --gtest_also_run_disabled_tests");
+  ASSERT_EQ(child.exit_code, 0) << child.out << child.err;
+  const std::string render = fileText(tmp.file("render.out")), bench = fileText(tmp.file("bench.out"));
+  ASSERT_EQ(render.rfind("0\n", 0), 0u) << render;
+  EXPECT_TRUE(has(render, "gi test-ambient: ")) << render;
+  for (const char* f : {"a_gi_test-ambient.exr", "a_gi_test-ambient.png"})
+    EXPECT_TRUE(std::filesystem::exists(tmp.file(f))) << f;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(tmp.file("a.json")));
+  EXPECT_EQ(j.at("gi"), test::kAmbientGiName);
+  EXPECT_EQ(j.at("gi_ambient"), nlohmann::json({0.5, 0.25, 1.0}));
+
+  ASSERT_EQ(bench.rfind("0\n", 0), 0u) << bench;
+  const auto recs = nlohmann::json::parse(std::ifstream(tmp.file("b.json"))).at("records");
   ASSERT_EQ(recs.size(), 2u);
   std::set<std::string> seen;
   for (const auto& rec : recs) {
