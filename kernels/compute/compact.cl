@@ -71,8 +71,6 @@ __kernel void unique_write(__global const uint* restrict keys, __global uint* re
 
 #else /* GPU: group g owns tile g; work-item lid owns its ITEMS consecutive elements */
 
-#define TILE (WG * ITEMS)
-
 ML_INLINE void count_tile(uint keep_sum, __global uint* counts, __local uint* tmp) {
   uint total;
   wg_exclusive_scan(keep_sum, tmp, &total);

@@ -26,6 +26,8 @@ ML_INLINE uint next_pow2_u(uint v) {
 
 #if ML_GPU
 #define WG_ATTR __attribute__((reqd_work_group_size(WG, 1, 1)))
+/* Elements of a work-group's tile (scan, compact, radix sort: ITEMS each). */
+#define TILE (WG * ITEMS)
 
 /* Exclusive prefix sum of one value per work-item over the work-group
  * (Hillis-Steele in local memory); *total receives the sum of all values. Every

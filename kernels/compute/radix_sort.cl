@@ -176,8 +176,6 @@ __kernel void radix_scatter(__global const KEY_T* restrict keys_in, __global KEY
 
 #else /* GPU: a work-group walks its range tile by tile (WG * ITEMS keys) */
 
-#define TILE (WG * ITEMS)
-
 __kernel WG_ATTR void radix_hist(__global const KEY_T* keys, uint n, uint chunk, uint shift, uint mask,
                                  __global uint* counts, uint groups) {
   __local uint hist[RADIX];

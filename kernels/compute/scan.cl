@@ -10,8 +10,6 @@
 #include "compute/prim_common.cl"
 
 #if ML_GPU
-#define TILE (WG * ITEMS)
-
 __kernel WG_ATTR void scan_reduce(__global const uint* in, __global uint* partials, uint n, uint chunk) {
   __local uint tmp[WG];
   const uint lid = get_local_id(0);
