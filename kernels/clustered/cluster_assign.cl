@@ -18,8 +18,8 @@
  * kernels are the GPU shape of the same passes (work-groups cooperating
  * through local memory, consecutive work-items on consecutive data) with the
  * same outputs. The host picks one set (ClusterLightAssigner,
- * --kernel-shape); work-group sizes are powers of two it fits to the
- * kernel's limits, at most the *_WG bounds below.
+ * --kernel-shape); the GPU shape's groups are BVH_BRANCH work-items, one per
+ * child of the node being tested.
  *
  * Defines: LEAF_SIZE (host: ClusterLightAssigner).
  */
