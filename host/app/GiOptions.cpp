@@ -20,7 +20,8 @@ CLI::Validator switchValue(const ParamSpec& spec) {
   return CLI::Validator(
       [spec](std::string& text) -> std::string {
         if (text == "true") return "";  // CLI11's value for the bare flag
-        return spec.problem(text);
+        const std::string why = spec.problem(text);
+        return why.empty() ? why : why + ", got '" + text + "'";
       },
       "");
 }

@@ -22,8 +22,8 @@ namespace ml {
 
 const std::vector<const GiDescriptor*>& giDescriptors();
 // Appends a descriptor (copied); std::logic_error after the registry was first
-// read, for a name already registered, or a key another pass (or a
-// technique) describes differently.
+// read, for a name already registered, or a key another GI pass describes
+// differently (both passes' flags are one flag).
 void registerGi(const GiDescriptor& descriptor);
 
 std::string giNames();  // "vct|..." (without none)
