@@ -12,20 +12,22 @@
 # names the machine (scripts/lib/compare_json.py says which fields).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"  # inputs by relative paths: results record them as given
 usage() { echo "usage: $0 capture DIR [BUILD] | compare OLD NEW" >&2; exit 2; }
 [[ $# -ge 2 ]] || usage
 
 capture() {
-  local dir="$1" bin="${2:-$root/build}/manylights"
+  local dir bin="${2:-$root/build}/manylights"
+  dir="$(mkdir -p "$1" && cd "$1" && pwd)"
   [[ -x "$bin" ]] || { echo "$0: $bin: not built" >&2; exit 2; }
   mkdir -p "$dir"
   for t in $("$bin" techniques | awk '{print $1}'); do
     "$bin" render --technique "$t" --counts --out "$dir/$t.png" --heatmap "$dir/$t-heat.png" \
       --stats-json "$dir/$t.json" >/dev/null
   done
-  "$bin" render --scene "$root/data/cornell/cornell.gltf" --gi vct --gi-reference --size 96x96 \
+  "$bin" render --scene data/cornell/cornell.gltf --gi vct --gi-reference --size 96x96 \
     --out "$dir/cornell-vct.png" --stats-json "$dir/cornell-vct.json" >/dev/null
-  local suite="$root/../shared/data/thesis-suite/scenes/spaceship-indoor"
+  local suite="../shared/data/thesis-suite/scenes/spaceship-indoor"
   if [[ -d "$suite" ]]; then
     "$bin" bench --suite "$suite" --allow-missing-meshes --lights thesis --techniques hashed-deferred,clustered-deferred \
       --param node_size=11.5 --param start_depth=3 --size 160x160 --frames 3:131:64 \

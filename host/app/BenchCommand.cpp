@@ -485,9 +485,12 @@ void printGiErrors(const std::vector<FrameRecord>& records) {
   bool any = false;
   for (const auto& r : records) {
     if (r.gi_rel_rmse < 0) continue;
-    if (!any) std::printf("\ngi vs reference: relative RMSE of the indirect image (covered pixels), voxel MB\n");
+    if (!any)
+      std::printf("\ngi vs reference: relative RMSE of the indirect image (covered pixels), the reference's own "
+                  "noise, the error without it, voxel MB\n");
     any = true;
-    std::printf("%s frame %zu: %.4f %10.1f\n", r.run.c_str(), r.frame, r.gi_rel_rmse, double(r.voxel_bytes) / 1048576.0);
+    std::printf("%s frame %zu: %.4f %.4f %.4f %10.1f\n", r.run.c_str(), r.frame, r.gi_rel_rmse, r.gi_ref_noise,
+                r.gi_rel_rmse_corrected, double(r.voxel_bytes) / 1048576.0);
   }
 }
 

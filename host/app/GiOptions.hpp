@@ -64,7 +64,8 @@ struct GiResult {
   bool has_pass = false;
   double ms = 0;                // reference trace time
   bool has_reference = false;
-  IndirectError error;          // the pass vs the reference (with --gi-reference)
+  bool reference_cached = false;  // read from the reference cache (host/reference/ReferenceCache.hpp)
+  IndirectComparison error;     // the pass vs the reference (with --gi-reference), with the reference's noise
   GiStats stats;                // the pass's, after the frames
   std::vector<std::string> files;
 };

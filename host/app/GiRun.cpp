@@ -5,6 +5,7 @@
 #include "host/app/GiOptions.hpp"
 #include "host/run/OutputFiles.hpp"
 #include "host/gi/Registry.hpp"
+#include "host/reference/ReferenceCache.hpp"
 #include "host/util/GiToneMap.hpp"
 
 namespace ml {
@@ -63,15 +64,21 @@ GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera,
   if (pass) image = passOutputs(a, *pass, camera, width, height, out, r);
   if (a.mode == "reference" || a.with_reference) {
     const IndirectOptions o{a.samples, a.seed, giShadows(a) == "ray"};
-    const IndirectImage img = traceIndirectReference(inputs.scene, inputs.lights, camera, width, height, o);
+    const CachedReference ref = cachedIndirectReference(inputs.scene, inputs.lights, camera, width, height, o);
+    const IndirectImage& img = ref.image;
     r.has_reference = true;
+    r.reference_cached = ref.from_cache;
     r.ms = img.ms;
-    std::printf("\ngi reference: %u samples/pixel, shadows %s: %.1f ms\n", a.samples, giShadows(a).c_str(), img.ms);
+    std::printf("\ngi reference: %u samples/pixel, shadows %s: %.1f ms%s\n", a.samples, giShadows(a).c_str(), img.ms,
+                ref.from_cache ? " (read from the reference cache)" : "");
     writeGiImages(out, "reference", width, height, img.rgba, r);
     if (!image.empty()) {
-      r.error = indirectRelRmse(image, img.rgba);
+      r.error = compareWithReference(image, img);
       std::printf("gi %s vs reference: relative RMSE %.4f over %zu pixels (%zu covered in one image only)\n",
-                  a.mode.c_str(), r.error.rel_rmse, r.error.pixels, r.error.mismatched);
+                  a.mode.c_str(), r.error.error.rel_rmse, r.error.error.pixels, r.error.error.mismatched);
+      if (r.error.ref_noise >= 0)
+        std::printf("gi reference noise: relative RMSE %.4f; %s error without it: %.4f\n", r.error.ref_noise,
+                    a.mode.c_str(), r.error.corrected);
     }
   }
   for (const auto& f : r.files) std::printf("wrote %s\n", f.c_str());

@@ -230,13 +230,18 @@ void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j
   j["gi_samples"] = a.samples;
   j["gi_shadows"] = giShadows(a);
   j["gi_reference_ms"] = gi.ms;
+  j["gi_reference_cached"] = gi.reference_cached;
   if (gi.has_pass) {
     j["gi_reference_transport"] = giShadows(a) == "ray"
                                       ? "one bounce, diffuse; visibility of the lights from the bounce points "
                                         "(--gi-shadows ray)"
                                       : "one bounce, diffuse; no visibility in the bounce light (--gi-shadows none)";
-    j["gi_rel_rmse"] = gi.error.rel_rmse;
-    j["gi_rel_rmse_pixels"] = gi.error.pixels;
+    j["gi_rel_rmse"] = gi.error.error.rel_rmse;
+    j["gi_rel_rmse_pixels"] = gi.error.error.pixels;
+    // The reference's own noise and the error without it (null: no estimate, 1 sample).
+    j["gi_ref_noise"] = gi.error.ref_noise >= 0 ? nlohmann::ordered_json(gi.error.ref_noise) : nlohmann::ordered_json();
+    j["gi_rel_rmse_corrected"] =
+        gi.error.corrected >= 0 ? nlohmann::ordered_json(gi.error.corrected) : nlohmann::ordered_json();
   }
 }
 

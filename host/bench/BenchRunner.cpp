@@ -11,6 +11,7 @@
 #include "host/scene/LightAnimator.hpp"
 #include "host/run/OutputFiles.hpp"
 #include "host/reference/IndirectReference.hpp"
+#include "host/reference/ReferenceCache.hpp"
 
 namespace ml {
 namespace {
@@ -22,7 +23,7 @@ std::string fileSafe(const std::string& s) {
 }
 
 // The references of one size and light set, by frame: traced once, reused by every variant.
-using GiReferences = std::map<std::size_t, std::vector<float>>;
+using GiReferences = std::map<std::size_t, IndirectImage>;
 
 // One (size, light set, variant, GI variant) run over the plan's frames.
 struct Run {
@@ -36,18 +37,19 @@ struct Run {
   std::string label;  // "<variant>[ gi=<mode>[...]] <lights> <WxH>"
 };
 
-// The relative RMSE of the pass's last indirect image against the frame's reference.
-double giRelRmse(const Run& run, const GiPass& pass, std::size_t frame) {
+// The pass's last indirect image against the frame's reference (traced once
+// per run and frame, or read from the reference cache), with its noise.
+IndirectComparison giError(const Run& run, const GiPass& pass, std::size_t frame) {
   auto it = run.references.find(frame);
   if (it == run.references.end()) {
     const IndirectOptions o{run.plan.gi_reference_samples, run.plan.gi_reference_seed, false};
     it = run.references
-             .emplace(frame, traceIndirectReference(run.scene.scene, run.lights.lights, run.scene.cameras.frames[frame],
-                                                    run.renderer.width(), run.renderer.height(), o)
-                                 .rgba)
+             .emplace(frame, cachedIndirectReference(run.scene.scene, run.lights.lights, run.scene.cameras.frames[frame],
+                                                     run.renderer.width(), run.renderer.height(), o)
+                                 .image)
              .first;
   }
-  return indirectRelRmse(pass.indirectRgba(), it->second).rel_rmse;
+  return compareWithReference(pass.indirectRgba(), it->second);
 }
 
 // `gi`: the run's GI pass (its voxel memory), null without one.
@@ -102,7 +104,12 @@ void runFrames(ClRuntime& cl, const Run& run, Progress* progress, std::size_t& d
         r.gi_updates = GiUpdateCounts{after.ran - before.ran, after.reused - before.reused};
       }
     }
-    if (gi && plan.timing && plan.gi_reference_samples > 0) r.gi_rel_rmse = giRelRmse(run, *gi, frame);
+    if (gi && plan.timing && plan.gi_reference_samples > 0) {
+      const IndirectComparison e = giError(run, *gi, frame);
+      r.gi_rel_rmse = e.error.rel_rmse;
+      r.gi_ref_noise = e.ref_noise;
+      r.gi_rel_rmse_corrected = e.corrected;
+    }
     if (!plan.image_dir.empty())  // the folder was checked before the first frame (requireOutputDir)
       writeImageAtomically("--images", plan.image_dir + "/" + fileSafe(run.label) + "_f" + std::to_string(frame) + ".png",
                            renderer.width(), renderer.height(), 4, renderer.targets().readColor());

@@ -94,7 +94,8 @@ class Tracer {
   bool intersect(const glm::vec3& org, const glm::vec3& dir, Surface& out) const;
   glm::vec3 directRadiance(const Surface& y) const;
   bool visible(const glm::vec3& from, const glm::vec3& to) const;
-  glm::vec3 pixel(const glm::vec3& eye, const glm::vec3& dir, PixelRng& rng, bool& covered) const;
+  glm::vec3 pixel(const glm::vec3& eye, const glm::vec3& dir, PixelRng& rng, bool& covered, float& noise_var) const;
+  glm::dvec3 replicaSum(const Surface& x, unsigned s, PixelRng& rng) const;
 
  private:
   const Scene& scene_;
@@ -138,6 +139,16 @@ bool Tracer::intersect(const glm::vec3& org, const glm::vec3& dir, Surface& out)
   return true;
 }
 
+// The variance of a pixel's mean R = (n0 A + n1 B) / (n0 + n1), from its two
+// independent replica means A and B: E[(A - B)^2] / 4 is Var(R) for equal
+// replicas (and within a few percent for n0 = n1 + 1), summed over rgb; 0
+// with a single sample (no second replica).
+float replicaVariance(const glm::dvec3 (&sums)[2], const unsigned (&counts)[2], const glm::vec3& albedo) {
+  if (counts[1] == 0) return 0.0f;
+  const glm::dvec3 d = glm::dvec3(albedo) * (sums[0] / double(counts[0]) - sums[1] / double(counts[1]));
+  return float(glm::dot(d, d) / 4.0);
+}
+
 bool Tracer::visible(const glm::vec3& from, const glm::vec3& to) const {
   const glm::vec3 d = to - from;
   const float len = glm::length(d);
@@ -172,29 +183,43 @@ glm::vec3 Tracer::directRadiance(const Surface& y) const {
   return y.albedo * sum;
 }
 
-glm::vec3 Tracer::pixel(const glm::vec3& eye, const glm::vec3& dir, PixelRng& rng, bool& covered) const {
+glm::vec3 Tracer::pixel(const glm::vec3& eye, const glm::vec3& dir, PixelRng& rng, bool& covered,
+                        float& noise_var) const {
   Surface x;
+  noise_var = 0.0f;
   covered = intersect(eye, dir, x);
   if (!covered) return glm::vec3(0.0f);
+  // Two independent replicas of ceil(s/2) and floor(s/2) samples: their means'
+  // difference estimates the pixel's noise without bias, which the strata of
+  // one set cannot (they are not independent).
+  const unsigned s = options_.samples, counts[2] = {(s + 1) / 2, s / 2};
+  glm::dvec3 sums[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+  for (unsigned k = 0; k < 2; ++k) sums[k] = replicaSum(x, counts[k], rng);
+  noise_var = replicaVariance(sums, counts, x.albedo);
+  return x.albedo * glm::vec3((sums[0] + sums[1]) / double(s));
+}
+
+// The sum of `s` Latin-hypercube, cosine-weighted bounces from x: stratum i
+// in u1, a shuffled stratum in u2.
+glm::dvec3 Tracer::replicaSum(const Surface& x, unsigned s, PixelRng& rng) const {
+  glm::dvec3 sum(0.0);
+  if (s == 0) return sum;
   // Orthonormal basis around the normal (Duff et al. 2017).
   const glm::vec3 n = x.n;
   const float sign = std::copysign(1.0f, n.z), a = -1.0f / (sign + n.z), b = n.x * n.y * a;
   const glm::vec3 t1(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x), t2(b, sign + n.y * n.y * a, -n.y);
-  const unsigned s = options_.samples;
-  // Latin hypercube: stratum i in u1, a shuffled stratum in u2.
   std::vector<unsigned> perm(s);
   std::iota(perm.begin(), perm.end(), 0u);
   for (unsigned i = s; i > 1; --i) std::swap(perm[i - 1], perm[rng.next() % i]);
-  glm::vec3 sum(0.0f);
   const glm::vec3 org = x.p + eps_ * n;
   for (unsigned i = 0; i < s; ++i) {
     const float u1 = (float(i) + rng.uniform()) / float(s), u2 = (float(perm[i]) + rng.uniform()) / float(s);
     const float r = std::sqrt(u1), phi = 6.28318530718f * u2;
     const glm::vec3 w = r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
     Surface y;
-    if (intersect(org, glm::normalize(w), y)) sum += directRadiance(y);
+    if (intersect(org, glm::normalize(w), y)) sum += glm::dvec3(directRadiance(y));
   }
-  return x.albedo * sum / float(s);
+  return sum;
 }
 
 }  // namespace
@@ -209,6 +234,7 @@ IndirectImage traceIndirectReference(const Scene& scene, const std::vector<gpu::
   img.width = width;
   img.height = height;
   img.rgba.assign(std::size_t(width) * height * 4, 0.0f);
+  img.noise_var.assign(std::size_t(width) * height, 0.0f);
   const Tracer tracer(scene, lights, options);
   const glm::mat4 proj = camera.projection(float(width) / float(height));
   const glm::mat4 inv_view = glm::inverse(camera.view());
@@ -222,13 +248,14 @@ IndirectImage traceIndirectReference(const Scene& scene, const std::vector<gpu::
         const std::size_t i = std::size_t(y) * width + x;
         PixelRng rng{options.seed ^ (0xD1B54A32D192ED03ull * (i + 1))};
         bool covered = false;
-        const glm::vec3 c = tracer.pixel(camera.eye, dir, rng, covered);
+        const glm::vec3 c = tracer.pixel(camera.eye, dir, rng, covered, img.noise_var[i]);
         img.rgba[4 * i + 0] = c.r;
         img.rgba[4 * i + 1] = c.g;
         img.rgba[4 * i + 2] = c.b;
         img.rgba[4 * i + 3] = covered ? 1.0f : 0.0f;
       }
   });
+  if (options.samples < 2) img.noise_var.clear();  // one replica: no estimate
   img.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return img;
 }
@@ -251,6 +278,22 @@ IndirectError indirectRelRmse(const std::vector<float>& image, const std::vector
   }
   if (norm > 0) e.rel_rmse = std::sqrt(err / norm);
   return e;
+}
+
+IndirectComparison compareWithReference(const std::vector<float>& image, const IndirectImage& reference) {
+  IndirectComparison c;
+  c.error = indirectRelRmse(image, reference.rgba);
+  if (reference.noise_var.size() * 4 != reference.rgba.size() || c.error.rel_rmse < 0) return c;
+  double var = 0, norm = 0;
+  for (std::size_t p = 0; p < reference.noise_var.size(); ++p) {
+    if (!(image[4 * p + 3] > 0) || !(reference.rgba[4 * p + 3] > 0)) continue;
+    var += reference.noise_var[p];
+    for (std::size_t k = 0; k < 3; ++k) norm += double(reference.rgba[4 * p + k]) * double(reference.rgba[4 * p + k]);
+  }
+  if (!(norm > 0)) return c;
+  c.ref_noise = std::sqrt(var / norm);
+  c.corrected = std::sqrt(std::max(0.0, c.error.rel_rmse * c.error.rel_rmse - var / norm));
+  return c;
 }
 
 }  // namespace ml

@@ -4,9 +4,10 @@
 //
 // Per pixel: the primary hit x of the camera ray through the pixel centre
 // (the GL renderer's camera and pixel convention); `samples` cosine-weighted
-// directions over x's hemisphere (Latin-hypercube stratified in both
-// dimensions, seeded per pixel from `seed`, so the image does not depend on
-// thread scheduling); at each secondary hit y the direct diffuse radiance of
+// directions over x's hemisphere, as two independent replicas of about
+// samples/2 each (each Latin-hypercube stratified in both dimensions; two, so
+// that their difference estimates the pixel's noise), seeded per pixel from
+// `seed`, so the image does not depend on thread scheduling; at each secondary hit y the direct diffuse radiance of
 // the renderer's shading model (gl/shaders/common/shading.glsl, without its ambient
 // term and 0.9 weight):
 //     B(y) = albedo(y) * sum_i I_i * max(0, n_y . l_i) * clamp(1 - d_i / r_i, 0, 1)^2
@@ -37,7 +38,11 @@ struct IndirectImage {
   // Linear RGBA, rows bottom-up (GL order); alpha 1 where the pixel sees the
   // scene, 0 where it sees nothing (rgb 0 there).
   std::vector<float> rgba;
-  double ms = 0;  // wall time of the trace (scene build included)
+  // Per pixel, the estimated variance of its rgb mean (summed over rgb): the
+  // reference's own noise, from the pixel's two replica means A and B as
+  // (A - B)^2 / 4 (replicaVariance in the .cpp); empty with one sample.
+  std::vector<float> noise_var;
+  double ms = 0;  // wall time of the trace (scene build included), or of reading it from the cache
 };
 
 // Throws UserError for samples == 0 or a zero-sized image.
@@ -57,5 +62,18 @@ struct IndirectError {
   std::size_t mismatched = 0;  // covered in one only
 };
 IndirectError indirectRelRmse(const std::vector<float>& image, const std::vector<float>& reference);
+
+// The error of `image` against a traced reference, with the reference's own
+// noise taken out. For an estimate R of the truth T with independent noise,
+// E|V - R|^2 = |V - T|^2 + E|R - T|^2, so over the pixels covered in both:
+//   ref_noise = sqrt(sum noise_var / sum R^2)        (the noise's relative RMSE)
+//   corrected = sqrt(max(0, rel_rmse^2 - ref_noise^2)) (the error against T)
+// A better image can show below the reference's noise only in `corrected`.
+struct IndirectComparison {
+  IndirectError error;
+  double ref_noise = -1;  // -1 when the reference is black or has no noise estimate
+  double corrected = -1;
+};
+IndirectComparison compareWithReference(const std::vector<float>& image, const IndirectImage& reference);
 
 }  // namespace ml

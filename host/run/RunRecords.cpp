@@ -319,6 +319,9 @@ const std::vector<Field<FrameRecord>>& recordFields() {
         {"gi_settings", true, [](const FrameRecord& r) { return paramsJson(r.gi_settings); }},
         {"voxel_bytes", true, [](const FrameRecord& r) { return Json(r.voxel_bytes); }},
         {"gi_rel_rmse", true, [](const FrameRecord& r) { return r.gi_rel_rmse >= 0 ? Json(r.gi_rel_rmse) : Json(); }},
+        {"gi_ref_noise", true, [](const FrameRecord& r) { return r.gi_ref_noise >= 0 ? Json(r.gi_ref_noise) : Json(); }},
+        {"gi_rel_rmse_corrected", true,
+         [](const FrameRecord& r) { return r.gi_rel_rmse_corrected >= 0 ? Json(r.gi_rel_rmse_corrected) : Json(); }},
         {"gi_updates", true, [](const FrameRecord& r) { return r.gi_updates ? Json(r.gi_updates->ran) : Json(); }},
         {"gi_reused", true, [](const FrameRecord& r) { return r.gi_updates ? Json(r.gi_updates->reused) : Json(); }},
     };

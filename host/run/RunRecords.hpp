@@ -114,6 +114,9 @@ struct FrameRecord : RunIdentity {
   std::vector<std::pair<std::string, std::string>> gi_settings;
   std::size_t voxel_bytes = 0;
   double gi_rel_rmse = -1;
+  // The reference's own noise (relative RMSE) and the error without it
+  // (compareWithReference, host/reference/IndirectReference.hpp); negative: none.
+  double gi_ref_noise = -1, gi_rel_rmse_corrected = -1;
   // The GI pass's scene updates over the record's timed frames: ran (e.g.
   // VCT's inject/mips/textures) and reused (the lights unchanged since the
   // last update, so those passes are absent: 0 ms in the medians).

@@ -8,7 +8,7 @@ import json
 import re
 import sys
 
-SKIP = re.compile(r"(_ms$|^ms$|_seconds$|^seconds$|time|date|^passes|clock|^command$|executable|^device$|^gl$|uptime"
+SKIP = re.compile(r"(_ms$|\sms$|^ms$|_seconds$|^seconds$|time|date|^passes|clock|^command$|executable|^device$|^gl$|uptime"
                   r"|^host|_per_second$|^summaries$)")
 
 

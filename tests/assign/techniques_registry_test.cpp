@@ -1,5 +1,5 @@
 // The technique registry as the commands see it: a technique registered by the
-// test binary (support/TestOnlyTechnique.cpp) shows in `techniques`, `render
+// test binary (extensions/test_technique/TestOnlyTechnique.cpp) shows in `techniques`, `render
 // --help` and `bench --help` and renders with its own parameter; every
 // parameter of the registry refuses out-of-range values on both command-line
 // paths before anything starts; shared keys agree; ranges are what the

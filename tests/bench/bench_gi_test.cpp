@@ -5,6 +5,8 @@
 #include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR, MANYLIGHTS_BINARY (generated)
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include <fstream>
@@ -62,7 +64,7 @@ TEST(BenchGi, SweepOfTwoVctKeysGivesFourRecordsWithTheirSettingsAndPasses) {
   std::ifstream in(csv);
   std::string header, row;
   std::getline(in, header);
-  EXPECT_NE(header.find(",gi,gi_settings,voxel_bytes,gi_rel_rmse,gi_updates,gi_reused"), std::string::npos) << header;
+  EXPECT_NE(header.find(",gi,gi_settings,voxel_bytes,gi_rel_rmse,gi_ref_noise,gi_rel_rmse_corrected,gi_updates,gi_reused"), std::string::npos) << header;
   int rows = 0;
   while (std::getline(in, row)) {
     ++rows;
@@ -163,6 +165,15 @@ TEST(BenchGi, ReferenceErrorEqualsRendersOfTheSameFrameAndSettings) {
     ASSERT_FALSE(rec.at("gi_rel_rmse").is_null());
     EXPECT_GT(want, 0.0);
     EXPECT_NEAR(rec.at("gi_rel_rmse").get<double>(), want, 1e-4 * want) << "anisotropic " << aniso;
+    // The reference's noise and the error without it: the same in both, and
+    // the corrected error below the raw one (8 samples: a noisy reference).
+    const double noise = readJson(stats).at("gi_ref_noise").get<double>();
+    const double corrected = readJson(stats).at("gi_rel_rmse_corrected").get<double>();
+    EXPECT_GT(noise, 0.0);
+    EXPECT_LT(corrected, want);
+    EXPECT_NEAR(corrected, std::sqrt(std::max(0.0, want * want - noise * noise)), 1e-6);
+    EXPECT_NEAR(rec.at("gi_ref_noise").get<double>(), noise, 1e-4 * noise);
+    EXPECT_NEAR(rec.at("gi_rel_rmse_corrected").get<double>(), corrected, 1e-4 * corrected + 1e-9);
   }
   EXPECT_NE(recs[0].at("gi_rel_rmse"), recs[1].at("gi_rel_rmse"));  // the settings do change the error
 }
@@ -179,6 +190,8 @@ TEST(BenchGi, WithoutGiRecordsSayNone) {
   EXPECT_TRUE(recs[0].at("gi_settings").empty());
   EXPECT_EQ(recs[0].at("voxel_bytes"), 0);
   EXPECT_TRUE(recs[0].at("gi_rel_rmse").is_null());
+  EXPECT_TRUE(recs[0].at("gi_ref_noise").is_null());
+  EXPECT_TRUE(recs[0].at("gi_rel_rmse_corrected").is_null());
   EXPECT_TRUE(recs[0].at("gi_updates").is_null());
   EXPECT_TRUE(recs[0].at("gi_reused").is_null());
   EXPECT_EQ(recs[0].at("run").get<std::string>().find("gi="), std::string::npos);

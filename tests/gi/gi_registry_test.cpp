@@ -1,5 +1,5 @@
 // A GI pass is a descriptor plus one registration: the test-only constant
-// ambient pass (tests/support/TestOnlyGiPass.cpp), which no front end names,
+// ambient pass (tests/extensions/ambient_gi/TestOnlyGiPass.cpp), which no front end names,
 //  - shows in `render --help` (its --ambient flag, its --gi name) and in
 //    `bench --help`'s keys, and a bad value is refused up front naming --ambient;
 //  - adds exactly albedo x its colour to the frame (fresh random colour per
@@ -34,7 +34,7 @@
 #include "support/TempDir.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
-#include "support/TestOnlyGiPass.hpp"
+#include "extensions/ambient_gi/TestOnlyGiPass.hpp"
 
 namespace ml {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "gl/GlCheck.hpp"
 #include "host/gi/Registry.hpp"
-#include "support/TestOnlyGiPass.hpp"
+#include "extensions/ambient_gi/TestOnlyGiPass.hpp"
 
 namespace ml::test {
 namespace {
