@@ -2,21 +2,50 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
+#include <string>
 
 #include "BenchCommon.hpp"
 
 namespace ml {
+namespace {
+
+// "VmRSS:   1234 kB" -> bytes.
+std::size_t statusBytes(const char* field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  const std::string key = std::string(field) + ":";
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) == 0) return std::size_t(std::stoull(line.substr(key.size()))) * 1024;
+  return 0;
+}
+
+}  // namespace
+
+std::size_t resetPeakRss() {
+  std::ofstream("/proc/self/clear_refs") << "5";  // Linux: resets VmHWM to VmRSS
+  return statusBytes("VmRSS");
+}
+
+std::size_t peakRssBytes() { return statusBytes("VmHWM"); }
 
 BuildRecord timedBuild(const std::vector<gpu::PointLight>& lights, const hashed::HashedConfig& cfg, const Scene* scene,
                        int reps) {
   std::vector<std::pair<double, BuildRecord>> runs;
   for (int i = 0; i < reps; ++i) {
     hashed::HashedStructure hs(cfg, scene);
+    const std::size_t rss0 = resetPeakRss();
     const double c0 = benchutil::cpuSeconds();
     hs.build(lights);
     BuildRecord r;
     r.cpu_ms = (benchutil::cpuSeconds() - c0) * 1e3;
+    const std::size_t peak = peakRssBytes();
+    r.peak_bytes = peak > rss0 ? peak - rss0 : 0;
     r.stats = hs.lastBuild();
+    // The larger of the build's two checks (with the mask: before and after the light octrees).
+    r.estimated_bytes = hashed::estimateBuildBytes(lights, hs.bounds(), cfg.geometry_mask);
+    if (cfg.geometry_mask)
+      r.estimated_bytes = std::max(r.estimated_bytes, hashed::estimateLitBytes(lights.size(), r.stats.filled_cells));
     r.layers = hs.linkless().layerStats();
     r.table_bytes = hs.linkless().tableBytes();
     r.list_entries = hs.linkless().pool().list().size();
@@ -47,6 +76,8 @@ nlohmann::ordered_json buildJson(const BuildRecord& r) {
           {"depth", r.depth},
           {"layers", r.layer_count},
           {"cpu_ms", r.cpu_ms},
+          {"peak_bytes", r.peak_bytes},
+          {"estimated_bytes", r.estimated_bytes},
           {"ms", {{"total", s.total_ms}, {"bounds", s.bounds_ms}, {"geometry_mask", s.mask_ms},
                   {"light_octrees", s.light_octrees_ms}, {"merge", s.merge_ms}, {"normalize", s.normalize_ms},
                   {"hashes", s.hash_ms}}},

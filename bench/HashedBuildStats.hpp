@@ -20,7 +20,16 @@ struct BuildRecord {
   double cell = 0;
   std::uint64_t failed_attempts = 0, rejected = 0;
   double cpu_ms = 0;  // process CPU time of the build, all threads
+  // Resident memory the build added at its peak (Linux: VmHWM after resetting
+  // it, less VmRSS before; 0 where /proc cannot say), and the estimate that
+  // the memory limit is checked against.
+  std::size_t peak_bytes = 0, estimated_bytes = 0;
 };
+
+// Resets the process's peak resident size and returns the current one
+// (bytes; 0 where /proc/self cannot do it); peakRssBytes() reads the peak since.
+std::size_t resetPeakRss();
+std::size_t peakRssBytes();
 
 inline double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 

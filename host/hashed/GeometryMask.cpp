@@ -14,6 +14,7 @@ namespace {
 
 constexpr unsigned kDenseMaxDepth = 8;  // 8^8 bits = 2 MiB
 constexpr unsigned kDenseIndexMaxDepth = 7;  // 8^7 entries = 8 MiB
+constexpr unsigned kRowIndexMaxDepth = 11;   // 4^11 rows = 16 MiB
 // A builder thread merges its (cell, box) pairs by cell whenever its buffer
 // reaches twice what it held after the last merge, and at least this many.
 constexpr std::size_t kMergeBatch = std::size_t(1) << 16;
@@ -211,6 +212,23 @@ const GeometryMask::OctantBoxes* GeometryMask::octantBoxes(const glm::uvec3& c, 
   return &cell_octants_[at];
 }
 
+std::pair<std::size_t, std::size_t> GeometryMask::rowCells(unsigned y, unsigned z, unsigned x_lo,
+                                                           unsigned x_hi) const {
+  const std::uint64_t side = std::uint64_t(1) << depth_;
+  if (y >= side || z >= side || x_lo > x_hi) return {0, 0};
+  // Keys order by z, then y, then x: a row's cells are consecutive.
+  const std::uint64_t lo = packCoord({x_lo, y, z}), hi = packCoord({std::min<std::uint64_t>(x_hi, side - 1), y, z});
+  auto begin = cell_keys_.begin(), end = cell_keys_.end();
+  if (!row_start_.empty()) {
+    const std::uint64_t row = y + side * z;
+    end = begin + row_start_[row + 1];
+    begin += row_start_[row];
+  }
+  const auto first = std::lower_bound(begin, end, lo);
+  const auto last = std::upper_bound(first, end, hi);
+  return {std::size_t(first - cell_keys_.begin()), std::size_t(last - cell_keys_.begin())};
+}
+
 // One triangle's (cell, geometry) pairs: every cell whose box widened by
 // `margin` the triangle touches, with the bounds of the triangle's part in the
 // widened cell and in each widened octant, each widened by the margin again
@@ -305,7 +323,20 @@ void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> 
       dense_index_[c.x + side * (c.y + side * c.z)] = std::uint32_t(i + 1);
     }
   }
+  setRowIndex();
   setCells(cell_keys_);
+}
+
+void GeometryMask::setRowIndex() {
+  row_start_.clear();
+  if (depth_ > kRowIndexMaxDepth) return;
+  const std::uint64_t side = std::uint64_t(1) << depth_;
+  row_start_.assign(side * side + 1, 0);
+  for (const std::uint64_t k : cell_keys_) {
+    const glm::uvec3 c = unpackCoord(k);
+    ++row_start_[c.y + side * c.z + 1];
+  }
+  for (std::size_t r = 1; r < row_start_.size(); ++r) row_start_[r] += row_start_[r - 1];
 }
 
 void GeometryMask::setCells(std::vector<std::uint64_t> keys) {

@@ -25,6 +25,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "host/hashed/OctreeBounds.hpp"
@@ -55,6 +56,14 @@ class GeometryMask {
   // The cell's octant boxes, and its geometry box in `cell_box`; null
   // (and `cell_box` untouched) when the cell holds no geometry.
   const OctantBoxes* octantBoxes(const glm::uvec3& cell, const Box*& cell_box) const;
+  // The cells with geometry in the row (y, z) with x_lo <= x <= x_hi, in x
+  // order, as indices [first, last) for cellX()/cellBox()/cellOctants(): one
+  // search per row instead of one per cell (the light octrees ask for every
+  // cell of a light's box, and most of their build went to those searches).
+  std::pair<std::size_t, std::size_t> rowCells(unsigned y, unsigned z, unsigned x_lo, unsigned x_hi) const;
+  unsigned cellX(std::size_t i) const { return unsigned(cell_keys_[i] & 0xFFFF); }
+  const Box& cellBox(std::size_t i) const { return cell_boxes_[i]; }
+  const OctantBoxes& cellOctants(std::size_t i) const { return cell_octants_[i]; }
   std::size_t cellCount() const { return cell_count_; }
 
  private:
@@ -64,6 +73,7 @@ class GeometryMask {
     OctantBoxes oct;
   };
   void setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> boxes);
+  void setRowIndex();
   bool indexOf(const glm::uvec3& c, std::size_t& at) const;
   unsigned depth_;
   // Per depth: a bitset when the depth's full grid is small, else the sorted
@@ -76,6 +86,10 @@ class GeometryMask {
   std::vector<Box> cell_boxes_;
   std::vector<OctantBoxes> cell_octants_;
   std::vector<std::uint32_t> dense_index_;
+  // Where each row (y, z) of the deepest level starts in cell_keys_ (side^2 + 1
+  // entries), when the level is small enough: rowCells() without a search
+  // over every key.
+  std::vector<std::uint32_t> row_start_;
   std::size_t cell_count_ = 0;
 };
 

@@ -34,7 +34,7 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights) {
 
 void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds) {
   checkLightCount(lights.size());
-  checkMemory(lights, bounds, cfg_.memory_limit, cfg_.node_size);
+  checkMemory(lights, bounds, cfg_.memory_limit, cfg_.node_size, cfg_.geometry_mask);
   if (cfg_.geometry_mask) {
     const double need = GeometryMask::estimateBytes(*scene_, bounds);
     if (need > double(cfg_.memory_limit))
@@ -60,6 +60,8 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   octrees_ = buildLightOctrees(lights, bounds_, mask());
   st.light_octrees_ms = msSince(t);
   for (const auto& o : octrees_) st.filled_cells += o.filled_cells;
+  // With the mask, the scene octree's size is known only now (lit cells with geometry).
+  if (mask_) checkLitMemory(lights.size(), st.filled_cells, cfg_.memory_limit, cfg_.node_size);
 
   t = SteadyClock::now();
   tree_ = std::make_unique<SceneOctree>(bounds_, mask_.get());

@@ -133,28 +133,30 @@ struct Sphere {
   double r, eps;
 };
 
+// Whether the sphere reaches a cell's geometry box, and then (finer) one of
+// its octants' boxes.
+bool reachesCellGeometry(const Sphere& s, const GeometryMask::Box& cell_box, const GeometryMask::OctantBoxes& oct) {
+  if (!sphereOverlapsBox(s.c, s.r, {cell_box.lo - s.eps, cell_box.hi + s.eps})) return false;
+  for (unsigned k = 0; k < 8; ++k)
+    if (!oct.empty(k) && sphereOverlapsBox(s.c, s.r, {glm::dvec3(oct.lo[k]) - s.eps, glm::dvec3(oct.hi[k]) + s.eps}))
+      return true;
+  return false;
+}
+
 // Geometry-tight cells: each cell with geometry is lit (kTestedIn) when the
-// sphere reaches the cell's geometry box (finer: its octants' boxes), else
-// kOutside; cells without geometry stay kAssumedIn. Returns the lit count.
+// sphere reaches its geometry (reachesCellGeometry), else kOutside; cells
+// without geometry stay kAssumedIn. Returns the lit count.
 std::size_t markGeometryCells(const Sphere& s, const CellBox& box, const GeometryMask& geometry, Grid& g) {
   std::size_t lit = 0;
   for (int z = box.lo.z; z <= box.hi.z; ++z)
-    for (int y = box.lo.y; y <= box.hi.y; ++y)
-      for (int x = box.lo.x; x <= box.hi.x; ++x) {
-        const glm::ivec3 p(x, y, z);
-        const GeometryMask::Box* cell_box;
-        const GeometryMask::OctantBoxes* oct = geometry.octantBoxes(glm::uvec3(p), cell_box);
-        if (!oct) continue;
-        bool in = sphereOverlapsBox(s.c, s.r, {cell_box->lo - s.eps, cell_box->hi + s.eps});
-        if (in) {  // finer: some octant's box
-          in = false;
-          for (unsigned k = 0; k < 8 && !in; ++k)
-            if (!oct->empty(k))
-              in = sphereOverlapsBox(s.c, s.r, {glm::dvec3(oct->lo[k]) - s.eps, glm::dvec3(oct->hi[k]) + s.eps});
-        }
-        g.cells[g.index(p)] = in ? kTestedIn : kOutside;
+    for (int y = box.lo.y; y <= box.hi.y; ++y) {
+      const auto [first, last] = geometry.rowCells(unsigned(y), unsigned(z), unsigned(box.lo.x), unsigned(box.hi.x));
+      for (std::size_t i = first; i < last; ++i) {
+        const bool in = reachesCellGeometry(s, geometry.cellBox(i), geometry.cellOctants(i));
+        g.cells[g.index({int(geometry.cellX(i)), y, z})] = in ? kTestedIn : kOutside;
         lit += in;
       }
+    }
   return lit;
 }
 

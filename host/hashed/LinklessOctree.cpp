@@ -51,8 +51,8 @@ LinklessOctree::LinklessOctree(const OctreeBounds& bounds, const HashedConfig& c
 }
 
 void LinklessOctree::entriesOf(unsigned t, const glm::uvec3& c, const std::uint32_t* set, std::size_t n,
-                               const std::vector<gpu::PointLight>& lights, const OctantTables* tables,
-                               const Reuse* reuse, std::vector<std::uint32_t>& out) const {
+                               const std::vector<gpu::PointLight>& lights, const Reuse* reuse,
+                               std::vector<std::uint32_t>& out) const {
   out.resize(n);
   if (!cfg_.octant_masks || t != b_.depth) {
     for (std::size_t i = 0; i < n; ++i) out[i] = packEntry(set[i], kAllOctants);
@@ -69,8 +69,9 @@ void LinklessOctree::entriesOf(unsigned t, const glm::uvec3& c, const std::uint3
       out[i] = *old;  // its mask is up to date (applyOctantRewrites())
       continue;
     }
-    const std::uint8_t m = tables ? tables->mask(l, cell) : LightOctants(lights[l], b_).mask(cell);
-    out[i] = packEntry(l, boxes && m ? LightOctants(lights[l], b_).onGeometry(m, *boxes, *cell_box) : m);
+    const LightOctants octants(lights[l], b_);
+    const std::uint8_t m = octants.mask(cell);
+    out[i] = packEntry(l, boxes && m ? octants.onGeometry(m, *boxes, *cell_box) : m);
   }
 }
 
@@ -94,14 +95,12 @@ void LinklessOctree::buildFrom(const SceneOctree& tree, const std::vector<gpu::P
   });
   // Each leaf's entries (octant masks) and their hash in parallel, then the
   // sets interned in tree order, so that offsets do not depend on threads.
-  std::optional<OctantTables> tables;
-  if (cfg_.octant_masks) tables.emplace(lights, b_);
   std::vector<std::vector<std::uint32_t>> entries(leaves.size());
   std::vector<std::uint64_t> hashes(leaves.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.size(), 256), [&](const auto& r) {
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const auto& set = *leaves[j].set;
-      entriesOf(leaves[j].t, leaves[j].c, set.data(), set.size(), lights, tables ? &*tables : nullptr, nullptr,
+      entriesOf(leaves[j].t, leaves[j].c, set.data(), set.size(), lights, nullptr,
                 entries[j]);
       if (!ownsRange(leaves[j].t)) hashes[j] = LightSetPool::hashOf(entries[j].data(), entries[j].size());
     }
@@ -352,7 +351,7 @@ void LinklessOctree::deriveData(unsigned t, const glm::uvec3& c, const SceneOctr
     d.count = std::uint32_t(set.size());
     return;
   }
-  entriesOf(t, c, set.data(), set.size(), lights, nullptr, reuse ? &*reuse : nullptr, d.entries);
+  entriesOf(t, c, set.data(), set.size(), lights, reuse ? &*reuse : nullptr, d.entries);
   if (!own) d.set_hash = LightSetPool::hashOf(d.entries.data(), d.entries.size());
 }
 
@@ -367,7 +366,7 @@ void LinklessOctree::rewriteInPlace(unsigned t, const glm::uvec3& c, const std::
   const std::uint32_t common = std::min(std::uint32_t(set.size()), have.count);
   while (p < common && entryLight(words[p]) == set[p]) ++p;
   const Reuse rest{words + p, words + have.count};
-  entriesOf(t, c, set.data() + p, set.size() - p, lights, nullptr, &rest, sc.entries);
+  entriesOf(t, c, set.data() + p, set.size() - p, lights, &rest, sc.entries);
   std::uint32_t first = ~0u, last = 0;
   for (std::uint32_t k = 0; k < sc.entries.size(); ++k)
     if (words[p + k] != sc.entries[k]) {

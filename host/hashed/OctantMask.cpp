@@ -1,44 +1,13 @@
 #include "host/hashed/OctantMask.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 
 #include "host/hashed/SceneOctree.hpp"
 
 namespace ml::hashed {
 namespace {
+
 constexpr double kFarTerm = 1e300;  // outside a version's box: never within its radius
-}  // namespace
-
-OctantTables::OctantTables(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b)
-    : lights_(lights.size()) {
-  std::size_t total = 0;
-  for (std::size_t i = 0; i < lights.size(); ++i) {
-    const CellBox box = lightCellBox(lights[i], b);
-    Light& l = lights_[i];
-    l.lo = box.lo;
-    l.n = box.empty() ? glm::ivec3(0) : box.hi - box.lo + 1;
-    l.at = total;
-    total += std::size_t(2 * (l.n.x + l.n.y + l.n.z));
-  }
-  terms_.resize(total);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lights.size(), 1024), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const LightOctants o(lights[i], b);
-      Light& l = lights_[i];
-      l.r2 = o.r2();
-      double* g = &terms_[l.at];
-      for (int a = 0; a < 3; ++a) {
-        o.axisTerms(a, l.lo[a], l.n[a], g);
-        g += 2 * l.n[a];
-      }
-    }
-  });
-}
-
-namespace {
 
 // Both versions' mask() terms per axis and half cell over the hull of their
 // cell boxes, so that each cell's two masks are 16 sums (the same doubles

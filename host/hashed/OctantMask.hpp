@@ -135,30 +135,6 @@ class LightOctants {
   double r2_ = -1.0, eps_ = 0.0;
 };
 
-// Every light's mask terms over its cell box, for the many (light, cell)
-// masks of a build: mask() is LightOctants::mask() for cells in the light's
-// box (the same terms in the same order) at a third of its cost.
-class OctantTables {
- public:
-  OctantTables(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds);
-  std::uint8_t mask(std::uint32_t light, const glm::ivec3& cell) const {
-    const Light& l = lights_[light];
-    const glm::ivec3 i = cell - l.lo;
-    if (i.x < 0 || i.y < 0 || i.z < 0 || i.x >= l.n.x || i.y >= l.n.y || i.z >= l.n.z) return 0;
-    const double* g = &terms_[l.at];
-    return eightSumsBelow(g + 2 * i.x, g + 2 * (l.n.x + i.y), g + 2 * (l.n.x + l.n.y + i.z), l.r2);
-  }
-
- private:
-  struct Light {
-    glm::ivec3 lo{0}, n{0};  // box
-    std::size_t at = 0;      // its terms: 2 per box cell and axis, x then y then z
-    double r2 = 0.0;
-  };
-  std::vector<Light> lights_;
-  std::vector<double> terms_;
-};
-
 // A deepest cell where a light's octant mask changed.
 struct OctantChange {
   std::uint64_t key;  // nodeKey(depth, cell)

@@ -18,6 +18,20 @@ std::string gib(double bytes) {
   return buf;
 }
 
+// With a geometry mask, per light: its octree's record, the light itself and
+// its share of the scene octree and of the tables: 390 bytes per light at
+// 1M lights and 0.5r on the default scene (bench --scale: peak resident bytes
+// by stage, the mask's own excluded); per pair of its cell box, its octree's
+// node bytes (a node per cell at most, fewer where whole nodes are full or empty).
+constexpr double kLightRecordBytes = 400.0;
+constexpr double kMaskedOctreeBytesPerPair = 1.0;
+
+UserError tooLarge(const std::string& node_size_text, std::size_t lights, std::size_t need, std::size_t limit) {
+  return UserError("--node-size " + node_size_text + ": the octree for " + std::to_string(lights) +
+                   " lights would need about " + gib(double(need)) + " (limit " + gib(double(limit)) +
+                   "); use a larger node size");
+}
+
 }  // namespace
 
 NodeSizeSpec parseNodeSize(const std::string& text) {
@@ -88,7 +102,7 @@ OctreeBounds computeBounds(const std::vector<gpu::PointLight>& lights, const Has
   const double node = spec.relative ? spec.value * *mid : spec.value;
   const glm::dvec3 pad((hi - lo) * std::max(0.0, config.bounds_padding));
   OctreeBounds b = boundsForBox(lo - pad, hi + pad, node, config.start_depth);
-  checkMemory(lights, b, config.memory_limit, config.node_size);
+  checkMemory(lights, b, config.memory_limit, config.node_size, config.geometry_mask);
   return b;
 }
 
@@ -123,7 +137,8 @@ bool lightsInside(const std::vector<gpu::PointLight>& lights, const OctreeBounds
   return true;
 }
 
-std::size_t estimateBuildBytes(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b) {
+std::size_t estimateBuildBytes(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b,
+                               bool geometry_mask) {
   // Every byte the build holds grows with the lights' cell boxes: the leaves
   // and the light index list are bounded by their sum, per-light grids by
   // the largest. ~16 bytes per (light, cell) pair covers the index entry,
@@ -138,17 +153,25 @@ std::size_t estimateBuildBytes(const std::vector<gpu::PointLight>& lights, const
     pairs += cells;
     largest = std::max(largest, cells);
   }
-  const double bytes = 16.0 * pairs + 8.0 * largest + 4096.0;
+  const double per_pair = geometry_mask ? kMaskedOctreeBytesPerPair : 16.0;
+  const double per_light = geometry_mask ? kLightRecordBytes : 0.0;
+  const double bytes = per_pair * pairs + per_light * double(lights.size()) + 8.0 * largest + 4096.0;
   return bytes >= 1.8e19 ? std::size_t(-1) : std::size_t(bytes);
 }
 
 void checkMemory(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b, std::size_t limit,
-                 const std::string& node_size_text) {
-  const std::size_t need = estimateBuildBytes(lights, b);
-  if (need > limit)
-    throw UserError("--node-size " + node_size_text + ": the octree for " + std::to_string(lights.size()) +
-                    " lights would need about " + gib(double(need)) + " (limit " + gib(double(limit)) +
-                    "); use a larger node size");
+                 const std::string& node_size_text, bool geometry_mask) {
+  const std::size_t need = estimateBuildBytes(lights, b, geometry_mask);
+  if (need > limit) throw tooLarge(node_size_text, lights.size(), need, limit);
+}
+
+std::size_t estimateLitBytes(std::size_t lights, std::size_t lit_pairs) {
+  return std::size_t(kLightRecordBytes * double(lights) + 16.0 * double(lit_pairs) + 4096.0);
+}
+
+void checkLitMemory(std::size_t lights, std::size_t lit_pairs, std::size_t limit, const std::string& node_size_text) {
+  const std::size_t need = estimateLitBytes(lights, lit_pairs);
+  if (need > limit) throw tooLarge(node_size_text, lights, need, limit);
 }
 
 }  // namespace ml::hashed

@@ -103,13 +103,22 @@ OctreeBounds computeBounds(const std::vector<gpu::PointLight>& lights, const Has
 OctreeBounds boundsForBox(const glm::dvec3& box_min, const glm::dvec3& box_max, double node_size,
                           unsigned start_depth, const std::string& flag = "--node-size");
 
-// Estimated peak bytes of a build: per-light grids and octrees, the scene
-// octree's leaves and light index list (bounded by the sum of the lights'
-// cell boxes), and the hash tables. Throws UserError naming --node-size when
-// it exceeds `limit`.
-std::size_t estimateBuildBytes(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b);
+// Estimated peak bytes of a build. Without a geometry mask every (light,
+// cell) pair of the lights' cell boxes may end in the scene octree and the
+// index list: ~16 bytes each. With one (`geometry_mask`) only the pairs in
+// cells with geometry do, and their count is known once the light octrees
+// are built: this estimate then covers the light octrees (a record each and
+// about a node byte per pair), and checkLitMemory() the rest. Throws
+// UserError naming --node-size when it exceeds `limit`.
+std::size_t estimateBuildBytes(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b,
+                               bool geometry_mask = false);
 void checkMemory(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b, std::size_t limit,
-                 const std::string& node_size_text);
+                 const std::string& node_size_text, bool geometry_mask = false);
+// With a geometry mask, after the light octrees: the build's peak from the
+// lights' `lit_pairs` (their filled cells, summed), the pairs that reach the
+// scene octree.
+std::size_t estimateLitBytes(std::size_t lights, std::size_t lit_pairs);
+void checkLitMemory(std::size_t lights, std::size_t lit_pairs, std::size_t limit, const std::string& node_size_text);
 
 // True when every light's sphere (widened by eps) lies inside the octree.
 bool lightsInside(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b);

@@ -9,6 +9,7 @@
 #include "host/hashed/OctantMask.hpp"
 #include "host/util/Error.hpp"
 #include "support/RunCommand.hpp"
+#include "support/TestDevice.hpp"
 
 namespace ml::hashed {
 namespace {
@@ -100,6 +101,43 @@ TEST(HashedParams, GeometryMaskNeedsASceneAndFitsTheLimit) {
   const std::string msg = userErrorOf([&] { hs.build({small}, boundsForBox(glm::dvec3(-50), glm::dvec3(50), 0.01, 3)); });
   EXPECT_NE(msg.find("geometry mask"), std::string::npos) << msg;
   EXPECT_NE(msg.find("--node-size"), std::string::npos) << msg;
+}
+
+// With the mask, the first check counts the light octrees only; the lit
+// cells with geometry, known after them, are checked before the scene octree
+// grows: a limit between the two estimates refuses the build there, and one
+// at the second lets it through.
+TEST(HashedParams, GeometryMaskBuildsCheckTheirLitCells) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  Scene floor;
+  for (const glm::vec3 p : {glm::vec3(0, 1, 0), glm::vec3(20, 1, 0), glm::vec3(20, 1, 20), glm::vec3(0, 1, 20)})
+    floor.vertices.push_back({p, glm::vec3(0, 1, 0), glm::vec2(0)});
+  floor.indices = {0, 1, 2, 0, 2, 3};
+  std::vector<gpu::PointLight> lights;
+  for (int i = 0; i < 2000 + int(rng() % 100); ++i)  // on the floor: many lit cells per light
+    lights.push_back(makeLight({float(test_support::uni(rng, 2, 18)), 1.0f, float(test_support::uni(rng, 2, 18))},
+                               float(test_support::uni(rng, 2.8, 3.2)), glm::vec3(1)));
+  HashedConfig cfg;
+  cfg.geometry_mask = true;
+  cfg.node_size = "0.25r";
+  HashedStructure probe(cfg, &floor);
+  probe.build(lights);
+  const std::size_t first = estimateBuildBytes(lights, probe.bounds(), true);
+  const std::size_t lit = estimateLitBytes(lights.size(), probe.lastBuild().filled_cells);
+  const auto mask_need = std::size_t(GeometryMask::estimateBytes(floor, probe.bounds()));  // checked on its own
+  ASSERT_LT(std::max(first, mask_need), lit);
+  EXPECT_LT(first, estimateBuildBytes(lights, probe.bounds(), false));  // the mask's point
+  cfg.memory_limit = (std::max(first, mask_need) + lit) / 2;
+  HashedStructure refused(cfg, &floor);
+  const std::string msg = userErrorOf([&] { refused.build(lights); });
+  EXPECT_NE(msg.find("--node-size 0.25r"), std::string::npos) << msg;
+  EXPECT_FALSE(refused.built());
+  cfg.memory_limit = lit;
+  HashedStructure fits(cfg, &floor);
+  fits.build(lights);
+  EXPECT_EQ(fits.linkless().pool().list(), probe.linkless().pool().list());
 }
 
 TEST(HashedParams, RenderCommandReportsTheFlag) {
