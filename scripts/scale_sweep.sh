@@ -18,8 +18,9 @@
 #     --density    mean exact lower bound per covered pixel (default 8)
 #     --size       resolution (default 1920x1080)
 #     --repeat     timed renders per frame, median (default 3)
-#     --node-size  hashed node size (default 1r, the sweep's baseline; 0.5r also
-#                  fits 1M lights in the 1 GiB build limit with the geometry mask)
+#     --node-size  hashed node size (default 1r: at 0.5r and 1M lights the octree
+#                  build fits its 1 GiB limit, but the geometry mask's estimate,
+#                  ~1.1 GiB, does not, and the build is refused)
 #     --out        output folder (default results/scale)
 # Env: MANYLIGHTS_BIN (default build/manylights), MANYLIGHTS_PYTHON (python3 with matplotlib).
 # On 2 CPU cores (PoCL + llvmpipe) the default sweep takes about 15 minutes.
