@@ -89,26 +89,32 @@ const GiDescriptor* giViewParamOwner(const std::string& key) {
   return nullptr;
 }
 
-ParamValues giParams(const GiDescriptor& d, const SettingList& given) {
-  ParamValues v = d.defaults();
+namespace {
+
+// `given` over `v`, each value checked and made canonical; `view` picks the
+// descriptor's view table instead of its parameters.
+ParamValues resolved(const GiDescriptor& d, ParamValues v, const SettingList& given, bool view) {
   for (const auto& [key, value] : given) {
-    const ParamSpec* spec = d.param(key);
-    if (!spec) throw UserError("unknown --gi " + d.name + " parameter '" + key + "' (" + keysOf(d.params) + ")");
+    const ParamSpec* spec = view ? d.viewParam(key) : d.param(key);
+    if (!spec)
+      throw UserError("unknown --gi " + d.name + (view ? " view '" : " parameter '") + key + "' (" +
+                      keysOf(view ? d.view_params : d.params) + ")");
     checkParamValue(*spec, value, spec->renderFlag());
     v.set(key, canonical(*spec, value));
   }
+  return v;
+}
+
+}  // namespace
+
+ParamValues giParams(const GiDescriptor& d, const SettingList& given) {
+  ParamValues v = resolved(d, d.defaults(), given, false);
   if (d.check) d.check(v);
   return v;
 }
 
 ParamValues giViewParams(const GiDescriptor& d, const ParamValues& params, const SettingList& given) {
-  ParamValues v = d.viewDefaults();
-  for (const auto& [key, value] : given) {
-    const ParamSpec* spec = d.viewParam(key);
-    if (!spec) throw UserError("unknown --gi " + d.name + " view '" + key + "' (" + keysOf(d.view_params) + ")");
-    checkParamValue(*spec, value, spec->renderFlag());
-    v.set(key, canonical(*spec, value));
-  }
+  ParamValues v = resolved(d, d.viewDefaults(), given, true);
   if (d.check_view) d.check_view(params, given, v);
   return v;
 }
