@@ -6,6 +6,12 @@
 // coordinates, frustum boxes, the light grid) or in a feature's own shared
 // file (compute/prim_common.cl, clustered/bvh_layout.cl). The texts are those
 // the program runs (MANYLIGHTS_SOURCE_DIR reads them from a tree instead).
+// GCC 12 misreports std::regex's internal std::function as maybe-uninitialized
+// at -O1 (the sanitizer build), and -Werror would fail the build on it; the
+// same false positive tests/arch/ parses around. Off for this file only.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <gtest/gtest.h>
 
 #include <map>
