@@ -143,7 +143,8 @@ LightGrid buildLightGrid(const std::vector<gpu::PointLight>& lights) {
   grid.cell_start.assign(start.begin(), start.end());
   grid.entries.resize(start[cells]);
   li = 0;
-  for (const auto& [band, members] : bands) {
+  for (const auto& band : bands) {
+    const auto& members = band.second;  // a named reference: clang 14 cannot capture a structured binding
     for (std::size_t k = 0; k < members.size(); ++k)
       forCells(grid.levels[li], boxes[li][k], [&](std::uint32_t c) { grid.entries[start[c]++] = members[k]; });
     ++li;

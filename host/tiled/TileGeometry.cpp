@@ -40,9 +40,11 @@ bool sphereHitsTileBox(const LightTileRect& c, float xl, float xr, float yb, flo
   return dx * dx + dy * dy + dz * dz <= c.r * c.r * (1.0f + 4.0f * kTileDepthEps);
 }
 
+// Clamped as a float before the conversion, as the kernel's bin_of: a light
+// far outside the tile's range gives a bin beyond int's range (undefined to
+// convert; clang's UBSan reported -3.2e25), and NaN becomes bin 0.
 unsigned binOf(float z, float zmin, float inv) {
-  const int b = static_cast<int>((z - zmin) * inv * 32.0f);
-  return static_cast<unsigned>(std::clamp(b, 0, 31));
+  return static_cast<unsigned>(std::fmin(std::fmax((z - zmin) * inv * 32.0f, 0.0f), 31.0f));
 }
 
 }  // namespace

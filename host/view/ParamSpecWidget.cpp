@@ -18,9 +18,8 @@ void drawParamSpec(PanelState& state, const ParamSpec& p, const std::string& val
       ImGui::EndCombo();
     }
   } else {  // Count and Text: typed, checked against the spec on Enter
-    auto [it, fresh] = state.edits.try_emplace(id, value);
-    if (inputText(label.c_str(), it->second)) attempt(state, [&] { set(it->second); });
-    (void)fresh;
+    std::string& text = state.edits.try_emplace(id, value).first->second;
+    if (inputText(label.c_str(), text)) attempt(state, [&] { set(text); });
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("%s (%s; render's %s)", p.help.c_str(), p.allowed().c_str(), p.renderFlag().c_str());

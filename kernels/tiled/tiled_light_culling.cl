@@ -68,9 +68,10 @@ inline float4 tile_box(uint tx, uint ty, float4 zb, const CameraParams* cam) {
 
 /* The tile depth range is widened by DEPTH_EPS (common/view_frustum.cl). */
 
+/* Clamped as a float before the conversion: a light far outside the tile's
+ * range gives a bin far outside int's range, and converting that is undefined. */
 inline uint bin_of(float z, float zmin, float inv_range) {
-  int b = (int)((z - zmin) * inv_range * 32.0f);
-  return (uint)clamp(b, 0, 31);
+  return (uint)fmin(fmax((z - zmin) * inv_range * 32.0f, 0.0f), 31.0f);
 }
 
 /* Tile record: (zmin, zmax) widened for the range test, then the exact zmin

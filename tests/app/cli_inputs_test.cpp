@@ -26,6 +26,16 @@
 #include "support/RunCommand.hpp"
 #include "support/TempDir.hpp"
 
+// GCC names AddressSanitizer builds with __SANITIZE_ADDRESS__, clang with __has_feature.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define ML_CLANG_ASAN 1
+#endif
+#endif
+#ifndef ML_CLANG_ASAN
+#define ML_CLANG_ASAN 0
+#endif
+
 namespace ml {
 namespace {
 
@@ -65,7 +75,7 @@ TEST(CliInputs, LightCountAboveTheMaximumBeforeGeneration) {
 }
 
 TEST(CliInputs, LightCountAboveTheMemoryLimit) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || ML_CLANG_ASAN
   // ASan reserves terabytes of shadow memory at start-up, which `ulimit -v`
   // forbids; the Release run of the suite covers this case.
   GTEST_SKIP() << "ulimit -v cannot hold an AddressSanitizer process";

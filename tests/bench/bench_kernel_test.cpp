@@ -100,7 +100,9 @@ TEST(BenchKernel, GoogleBenchmarkJsonWithATimeForEveryCase) {
       doc.at("context").at("device").get<std::string>().find("Portable Computing Language") != std::string::npos;
   const auto rows = iterationRows(doc);
   std::set<std::string> got;
-  for (const auto& [name, reps] : rows) {
+  for (const auto& row : rows) {
+    const std::string& name = row.first;  // named references: clang 14 cannot capture a structured binding
+    const auto& reps = row.second;
     got.insert(name);
     SCOPED_TRACE(name);
     EXPECT_EQ(reps.size(), 2u) << "--reps 2";

@@ -53,6 +53,8 @@ TEST(ViewerGi, RefusedValuesKeepTheLastWorkingState) {
   expectRefused([&] { gi.setMode("path-tracing"); }, "gi");
   expectRefused([&] { gi.setView("voxel_view", "normals"); }, "--voxel-view");
   expectRefused([&] { gi.setView("voxel_level", "5"); }, "--voxel-level");
+  expectRefused([&] { gi.setView("voxel_slice", "w:0.5"); }, "--voxel-slice");
+  expectRefused([&] { gi.setView("voxel_slice", "z:2"); }, "--voxel-slice");
   EXPECT_EQ(gi.pass(), before) << "a refused value rebuilt the pass";
   EXPECT_EQ(gi.params().text("voxels"), "16");
   EXPECT_EQ(gi.params().text("levels"), "4");
