@@ -42,7 +42,7 @@ void bindConeTracing(const ShaderProgram& p, const ConeTraceSetup& s) {
   const auto& o = s.grid.origin_voxel_size;
   p.set4("u_grid_origin_size", o.x, o.y, o.z, o.w);
   p.set("u_grid_edge", float(s.grid.edge));
-  p.set("u_grid_max_lod", s.broken == ConeBreak::MipFilter ? 0.0f : float(s.grid.levels - 1));
+  p.set("u_grid_max_lod", float(s.grid.levels - 1));
   p.set("u_anisotropic", s.anisotropic ? 1 : 0);
   p.set("u_cone_tan", std::tan(s.aperture_deg * kPi / 360.0f));
   std::vector<float> packed;

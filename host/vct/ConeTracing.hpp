@@ -31,10 +31,9 @@ struct Cone {
 void checkConeSettings(unsigned count, float aperture_deg);
 std::vector<Cone> diffuseCones(unsigned count);
 
-// Test-only switches that break the trace on purpose (the accuracy tests must
-// notice): every cone weighted 1 instead of pi / count, or every cone sampling
-// level 0 only (no mip filtering: cones see through the coarse volume).
-enum class ConeBreak { None, Weights, MipFilter };
+// A test-only switch that breaks the trace on purpose (the accuracy tests must
+// notice): every cone weighted 1 instead of pi / count.
+enum class ConeBreak { None, Weights };
 
 struct ConeTraceSetup {
   gpu::VoxelGridParams grid;

@@ -29,11 +29,13 @@ namespace ml::vct {
 namespace {
 
 using F4 = gpu::ml_float4;
-// Interior voxels [kLo, kHi)^3; walls 20 voxels thick, so that every cone,
-// at its widest sample (level 3, 8 voxels), meets opaque voxels before it
-// leaves the grid: a thin shell at the grid's edge lets coarse samples, half
-// empty, end the cone short of opacity (what the Cornell box measures).
-constexpr unsigned kEdge = 64, kLevels = 4, kLo = 20, kHi = 44;
+// Interior voxels [lo, hi)^3: walls 20 voxels thick (kLo, kHi), so that every
+// cone, at its widest sample (level 3, 8 voxels), meets opaque voxels before it
+// leaves the grid; and a shell one voxel thick at the grid's edge (kShell),
+// where the coarse levels' edge texels hold the wall: the voxel textures clamp
+// to the edge texel, so a cone's last samples before it leaves the grid read
+// the wall, not a blend with empty space (a Cornell box's walls lie there).
+constexpr unsigned kEdge = 64, kLevels = 4, kLo = 20, kHi = 44, kShell = 1;
 constexpr float kTolerance = 0.02f;
 const F4 kL{0.3f, 0.5f, 0.7f, 1.0f};
 
@@ -51,12 +53,12 @@ struct Furnace {
   VoxelTextures textures;
   ShaderProgram program{{"test/test_vct_cones.comp"}};
 
-  explicit Furnace(bool aniso) {
+  Furnace(bool aniso, unsigned lo = kLo, unsigned hi = kHi) {
     std::vector<F4> radiance(voxelsAllLevels(kEdge, kLevels), F4{0, 0, 0, 0});
     for (unsigned z = 0; z < kEdge; ++z)
       for (unsigned y = 0; y < kEdge; ++y)
         for (unsigned x = 0; x < kEdge; ++x) {
-          const bool inside = x >= kLo && x < kHi && y >= kLo && y < kHi && z >= kLo && z < kHi;
+          const bool inside = x >= lo && x < hi && y >= lo && y < hi && z >= lo && z < hi;
           if (!inside) radiance[x + kEdge * (y + kEdge * z)] = kL;
         }
     mipIsotropicTwin(radiance, kEdge, kLevels);
@@ -100,14 +102,10 @@ std::pair<float, float> worst(const std::vector<F4>& r) {
   return {err, ao};
 }
 
-TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
-  test::glContext();
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed=" + std::to_string(seed));
-  std::mt19937_64 rng(seed);
-  std::vector<F4> points, normals;
+// Random points at least 3 voxels inside [lo, hi)^3 and random unit normals.
+void furnacePoints(std::mt19937_64& rng, unsigned lo, unsigned hi, std::vector<F4>& points, std::vector<F4>& normals) {
   const float vs = 2.0f / kEdge;
-  std::uniform_real_distribution<float> in(-1.0f + vs * (kLo + 3), -1.0f + vs * (kHi - 3));
+  std::uniform_real_distribution<float> in(-1.0f + vs * float(lo + 3), -1.0f + vs * float(hi - 3));
   std::normal_distribution<float> g;
   for (int i = 0; i < 200; ++i) {
     points.push_back({in(rng), in(rng), in(rng), 1});
@@ -115,6 +113,15 @@ TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
     const float len = std::sqrt(x * x + y * y + z * z) + 1e-20f;
     normals.push_back({x / len, y / len, z / len, 0});
   }
+}
+
+TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
+  test::glContext();
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::vector<F4> points, normals;
+  furnacePoints(rng, kLo, kHi, points, normals);
   for (bool aniso : {false, true}) {
     Furnace f(aniso);
     for (unsigned cones : {1u, 5u, 9u, 16u, 32u})
@@ -131,6 +138,34 @@ TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
         s.broken = ConeBreak::Weights;
         EXPECT_GT(worst(f.trace(s, points, normals)).first, kTolerance) << "broken weights pass";
       }
+  }
+}
+
+// The same furnace with walls one voxel thick at the grid's edge: the cones'
+// coarse samples there must read the wall (the textures clamp to their edge
+// texel) and no step may pass it (steps of half the sampled level's voxel).
+// Worst point of 200, 12 seeds: isotropic 0.032-0.048, anisotropic 0.28-0.31;
+// with a transparent border and steps of half the cone 0.37 and 0.47. The
+// anisotropic filter still leaks: a wall parallel to a direction covers half
+// of a coarse voxel's pairs along it, so oblique cones see it half opaque
+// (issue 30's next step); the bounds hold what is reached.
+constexpr float kShellToleranceIsotropic = 0.06f, kShellToleranceAnisotropic = 0.35f;
+TEST(VctFurnace, AOneVoxelShellAtTheGridsEdgeHoldsAtEveryLevel) {
+  test::glContext();
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::vector<F4> points, normals;
+  furnacePoints(rng, kShell, kEdge - kShell, points, normals);
+  for (bool aniso : {false, true}) {
+    Furnace f(aniso, kShell, kEdge - kShell);
+    ConeTraceSetup s{f.grid, &f.textures, aniso, diffuseCones(9), 45.0f, ConeBreak::None};
+    const auto [err, ao] = worst(f.trace(s, points, normals));
+    std::printf("shell, anisotropic %d cones 9 aperture 45: worst |E/pi - L| / L %.4f, AO %.4f\n", int(aniso),
+                double(err), double(ao));
+    const float bound = aniso ? kShellToleranceAnisotropic : kShellToleranceIsotropic;
+    EXPECT_LE(err, bound) << "anisotropic " << aniso;
+    EXPECT_LE(ao, bound) << "anisotropic " << aniso;
   }
 }
 

@@ -3,8 +3,9 @@
 // textures when anisotropic). Uniforms: host/vct/ConeTracing.hpp.
 // A cone marches front to back from `origin`: at distance t its diameter is
 // max(voxel, 2 t tan(aperture / 2)) and it samples the level whose voxel is
-// that wide (trilinear within and between levels); each step is half a
-// diameter, so the sample's opacity (that of a voxel of the level's edge) is
+// that wide (trilinear within and between levels); each step is half the
+// sampled level's voxel (half a diameter until the lod reaches the coarsest
+// level), so the sample's opacity (that of a voxel of the level's edge) is
 // corrected to the step's length, 1 - (1 - a)^(step / edge), before
 //   c += (1 - A) c_step,  A += (1 - A) a_step.
 // It stops at opacity 0.99 or where it leaves the grid (outside is empty).
@@ -48,8 +49,13 @@ vec4 traceCone(vec3 origin, vec3 d, float tan_half) {
     vec3 uvw = (origin + t * d - u_grid_origin_size.xyz) / extent;
     if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
     vec4 s = sampleVoxels(uvw, lod, d);
-    float step = kConeStep * diam;
-    float a_step = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), step / (vs * exp2(lod)));
+    // Half the sampled level's voxel: the cone's diameter while the lod
+    // follows it, and no more once the lod is clamped at the coarsest level
+    // (steps of half the cone's width there skipped voxels: streaks on the
+    // Cornell box's ceiling at 128^3, and cones leaving the grid through walls).
+    float edge = vs * exp2(lod);
+    float step = kConeStep * edge;
+    float a_step = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), step / edge);
     vec3 c_step = s.a > 1e-6 ? s.rgb * (a_step / s.a) : vec3(0.0);
     acc += (1.0 - a) * c_step;
     a += (1.0 - a) * a_step;
