@@ -5,8 +5,8 @@
 // weights broken (each 1 instead of pi / count) must exceed it. The bound
 // comes from measurement (see docs/vct-compute.md), with margin. (Cones that
 // sample level 0 only were the broken mip filter here until the steps stopped
-// outgrowing the sampled level: that march is now a fair estimate, 0.203
-// against the mips' 0.285, and no longer a failure to detect; the filters
+// outgrowing the sampled level: that march became a fair estimate, 0.203
+// against the mips' 0.285 then, and no longer a failure to detect; the filters
 // themselves are checked against their twins, tests/vct/vct_mips_test.cpp.)
 // With --vct-shadows voxel (visibility through level-0 opacity) against the
 // reference with visibility from the bounce points (--gi-shadows ray): under
@@ -33,8 +33,8 @@ namespace ml::vct {
 namespace {
 
 constexpr unsigned kW = 160, kH = 90;
-constexpr double kCornellBound = 0.36;  // measured 0.285 (64^3 x 4, anisotropic, 9 x 45 deg, scale 0.5)
-constexpr double kCornellIsotropicBound = 0.40;  // measured 0.322 (64^3 x 4, isotropic, 9 x 45 deg, scale 0.5)
+constexpr double kCornellBound = 0.33;  // measured 0.247 (64^3 x 4, anisotropic, 9 x 45 deg, scale 0.5)
+constexpr double kCornellIsotropicBound = 0.40;  // measured 0.339 (64^3 x 4, isotropic, 9 x 45 deg, scale 0.5)
 constexpr double kCornellShadowBound = 0.45;  // measured 0.340 (same settings, --vct-shadows voxel)
 
 struct Cornell {
@@ -103,8 +103,8 @@ TEST(VctCornell, IndirectImageIsNearTheReferenceAndBrokenTracesAreNot) {
 
 // Isotropic voxels (one RGBA per voxel): the mip filter composites child
 // pairs along each axis and keeps the most opaque axis, so the box's
-// one-voxel walls stay opaque at coarse levels. Measured 0.322 (image sum
-// 0.81 of the reference's); the former filter (the mean of the 8 children)
+// one-voxel walls stay opaque at coarse levels. Measured 0.339 (image sum
+// 0.74 of the reference's); the former filter (the mean of the 8 children)
 // left the walls half transparent (0.66 at 64^3 in the 320x180 frame sweep,
 // bench/RESULTS-vct.md), the mean of the three axes instead of the most
 // opaque 0.438 (before the edge clamp and the step cap). Broken cone weights

@@ -36,7 +36,7 @@ void main() {
   vec4 spec = vec4(0.0);
 #ifdef VCT_SPECULAR
   vec3 R = reflect(normalize(P - u_inv_view[3].xyz), N);
-  spec = traceCone(P + N * (kNormalOffset * u_grid_origin_size.w), R, u_specular_tan);
+  spec = traceCone(P, N, R, u_specular_tan);
 #endif
   imageStore(u_specular, q, vec4(spec.rgb, 1.0));
 }
