@@ -115,13 +115,28 @@ void furnacePoints(std::mt19937_64& rng, unsigned lo, unsigned hi, std::vector<F
   }
 }
 
-TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
+// The GL context and the furnace's points inside [lo, hi)^3 from a fresh seed, which it returns.
+std::uint64_t furnaceInputs(unsigned lo, unsigned hi, std::vector<F4>& points, std::vector<F4>& normals) {
   test::glContext();
   const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
+  furnacePoints(rng, lo, hi, points, normals);
+  return seed;
+}
+
+// The worst error and occlusion of one cone set over the points, printed under `label`.
+std::pair<float, float> traceWorst(Furnace& f, const ConeTraceSetup& s, const std::vector<F4>& points,
+                                   const std::vector<F4>& normals, const char* label) {
+  const auto r = worst(f.trace(s, points, normals));
+  std::printf("%sanisotropic %d cones %2zu aperture %2.0f: worst |E/pi - L| / L %.4f, AO %.4f\n", label,
+              int(s.anisotropic), s.cones.size(), double(s.aperture_deg), double(r.first), double(r.second));
+  return r;
+}
+
+TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
   std::vector<F4> points, normals;
-  furnacePoints(rng, kLo, kHi, points, normals);
+  const std::uint64_t seed = furnaceInputs(kLo, kHi, points, normals);
+  SCOPED_TRACE("seed=" + std::to_string(seed));
   for (bool aniso : {false, true}) {
     Furnace f(aniso);
     for (unsigned cones : {1u, 5u, 9u, 16u, 32u})
@@ -129,9 +144,7 @@ TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
         SCOPED_TRACE("anisotropic " + std::to_string(aniso) + " cones " + std::to_string(cones) + " aperture " +
                      std::to_string(aperture));
         ConeTraceSetup s{f.grid, &f.textures, aniso, diffuseCones(cones), aperture, ConeBreak::None};
-        const auto [err, ao] = worst(f.trace(s, points, normals));
-        std::printf("anisotropic %d cones %2u aperture %2.0f: worst |E/pi - L| / L %.4f, AO %.4f\n", int(aniso),
-                    cones, double(aperture), double(err), double(ao));
+        const auto [err, ao] = traceWorst(f, s, points, normals, "");
         EXPECT_LE(err, kTolerance);
         EXPECT_LE(ao, kTolerance);
         if (cones == 1) continue;  // pi / 1 and 1 differ too, but the check below wants a count > pi
@@ -153,18 +166,13 @@ TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
 // within a few voxels (random normals here).
 constexpr float kShellToleranceIsotropic = 0.10f, kShellToleranceAnisotropic = 0.27f;
 TEST(VctFurnace, AOneVoxelShellAtTheGridsEdgeHoldsAtEveryLevel) {
-  test::glContext();
-  const std::uint64_t seed = test::freshSeed();
-  SCOPED_TRACE("seed=" + std::to_string(seed));
-  std::mt19937_64 rng(seed);
   std::vector<F4> points, normals;
-  furnacePoints(rng, kShell, kEdge - kShell, points, normals);
+  const std::uint64_t seed = furnaceInputs(kShell, kEdge - kShell, points, normals);
+  SCOPED_TRACE("seed=" + std::to_string(seed));
   for (bool aniso : {false, true}) {
     Furnace f(aniso, kShell, kEdge - kShell);
     ConeTraceSetup s{f.grid, &f.textures, aniso, diffuseCones(9), 45.0f, ConeBreak::None};
-    const auto [err, ao] = worst(f.trace(s, points, normals));
-    std::printf("shell, anisotropic %d cones 9 aperture 45: worst |E/pi - L| / L %.4f, AO %.4f\n", int(aniso),
-                double(err), double(ao));
+    const auto [err, ao] = traceWorst(f, s, points, normals, "shell, ");
     const float bound = aniso ? kShellToleranceAnisotropic : kShellToleranceIsotropic;
     EXPECT_LE(err, bound) << "anisotropic " << aniso;
     EXPECT_LE(ao, bound) << "anisotropic " << aniso;
