@@ -61,7 +61,7 @@ if [[ "${1:-}" != "--no-asan" ]]; then
   # time (measured per file: 17.4 vs 8.3 CPU-s for gl/FrameRenderer.cpp), and a
   # report still names file:line. Clang (installed for the fuzzers) when there:
   # it compiles the sanitized build in about 0.7x GCC's time (33 vs 47 CPU-s on
-  # three heavy files; the whole build 730 s against 1050 s on two cores), and
+  # three heavy files; in CI the whole build 613 s against 1,052 s on two cores), and
   # the product and tests then build warning-free with both compilers.
   asan_cxx=(-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG")
   command -v clang++ >/dev/null &&

@@ -64,15 +64,17 @@ vec4 traceCone(vec3 P, vec3 N, vec3 d, float tan_half) {
   for (int i = 0; i < 512 && a < kConeOpaque; ++i) {
     float diam = max(vs, 2.0 * t * tan_half);
     float lod = min(log2(diam / vs), u_grid_max_lod);
-    vec3 uvw = (P + N * (max(1.0, kLevelOffset * exp2(lod)) * vs) + t * d - u_grid_origin_size.xyz) / extent;
+    float edge = vs * exp2(lod);  // the sampled level's voxel
+    vec3 uvw = (P + N * max(vs, kLevelOffset * edge) + t * d - u_grid_origin_size.xyz) / extent;
     if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
     vec4 s = sampleVoxels(uvw, lod, d);
-    // Half the sampled level's voxel: the cone's diameter while the lod
-    // follows it, and no more once the lod is clamped at the coarsest level
-    // (steps of half the cone's width there skipped voxels: streaks on the
-    // Cornell box's ceiling at 128^3, and cones leaving the grid through walls).
-    float edge = vs * exp2(lod);
-    float step = kConeStep * edge / (1.0 + 2.0 * kLevelOffset * tan_half);  // the offset grows with the cone too
+    // Half the sampled level's voxel (the cone's diameter while the lod
+    // follows it; steps of half the cone's width once the lod was clamped at
+    // the coarsest level skipped voxels: streaks on the Cornell box's ceiling
+    // at 128^3, cones leaving the grid through walls), shortened by the lift's
+    // growth along the normal (2 kLevelOffset tan_half per unit of t), so the
+    // sample itself moves at most half a voxel per step.
+    float step = kConeStep * edge / (1.0 + 2.0 * kLevelOffset * tan_half);
     float a_step = 1.0 - pow(clamp(1.0 - s.a, 0.0, 1.0), step / edge);
     vec3 c_step = s.a > 1e-6 ? s.rgb * (a_step / s.a) : vec3(0.0);
     acc += (1.0 - a) * c_step;
