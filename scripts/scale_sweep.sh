@@ -18,9 +18,7 @@
 #     --density    mean exact lower bound per covered pixel (default 8)
 #     --size       resolution (default 1920x1080)
 #     --repeat     timed renders per frame, median (default 3)
-#     --node-size  hashed node size (default 1r: at 0.5r and 1M lights the octree
-#                  build fits its 1 GiB limit, but the geometry mask's estimate,
-#                  ~1.1 GiB, does not, and the build is refused)
+#     --node-size  hashed node size (default 0.5r, the renderer's)
 #     --out        output folder (default results/scale)
 # Env: MANYLIGHTS_BIN (default build/manylights), MANYLIGHTS_PYTHON (python3 with matplotlib).
 # On 2 CPU cores (PoCL + llvmpipe) the default sweep takes about 15 minutes.
@@ -32,7 +30,7 @@ counts="1000,4000,16000,64000,256000,1000000"
 density=8
 size=1920x1080
 repeat=3
-node_size=1r
+node_size=0.5r
 out="results/scale"
 eval_counts=1
 # shellcheck source=scripts/script_options.sh

@@ -3,9 +3,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -159,37 +159,6 @@ bool triangleBoxOverlap(glm::dvec3 v0, glm::dvec3 v1, glm::dvec3 v2, double h) {
 
 }  // namespace
 
-// Bytes of one (triangle, cell) pair in the builder's buffers, and of one
-// cell of the final mask (key, cell box, 8 octant boxes, level bits).
-constexpr double kPairBytes = 250.0, kCellBytes = 290.0;
-
-double GeometryMask::estimateBytes(const Scene& scene, const OctreeBounds& b) {
-  // Per triangle: area / cell^2 cells on its face, plus its edge cells; each
-  // (triangle, cell) pair is a key, a box and 8 octant boxes (kPairBytes) until the builder's
-  // per-thread buffers merge equal cells, which they do whenever a buffer
-  // doubles past 64Ki pairs (see the constructor). So a buffer holds at most
-  // about twice the distinct cells plus 64Ki, and distinct cells are bounded
-  // by the pairs and by the grid; the final mask costs kCellBytes per cell.
-  double pairs = 0.0;
-  const double s = double(b.cell_scale);
-  for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
-    const glm::dvec3 a(scene.vertices[scene.indices[t]].position), c1(scene.vertices[scene.indices[t + 1]].position),
-        c2(scene.vertices[scene.indices[t + 2]].position);
-    const glm::dvec3 lo = b.toCells(glm::min(a, glm::min(c1, c2))), hi = b.toCells(glm::max(a, glm::max(c1, c2)));
-    const double n = double(b.cellsPerAxis());
-    if (hi.x < 0 || hi.y < 0 || hi.z < 0 || lo.x > n || lo.y > n || lo.z > n) continue;  // outside the octree
-    const double area = 0.5 * glm::length(glm::cross(c1 - a, c2 - a)) * s * s;
-    const double edges = (glm::length(c1 - a) + glm::length(c2 - c1) + glm::length(a - c2)) * s;
-    pairs += 2.0 * area + 2.0 * edges + 8.0;
-  }
-  const double side = double(b.cellsPerAxis());
-  const double cells = std::min(pairs, side * side * side);
-  const double threads = double(std::max(1, tbb::this_task_arena::max_concurrency()));
-  const double buffers = std::min(pairs, threads * (2.0 * cells + double(kMergeBatch)));
-  const double dense_index = b.depth <= kDenseIndexMaxDepth ? 4.0 * side * side * side : 0.0;
-  return kPairBytes * 2.0 * buffers + kCellBytes * cells + dense_index;
-}
-
 bool GeometryMask::indexOf(const glm::uvec3& c, std::size_t& at) const {
   const std::uint64_t side = std::uint64_t(1) << depth_;
   if (c.x >= side || c.y >= side || c.z >= side) return false;
@@ -229,6 +198,35 @@ std::pair<std::size_t, std::size_t> GeometryMask::rowCells(unsigned y, unsigned 
   return {std::size_t(first - cell_keys_.begin()), std::size_t(last - cell_keys_.begin())};
 }
 
+namespace {
+
+// The bytes the builder holds, shared by its threads: each reports what its
+// buffer's capacity grew by, and the first to pass the limit stops the build
+// (tbb::parallel_for passes the exception on to the caller).
+class HeldBytes {
+ public:
+  explicit HeldBytes(std::size_t limit) : limit_(limit) {}
+  void grew(std::size_t before, std::size_t after) {
+    if (after <= before) return;
+    add(after - before);
+  }
+  void add(std::size_t bytes) {
+    const std::size_t now = held_.fetch_add(bytes) + bytes;
+    std::size_t p = peak_.load();
+    while (now > p && !peak_.compare_exchange_weak(p, now)) {
+    }
+    if (now > limit_) throw GeometryMask::OverLimit(now);
+  }
+  std::size_t held() const { return held_.load(); }
+  std::size_t peak() const { return peak_.load(); }
+
+ private:
+  std::size_t limit_;
+  std::atomic<std::size_t> held_{0}, peak_{0};
+};
+
+}  // namespace
+
 // One triangle's (cell, geometry) pairs: every cell whose box widened by
 // `margin` the triangle touches, with the bounds of the triangle's part in the
 // widened cell and in each widened octant, each widened by the margin again
@@ -236,7 +234,7 @@ std::pair<std::size_t, std::size_t> GeometryMask::rowCells(unsigned y, unsigned 
 // cells per axis.
 template <class CellGeometry>
 void voxelizeTriangle(const glm::dvec3 v[3], double margin, double n,
-                      std::vector<std::pair<std::uint64_t, CellGeometry>>& out) {
+                      std::vector<std::pair<std::uint64_t, CellGeometry>>& out, HeldBytes& held) {
   const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2])), thi = glm::max(v[0], glm::max(v[1], v[2]));
   const glm::dvec3 lo = tlo - margin, hi = thi + margin;
   if (hi.x < 0 || hi.y < 0 || hi.z < 0 || lo.x >= n || lo.y >= n || lo.z >= n) return;
@@ -267,25 +265,31 @@ void voxelizeTriangle(const glm::dvec3 v[3], double margin, double n,
             g.oct.hi[k][a] = floatUp(ob.hi[a] + margin);
           }
         }
+        const std::size_t capacity = out.capacity();
         addCell(out, packCoord(glm::uvec3(x, y, z)), g);
+        // Counted at every growth: one large triangle can make millions of pairs.
+        held.grew(capacity * sizeof(out[0]), out.capacity() * sizeof(out[0]));
       }
 }
 
-GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double margin_cells) : depth_(b.depth) {
+GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double margin_cells, std::size_t byte_limit)
+    : depth_(b.depth) {
   const double n = double(b.cellsPerAxis());
   const double margin = std::max(margin_cells, 0.0) + b.eps_cells;
+  using Pair = std::pair<std::uint64_t, CellGeometry>;
   struct Local {
-    std::vector<std::pair<std::uint64_t, CellGeometry>> pairs;
+    std::vector<Pair> pairs;
     std::size_t merge_at = kMergeBatch;
   };
   tbb::enumerable_thread_specific<Local> local;
+  HeldBytes held(byte_limit);
   const std::size_t tris = scene.indices.size() / 3;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris, 256), [&](const auto& range) {
     Local& loc = local.local();
     for (std::size_t t = range.begin(); t != range.end(); ++t) {
       glm::dvec3 v[3];
       for (int k = 0; k < 3; ++k) v[k] = b.toCells(glm::dvec3(scene.vertices[scene.indices[3 * t + k]].position));
-      voxelizeTriangle(v, margin, n, loc.pairs);
+      voxelizeTriangle(v, margin, n, loc.pairs, held);
       // Many small triangles share cells: merging keeps the buffer near the
       // distinct cells' size instead of the (triangle, cell) pairs'.
       if (loc.pairs.size() >= loc.merge_at) {
@@ -294,16 +298,28 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
       }
     }
   });
-  std::vector<std::pair<std::uint64_t, CellGeometry>> boxes;
+  std::size_t total = 0;
+  for (const auto& l : local) total += l.pairs.size();
+  held.add(total * sizeof(Pair));  // the gathered pairs beside the buffers, freed one by one
+  std::vector<Pair> boxes;
+  boxes.reserve(total);
   for (auto& l : local) {
     boxes.insert(boxes.end(), l.pairs.begin(), l.pairs.end());
-    std::vector<std::pair<std::uint64_t, CellGeometry>>().swap(l.pairs);
+    std::vector<Pair>().swap(l.pairs);
   }
-  setBoxes(std::move(boxes));
+  setBoxes(std::move(boxes), byte_limit);
+  peak_bytes_ = std::max(held.peak(), peak_bytes_);
 }
 
-void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> boxes) {
+void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> boxes, std::size_t byte_limit) {
   mergeByCell(boxes);
+  // The final arrays beside the merged pairs (freed on return), and the indexes.
+  const std::uint64_t side = std::uint64_t(1) << depth_;
+  peak_bytes_ = boxes.capacity() * sizeof(boxes[0]) +
+                boxes.size() * (sizeof(std::uint64_t) + sizeof(Box) + sizeof(OctantBoxes)) +
+                (depth_ <= kDenseIndexMaxDepth ? side * side * side * sizeof(std::uint32_t) : 0) +
+                (depth_ <= kRowIndexMaxDepth ? side * side * sizeof(std::uint32_t) : 0);
+  if (peak_bytes_ > byte_limit) throw OverLimit(peak_bytes_);
   cell_keys_.clear();
   cell_boxes_.clear();
   cell_octants_.clear();
@@ -316,7 +332,6 @@ void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> 
     cell_octants_.push_back(g.oct);
   }
   if (depth_ <= kDenseIndexMaxDepth) {
-    const std::uint64_t side = std::uint64_t(1) << depth_;
     dense_index_.assign(side * side * side, 0);
     for (std::size_t i = 0; i < cell_keys_.size(); ++i) {
       const glm::uvec3 c = unpackCoord(cell_keys_[i]);

@@ -25,6 +25,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -35,10 +36,19 @@ namespace ml::hashed {
 
 class GeometryMask {
  public:
-  GeometryMask(const Scene& scene, const OctreeBounds& bounds, double margin_cells);
-  // Upper estimate of the bytes a mask of `scene` at `bounds` needs (cells
-  // touched by each triangle), for the memory check before building.
-  static double estimateBytes(const Scene& scene, const OctreeBounds& bounds);
+  // Thrown when the builder's buffers, counted as they grow, would pass
+  // `byte_limit`: a refused build has allocated about that much at most. The
+  // memory is counted, not estimated beforehand, because no cheap estimate is
+  // close: per-triangle cell counts overrate the distinct cells of a mesh 3x
+  // (adjacent triangles share cells), which refused builds that fit.
+  struct OverLimit : std::runtime_error {
+    std::size_t bytes;
+    explicit OverLimit(std::size_t b) : std::runtime_error("geometry mask over its memory limit"), bytes(b) {}
+  };
+  GeometryMask(const Scene& scene, const OctreeBounds& bounds, double margin_cells,
+               std::size_t byte_limit = std::numeric_limits<std::size_t>::max());
+  // The most bytes the build held at once (its buffers, then the final mask).
+  std::size_t peakBytes() const { return peak_bytes_; }
 
   bool has(unsigned depth, const glm::uvec3& c) const;
   struct Box {
@@ -72,7 +82,7 @@ class GeometryMask {
     Box box;
     OctantBoxes oct;
   };
-  void setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> boxes);
+  void setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> boxes, std::size_t byte_limit);
   void setRowIndex();
   bool indexOf(const glm::uvec3& c, std::size_t& at) const;
   unsigned depth_;
@@ -91,6 +101,7 @@ class GeometryMask {
   // over every key.
   std::vector<std::uint32_t> row_start_;
   std::size_t cell_count_ = 0;
+  std::size_t peak_bytes_ = 0;
 };
 
 inline std::uint64_t packCoord(const glm::uvec3& c) {

@@ -32,29 +32,32 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights) {
   build_stats_.total_ms += bounds_ms;
 }
 
+std::unique_ptr<GeometryMask> HashedStructure::buildMask(const OctreeBounds& bounds) const {
+  try {
+    return std::make_unique<GeometryMask>(*scene_, bounds, cfg_.geometry_margin_cells, cfg_.memory_limit);
+  } catch (const GeometryMask::OverLimit& e) {
+    throw UserError("--node-size " + cfg_.node_size + ": the geometry mask needs more than " +
+                    std::to_string(e.bytes >> 20) + " MiB (limit " + std::to_string(cfg_.memory_limit >> 20) +
+                    " MiB); use a larger node size or --no-geometry-mask");
+  }
+}
+
 void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds) {
   checkLightCount(lights.size());
   checkMemory(lights, bounds, cfg_.memory_limit, cfg_.node_size, cfg_.geometry_mask);
-  if (cfg_.geometry_mask) {
-    const double need = GeometryMask::estimateBytes(*scene_, bounds);
-    if (need > double(cfg_.memory_limit))
-      throw UserError("--node-size " + cfg_.node_size + ": the geometry mask would need about " +
-                      std::to_string(int(need / double(1 << 20))) + " MiB (limit " +
-                      std::to_string(cfg_.memory_limit >> 20) + " MiB); use a larger node size or --no-geometry-mask");
-  }
   BuildStats st;
   const auto t0 = SteadyClock::now();
+  std::unique_ptr<GeometryMask> new_mask;  // built first: a refused mask leaves the last build in place
+  if (cfg_.geometry_mask) {
+    new_mask = buildMask(bounds);
+    st.mask_ms = msSince(t0);
+    st.mask_cells = new_mask->cellCount();
+    st.mask_bytes = new_mask->peakBytes();
+  }
   bounds_ = bounds;
   linkless_.reset();
   tree_.reset();
-  if (cfg_.geometry_mask) {
-    auto t = SteadyClock::now();
-    mask_ = std::make_unique<GeometryMask>(*scene_, bounds_, cfg_.geometry_margin_cells);
-    st.mask_ms = msSince(t);
-    st.mask_cells = mask_->cellCount();
-  } else {
-    mask_.reset();
-  }
+  mask_ = std::move(new_mask);
 
   auto t = SteadyClock::now();
   octrees_ = buildLightOctrees(lights, bounds_, mask());

@@ -34,6 +34,7 @@ struct BuildStats {
   std::size_t index_entries = 0;       // light index list length (distinct sets stored once)
   std::size_t leaf_index_entries = 0;  // what the list would hold without sharing
   std::size_t mask_cells = 0;
+  std::size_t mask_bytes = 0;          // the mask build's peak (its own count)
 };
 
 struct UpdateStats {
@@ -72,6 +73,9 @@ class HashedStructure {
 
  private:
   friend class DynamicLightUpdater;
+  // The geometry mask of the scene at `bounds`; UserError naming --node-size
+  // when it passes the memory limit.
+  std::unique_ptr<GeometryMask> buildMask(const OctreeBounds& bounds) const;
   HashedConfig cfg_;
   const Scene* scene_;
   OctreeBounds bounds_;

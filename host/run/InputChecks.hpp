@@ -35,7 +35,7 @@ inline constexpr const char* kLightDensityHelp =
 inline constexpr const char* kLightLimitsHelp =
     "Limits: 2^27 lights; about 512 bytes of host memory per light; the light buffer within the device's largest "
     "allocation. hashed: 2^24-1 lights, and its octree build within 1 GiB (constant density on data/default: "
-    "--node-size 0.5r holds about 500k lights, 1r 1M); refused with one line before or at the build, never cut.";
+    "--node-size 0.5r holds 1M lights); refused with one line before or at the build, never cut.";
 
 inline constexpr const char* kNoShadingHelp =
     "skip the shading pass: depth and light-assignment passes only, to measure assignment without paying for "

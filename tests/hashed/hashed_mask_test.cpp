@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <random>
 
+#include <tbb/task_arena.h>
+
 #include "hashed_support.hpp"
 #include "host/hashed/GeometryMask.hpp"
 #include "host/hashed/OctantMask.hpp"
@@ -82,6 +84,42 @@ TEST(HashedMask, MergingBuffersMatchesBatchedUnion) {
   // integers); ~120 triangles each, so all of them and nothing else.
   EXPECT_EQ(occupied, 8u * 16u * 16u);
   EXPECT_EQ(whole.cellCount(), occupied);
+}
+
+// The builder counts the bytes it holds as they grow: a limit below its peak
+// stops it (at about the limit, not after building), one at the peak lets
+// the same mask through, and the count is not far from the buffers' size.
+// One thread makes the peak repeatable (threads' buffers merge at times that
+// depend on the scheduling); the threaded build must stop as well.
+TEST(HashedMask, BuildStopsAtItsByteLimit) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  const double side = 16.0;
+  const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(side), 1.0, 0);
+  const Scene s = tinyTriangles(rng, 100000 + rng() % 1000, side);
+  tbb::task_arena one_thread(1);
+  auto build = [&](std::size_t limit) { return one_thread.execute([&] { return GeometryMask(s, b, 0.01, limit); }); };
+  const GeometryMask free_mask = build(std::size_t(-1));
+  const std::size_t peak = free_mask.peakBytes();
+  // At least the final cells' boxes, at most the pairs' buffers doubled.
+  EXPECT_GE(peak, free_mask.cellCount() * (sizeof(GeometryMask::Box) + sizeof(GeometryMask::OctantBoxes)));
+  EXPECT_LT(peak, s.indices.size() / 3 * 2 * 512);
+  EXPECT_EQ(build(peak).cellCount(), free_mask.cellCount());
+  auto refused = [&](std::size_t limit, bool threaded) {
+    try {
+      if (threaded) GeometryMask(s, b, 0.01, limit);
+      else build(limit);
+    } catch (const GeometryMask::OverLimit& e) {
+      EXPECT_GT(e.bytes, limit);
+      EXPECT_LE(e.bytes, limit + (std::size_t(8) << 20)) << "stopped when it passed the limit, not later";
+      return true;
+    }
+    return false;
+  };
+  for (const std::size_t limit : {peak - 1, peak / 2, std::size_t(1) << 16})
+    EXPECT_TRUE(refused(limit, false)) << "limit " << limit << " below the peak " << peak;
+  EXPECT_TRUE(refused(peak / 2, true)) << "threaded, limit " << peak / 2;
 }
 
 // 300 random triangles of up to ~3 cells in an 8-cell cube (cells of 1).

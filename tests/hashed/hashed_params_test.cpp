@@ -90,12 +90,14 @@ TEST(HashedParams, GeometryMaskNeedsASceneAndFitsTheLimit) {
   HashedConfig cfg;
   cfg.geometry_mask = true;
   EXPECT_NE(userErrorOf([&] { HashedStructure hs(cfg, nullptr); }).find("--geometry-mask"), std::string::npos);
-  // A big floor at a tiny node size: refused before voxelising.
+  // A big floor at a tiny node size: refused while voxelising, when the
+  // mask's buffers pass the limit (64 MiB here, so it stops soon).
   Scene floor;
   for (const glm::vec3 p : {glm::vec3(-50, 0, -50), glm::vec3(50, 0, -50), glm::vec3(50, 0, 50), glm::vec3(-50, 0, 50)})
     floor.vertices.push_back({p, glm::vec3(0, 1, 0), glm::vec2(0)});
   floor.indices = {0, 1, 2, 0, 2, 3};
   cfg.node_size = "0.01";
+  cfg.memory_limit = std::size_t(64) << 20;
   HashedStructure hs(cfg, &floor);
   const gpu::PointLight small = makeLight({0, 1, 0}, 0.02f, glm::vec3(1));  // the light alone fits easily
   const std::string msg = userErrorOf([&] { hs.build({small}, boundsForBox(glm::dvec3(-50), glm::dvec3(50), 0.01, 3)); });
@@ -126,7 +128,7 @@ TEST(HashedParams, GeometryMaskBuildsCheckTheirLitCells) {
   probe.build(lights);
   const std::size_t first = estimateBuildBytes(lights, probe.bounds(), true);
   const std::size_t lit = estimateLitBytes(lights.size(), probe.lastBuild().filled_cells);
-  const auto mask_need = std::size_t(GeometryMask::estimateBytes(floor, probe.bounds()));  // checked on its own
+  const std::size_t mask_need = probe.lastBuild().mask_bytes;  // checked on its own, as it grows
   ASSERT_LT(std::max(first, mask_need), lit);
   EXPECT_LT(first, estimateBuildBytes(lights, probe.bounds(), false));  // the mask's point
   cfg.memory_limit = (std::max(first, mask_need) + lit) / 2;
