@@ -11,8 +11,14 @@ Reads `manylights bench` JSON (one camera frame per run) and writes into DIR:
              evaluations per covered pixel; then the per-light growth from 16k
              to 1M lights, (metric(1M) / 1M) / (metric(16k) / 16k): 1.0 is
              linear, the issue's target is within 2x.
+             Rows are runs (technique and swept parameters): the sweep runs the
+             automatic tiles beside the previous defaults (tile=16 minmax,
+             cluster_tile=32), and "Against the previous defaults" gives, per
+             light count, each pair's evaluations / bound and the assignment
+             time of the automatic run over the fixed one's (same bench run).
   scale.png  log-log assignment time (hashed: its build) and memory vs N, with a
-             dashed linear-growth guide.
+             dashed linear-growth guide, and light evaluations / exact lower
+             bound vs N per run.
 """
 import argparse
 import json
@@ -34,18 +40,23 @@ def assignment_ms(rec):
     return rec["passes_total_ms"] - sum(rec["passes"].get(p, 0.0) for p in RASTER_PASSES)
 
 
+def label(rec):
+    """The run's technique and swept parameters, e.g. tiled-deferred[tile=16,tile_depth=minmax]."""
+    return rec["run"].split(" ")[0]
+
+
 def collect(timing, counts):
-    """{technique: {N: row}}; one frame per run (several frames: the last wins)."""
+    """{run label: {N: row}}; one frame per run (several frames: the last wins)."""
     table = {}
     for r in timing:
-        row = table.setdefault(r["technique"], {}).setdefault(r["light_count"], {})
+        row = table.setdefault(label(r), {}).setdefault(r["light_count"], {})
         row["assign_ms"] = assignment_ms(r)
         row["build_ms"] = dict(r.get("technique_stats", {})).get("build ms")
         row["memory"] = r.get("memory_bytes")
         if r.get("lower_bound") is not None and r.get("covered_pixels"):
             row["bound_px"] = r["lower_bound"] / r["covered_pixels"]
     for r in counts:
-        row = table.setdefault(r["technique"], {}).setdefault(r["light_count"], {})
+        row = table.setdefault(label(r), {}).setdefault(r["light_count"], {})
         if r.get("light_evaluations") is not None and r.get("covered_pixels"):
             row["evals_px"] = r["light_evaluations"] / r["covered_pixels"]
             row["bound_px"] = r["lower_bound"] / r["covered_pixels"]
@@ -84,17 +95,64 @@ def markdown(table, meta, load):
     for tech in sorted(table):
         for n in sorted(table[tech]):
             r = table[tech][n]
-            ratio = r["evals_px"] / r["bound_px"] if r.get("evals_px") and r.get("bound_px") else None
+            ratio = evals_over_bound(r)
             mem = r["memory"] / 2**20 if r.get("memory") is not None else None
             out.append("| %s | %d | %s | %s | %s | %s | %s | %s |" % (
                 tech, n, fmt(r.get("assign_ms"), ".1f"), fmt(r.get("build_ms"), ".0f"), fmt(mem, ".1f"),
                 fmt(r.get("bound_px"), ".2f"), fmt(r.get("evals_px"), ".2f"), fmt(ratio, ".2f")))
+    out += previous_defaults(table)
     out += ["", "Per-light growth from 16k to 1M lights ((x(1M)/1M) / (x(16k)/16k); 1.0 = linear; target <= 2):", "",
             "| technique | time (hashed: build) | memory |", "|---|---:|---:|"]
     for tech in sorted(table):
         out.append("| %s | %s | %s |" % (tech, fmt(per_light_ratio(table, tech, time_metric), ".2f"),
                                          fmt(per_light_ratio(table, tech, "memory"), ".2f")))
     return "\n".join(out) + "\n"
+
+
+def evals_over_bound(row):
+    return row["evals_px"] / row["bound_px"] if row.get("evals_px") and row.get("bound_px") else None
+
+
+def fixed_peer(run, table):
+    """The automatic run's fixed-parameter peer: tile=auto -> tile=16 with minmax, cluster_tile=auto -> 32."""
+    for auto, fixed in (("tile=auto,tile_depth=mask", "tile=16,tile_depth=minmax"),
+                        ("cluster_tile=auto", "cluster_tile=32")):
+        if auto in run and run.replace(auto, fixed) in table:
+            return run.replace(auto, fixed)
+    return None
+
+
+def previous_defaults(table):
+    out = ["", "Against the previous defaults (same bench run; time = assignment ms, automatic / fixed):", "",
+           "| run | previous | lights | evals / bound | previous evals / bound | time ratio |",
+           "|---|---|---:|---:|---:|---:|"]
+    rows = 0
+    for run in sorted(table):
+        peer = fixed_peer(run, table)
+        if not peer:
+            continue
+        for n in sorted(table[run]):
+            a, b = table[run][n], table[peer].get(n, {})
+            t = a["assign_ms"] / b["assign_ms"] if a.get("assign_ms") and b.get("assign_ms") else None
+            out.append("| %s | %s | %d | %s | %s | %s |" % (run, peer, n, fmt(evals_over_bound(a), ".2f"),
+                                                           fmt(evals_over_bound(b), ".2f"), fmt(t, ".2f")))
+            rows += 1
+    return out if rows else []
+
+
+def plot_tightness(table, ax):
+    for run in sorted(table):
+        pts = [(n, evals_over_bound(r)) for n, r in sorted(table[run].items())]
+        pts = [(n, v) for n, v in pts if v]
+        if pts:
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=run,
+                    linestyle="--" if "=16," in run or "=32" in run else "-")
+    ax.axhline(1.0, color="k", linewidth=1)
+    ax.set_xscale("log")
+    ax.set_xlabel("lights (constant density)")
+    ax.set_title("light evaluations / exact lower bound")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
 
 
 def plot(table, path):
@@ -105,9 +163,10 @@ def plot(table, path):
     except ImportError:  # one line, not a traceback: the fix is a package
         sys.stderr.write("plot_scale.py: matplotlib is missing; install python3-matplotlib\n")
         sys.exit(2)
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    fig, axes = plt.subplots(1, 3, figsize=(18, 5.2))
     panels = [(axes[0], time_metric, "assignment time per frame, ms (hashed: host build)"),
               (axes[1], lambda t, r: (r.get("memory") or 0) / 2**20 or None, "structure memory, MiB")]
+    plot_tightness(table, axes[2])
     for ax, metric, title in panels:
         firsts = []
         for tech in sorted(table):

@@ -9,19 +9,25 @@
 #   counts.json  shaded counting frames (--no-timing) of the techniques that keep
 #                lists, for light evaluations per pixel (brute force evaluates
 #                N per pixel: not rendered); skipped with --no-eval-counts.
-# Then scripts/plot_scale.py writes scale.md (table, per-light ratios 16k -> 1M)
-# and scale.png (log-log time and memory vs N, with a linear-growth guide).
+# Tiled and clustered run with their automatic tiles (the defaults) beside the
+# previous defaults in the same bench runs (--param tile=auto,16
+# tile_depth=mask,minmax cluster_tile=auto,32; --no-peers: defaults only).
+# Then scripts/plot_scale.py writes scale.md (table, the automatic tiles
+# against the previous defaults, per-light ratios 16k -> 1M) and scale.png
+# (log-log time and memory vs N with a linear-growth guide; evaluations /
+# exact bound vs N).
 #
 #   scripts/scale_sweep.sh [--counts LIST] [--density K] [--size WxH] [--repeat R]
-#                          [--node-size S] [--out DIR] [--no-eval-counts]
+#                          [--node-size S] [--out DIR] [--no-eval-counts] [--no-peers]
 #     --counts     light counts (default 1000,4000,16000,64000,256000,1000000)
 #     --density    mean exact lower bound per covered pixel (default 8)
 #     --size       resolution (default 1920x1080)
 #     --repeat     timed renders per frame, median (default 3)
 #     --node-size  hashed node size (default 0.5r, the renderer's)
 #     --out        output folder (default results/scale)
+#     --no-peers   only the defaults (no previous-default runs beside them)
 # Env: MANYLIGHTS_BIN (default build/manylights), MANYLIGHTS_PYTHON (python3 with matplotlib).
-# On 2 CPU cores (PoCL + llvmpipe) the default sweep takes about 15 minutes.
+# On 2 CPU cores (PoCL + llvmpipe) the default sweep takes about 30 minutes (15 with --no-peers).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -33,13 +39,14 @@ repeat=3
 node_size=0.5r
 out="results/scale"
 eval_counts=1
+peers=1
 # shellcheck source=scripts/script_options.sh
 source scripts/script_options.sh
 declare -A value_opts=([--counts]=counts [--density]=density [--size]=size [--repeat]=repeat
                        [--node-size]=node_size [--out]=out)
-declare -A flag_opts=([--no-eval-counts]="eval_counts=0")
+declare -A flag_opts=([--no-eval-counts]="eval_counts=0" [--no-peers]="peers=0")
 positional=""
-parse_options "$0" 27 "$@"
+parse_options "$0" 30 "$@"
 bin="${MANYLIGHTS_BIN:-build/manylights}"
 find_plot_python "$0"
 [[ -x "$bin" ]] || { echo "scale_sweep.sh: error: $bin not found (build the manylights target)" >&2; exit 2; }
@@ -47,6 +54,7 @@ mkdir -p "$out"
 
 common=(--lights "$counts" --light-density "$density" --size "$size" --frames 0:0:1 --node-size "$node_size"
         --progress lines)
+((peers)) && common+=(--param tile=auto,16 --param tile_depth=mask,minmax --param cluster_tile=auto,32)
 echo "== load before: $(uptime)" | tee "$out/load.txt"
 "$bin" bench "${common[@]}" --no-shading --repeat "$repeat" --warmup 1 --json "$out/timing.json" \
   --csv "$out/timing.csv" | tee "$out/timing.log"

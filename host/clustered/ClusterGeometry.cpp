@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "host/assign/LightFootprint.hpp"
 #include "host/tiled/TileGeometry.hpp"
 #include "host/util/Error.hpp"
 
@@ -19,9 +20,9 @@ unsigned bitsFor(unsigned count) {
   return b;
 }
 
-unsigned autoClusterTile(unsigned width, unsigned height) {
+unsigned autoClusterTile(unsigned width, unsigned height, double light_pixels) {
   (void)width;
-  return height >= 720 ? 32u : 16u;
+  return tileForLights(light_pixels, kClusterTilePerLightPixel, 8u, height >= 720 ? 32u : 16u);
 }
 
 ClusterGrid ClusterGrid::make(const gpu::CameraParams& cam, unsigned tile_size) {

@@ -47,10 +47,17 @@ struct ClusterGrid {
 };
 
 unsigned bitsFor(unsigned count);  // bits to hold 0 .. count - 1
-// The automatic cluster tile (--cluster-tile 0): the thesis's 32 px from 720
-// lines up, 16 px below, where 32 px tiles are a tenth of the screen and the
-// clusters too coarse for tight light lists.
-unsigned autoClusterTile(unsigned width, unsigned height);
+// The automatic cluster tile (--cluster-tile auto): at most the thesis's 32 px
+// from 720 lines up, 16 px below (where 32 px tiles are a tenth of the
+// screen), and smaller as the lights get small on screen: the largest power of
+// two, down to 8, at most kClusterTilePerLightPixel times coveringLightPixels()
+// (host/assign/LightFootprint.hpp). On the default scene at constant density
+// the lists' evaluations / exact bound follow tile / light pixels: 1.1 at
+// 0.07, 1.45 at 0.125, 2.0 at 0.25, 3.6 at 0.5 (docs/scaling.md); 0.14 keeps
+// them near 1.45 or below from 1k to 1M lights. light_pixels 0 (no light in
+// view): the resolution's tile.
+constexpr double kClusterTilePerLightPixel = 0.14;
+unsigned autoClusterTile(unsigned width, unsigned height, double light_pixels = 0.0);
 unsigned sliceOfDepth(float z, const ClusterGrid& g);
 // depth: window-space floats, row 0 at the bottom.
 std::vector<std::uint32_t> referenceKeys(const float* depth, const gpu::CameraParams& cam, const ClusterGrid& g);

@@ -2,6 +2,7 @@
 
 #include "gl/GlCheck.hpp"
 #include "gl/ShaderProgram.hpp"
+#include "host/assign/LightFootprint.hpp"
 #include "host/cl/ClRuntime.hpp"
 #include "host/shared/shading_bindings.h"
 #include "host/util/IdColour.hpp"
@@ -20,7 +21,8 @@ ClusteredAssigner::ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMe
 void ClusteredAssigner::assign(const FrameInputs& in) {
   cl::CommandQueue& q = rt_.queue();
   // Rebuilt per frame: it depends on the camera's near/far/fov and viewport.
-  grid_ = ClusterGrid::make(in.camera_params, tile_size_ ? tile_size_ : autoClusterTile(in.width, in.height));
+  light_pixels_ = coveringLightPixels(in.host_lights, in.camera_params);
+  grid_ = ClusterGrid::make(in.camera_params, tile_size_ ? tile_size_ : autoClusterTile(in.width, in.height, light_pixels_));
   map_->reserve(std::size_t(in.width) * in.height * sizeof(std::uint32_t));
   in.lights.acquireForCl(q, ClAccess::Read);
   in.depth->acquireForCl(q, ClAccess::Read);
@@ -90,6 +92,7 @@ std::vector<std::pair<std::string, double>> ClusteredAssigner::stats() const {
           {"cluster list records", double(last_records_)},
           {"cluster list lights", double(lights_.listedLights(rt_.queue()))},
           {"cluster tile", double(grid_.tile_size)},
+          {"light radius px", light_pixels_},
           {"pixel bounds", bounds_ == ClusterBounds::Pixels ? 1.0 : 0.0},
           {"depth slices", double(grid_.slices)},
           {"bvh levels", double(lights_.method() == ClusterAssignMethod::Bvh ? lights_.bvhLevels() : 0)}};

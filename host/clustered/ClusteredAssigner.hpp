@@ -25,7 +25,7 @@ namespace ml {
 
 class ClusteredAssigner final : public LightAssigner {
  public:
-  // tile_size 0: autoClusterTile() of each frame's viewport.
+  // tile_size 0: autoClusterTile() of each frame's viewport and lights.
   ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMethod unique, ClusterAssignMethod assign,
                     ClusterBounds bounds = ClusterBounds::Pixels, KernelShape shape = KernelShape::Auto);
   bool needsDepth() const override { return true; }
@@ -55,6 +55,7 @@ class ClusteredAssigner final : public LightAssigner {
   ClusterGrid grid_;
   std::unique_ptr<SharedBuffer> ranges_, records_, leaf_lights_, map_;
   std::uint32_t clusters_ = 0, last_records_ = 0;
+  double light_pixels_ = 0.0;  // coveringLightPixels() of the last frame
 };
 
 const TechniqueDescriptor& clusteredTechnique();

@@ -16,7 +16,7 @@ const TechniqueDescriptor& clusteredTechnique() {
     };
     t.params = {
         countParam("cluster_tile", "auto", 1, kMaxClusterTile, "cluster tile size in pixels; auto: 32 from 720 "
-                   "lines up (the thesis's), 16 below", {"auto", "0"}),
+                   "lines up (the thesis's), 16 below, down to 8 as the lights get small on screen", {"auto", "0"}),
         choiceParam("unique", "pagetable", {"pagetable", "sort", "tile-sort"}, "unique-cluster method"),
         choiceParam("cluster_assign", "bvh", {"bvh", "brute"}, "cluster light assignment"),
         choiceParam("cluster_bounds", "pixels", {"pixels", "frustum"},

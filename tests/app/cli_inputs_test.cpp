@@ -197,7 +197,7 @@ TEST(CliInputs, TechniqueFlagsBeforeStartUp) {
                 {"--tile-depth"});
   expectRefused(runManylights("render --size 16x16 --lights 8 --technique clustered-deferred --unique magic"),
                 {"--unique"});
-  expectRefused(runManylights("render --size 16x16 --lights 8 --technique tiled-deferred --tile 0"), {"--tile"});
+  expectRefused(runManylights("render --size 16x16 --lights 8 --technique tiled-deferred --tile 257"), {"--tile"});
   expectRefused(runManylights("render --size 16x16 --lights 8 --technique deferred --cluster-view /tmp/c.png"),
                 {"--cluster-view"});
 }

@@ -95,7 +95,7 @@ TEST(BenchTypes, ParamValuesAreChecked) {
   EXPECT_EQ(clustered[0].params.count("cluster_tile"), 64u);
   EXPECT_EQ(clustered[1].params.count("cluster_tile"), 0u);
   for (auto [k, v] : std::vector<std::pair<std::string, std::string>>{
-           {"tile", "0"}, {"tile", "x"}, {"tile", "257"}, {"cluster_tile", "1025"}, {"tile_depth", "deep"},
+           {"tile", "-1"}, {"tile", "x"}, {"tile", "257"}, {"cluster_tile", "1025"}, {"tile_depth", "deep"},
            {"node_size", "-1"}, {"node_size", "r"}, {"unique", "magic"}, {"kernel_shape", "warp"},
            {"start_depth", "17"}, {"nonsense", "1"}}) {
     try {

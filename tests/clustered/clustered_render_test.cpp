@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "gl/FrameRenderer.hpp"
+#include "host/assign/LightFootprint.hpp"
 #include "host/run/SceneInputs.hpp"
 #include "host/clustered/ClusteredAssigner.hpp"
 #include "support/shape_support.hpp"
@@ -45,6 +46,32 @@ TEST_P(RenderClustered, MatchesBruteForce) {
       ++mapped;
     }
   EXPECT_EQ(mapped, res.covered_pixels);
+}
+
+// --cluster-tile auto: the tile follows the lights' size on screen frame by
+// frame (16 px, the cap below 720 lines, for lights of 130 px on screen; 8 px
+// for lights of 20 px), and every frame's lists lose no
+// light: brute force's image and lower bound, over the same lights.
+TEST(RenderClusteredAuto, TileFollowsTheLightsAndListsStayComplete) {
+  test::glContext();
+  FrameRenderer r(test::runtime(), scene().scene, kW, kH);
+  ClusteredAssigner clustered(test::runtime(), 0, UniqueMethod::PageTable, ClusterAssignMethod::Bvh);
+  std::vector<unsigned> tiles;
+  // Radii scaled to lights of about 20 px on screen, and of 130 px (a larger
+  // scale makes the near lights reach the camera, which the measure leaves out).
+  const double px = coveringLightPixels(scene().lights, scene().cameras.frames.front().params(kW, kH));
+  ASSERT_GT(px, 0.0);
+  for (const float scale : {float(20.0 / px), float(1000.0 / px), float(20.0 / px)}) {
+    SCOPED_TRACE("radius x " + std::to_string(scale));
+    std::vector<gpu::PointLight> lights = scene().lights;
+    for (auto& l : lights) l.position_radius.w *= scale;
+    EXPECT_GT(test::expectBruteForceFrameWith(r, clustered, Pipeline::Deferred, lights).lower_bound, 0u);
+    tiles.push_back(clustered.grid().tile_size);
+    const double now = coveringLightPixels(lights, scene().cameras.frames.front().params(kW, kH));
+    EXPECT_EQ(tiles.back(), autoClusterTile(kW, kH, now));
+    EXPECT_DOUBLE_EQ(test::statOf(clustered, "light radius px"), now);
+  }
+  EXPECT_EQ(tiles, (std::vector<unsigned>{8, 16, 8}));
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -101,10 +101,18 @@ TEST(CrossImplementation, EveryTechniqueRendersTheSameOnPoclAndRusticl) {
     if (hasKernelShapes(t)) variants = {"--kernel-shape cpu", "--kernel-shape gpu"};
     for (const std::string& extra : variants) {
       SCOPED_TRACE(t + " " + extra);
-      const Rendered pocl = render("pocl", t, extra);
-      const Rendered rusticl = render("rusticl", t, extra);
+      Rendered pocl = render("pocl", t, extra);
+      Rendered rusticl = render("rusticl", t, extra);
       ASSERT_FALSE(pocl.image.empty());
       ASSERT_FALSE(rusticl.image.empty());
+      if (t.rfind("tiled", 0) == 0 && extra == "--kernel-shape cpu") {
+        // The CPU shape's per-chunk tile counters follow the device: llvmpipe
+        // caps a work-item's loops, so rusticl takes shorter chunks (more
+        // counter rows) than PoCL for the same lists.
+        EXPECT_GE(rusticl.counts.at("memory_bytes"), pocl.counts.at("memory_bytes"));
+        pocl.counts.erase("memory_bytes");
+        rusticl.counts.erase("memory_bytes");
+      }
       EXPECT_EQ(pocl.counts, rusticl.counts);
       EXPECT_EQ(pocl.counts.at("missed_lights"), 0);
       EXPECT_TRUE(pocl.heatmap == rusticl.heatmap) << "the heat maps differ";

@@ -46,6 +46,30 @@ FrameResult expectBruteForceFrame(FrameRenderer& r, LightAssigner& assigner, Pip
   return res;
 }
 
+FrameResult expectBruteForceFrameWith(FrameRenderer& r, LightAssigner& assigner, Pipeline pipeline,
+                                      const std::vector<gpu::PointLight>& lights) {
+  BruteForceAssigner brute;
+  const Camera& cam = referenceScene().cameras.frames.front();
+  r.setLights(lights);
+  const FrameResult want = r.render(cam, brute, {pipeline, true});
+  const std::vector<float> want_image = r.targets().readColor();
+  const FrameResult got = r.render(cam, assigner, {pipeline, true});
+  const auto diff = compareImages(r.targets().readColor(), want_image, 1.0 / 255.0);
+  EXPECT_LT(diff.mean_abs, 1e-4);
+  EXPECT_EQ(diff.frac_over_tol, 0.0) << "max diff " << diff.max_abs;
+  EXPECT_EQ(got.lower_bound, want.lower_bound);
+  EXPECT_EQ(got.covered_pixels, want.covered_pixels);
+  EXPECT_GE(got.light_evaluations, got.lower_bound);
+  return got;
+}
+
+double statOf(const LightAssigner& assigner, const std::string& key) {
+  for (const auto& [k, v] : assigner.stats())
+    if (k == key) return v;
+  ADD_FAILURE() << "no statistic '" << key << "'";
+  return -1.0;
+}
+
 void expectNoLightsAtOddSize(LightAssigner& assigner) {
   glContext();
   FrameRenderer r(runtime(), referenceScene().scene, 101, 37);

@@ -4,6 +4,7 @@
 // camera frame, at kReferenceWidth x kReferenceHeight with counts on. Loaded
 // and rendered once per test process (per pipeline), shared by every suite;
 // and the checks those suites make of every technique against them.
+#include <string>
 #include <vector>
 
 #include "gl/FrameRenderer.hpp"
@@ -29,6 +30,15 @@ const BruteReference& bruteReference(Pipeline pipeline);
 // evaluations from the bound up to a quarter of brute force's. Returns the
 // frame's result for the technique's own checks.
 FrameResult expectBruteForceFrame(FrameRenderer& r, LightAssigner& assigner, Pipeline pipeline);
+
+// The same over `lights` (set on r, brute force rendered first through r):
+// brute force's image within 1/255 per channel, its lower bound and covered
+// pixels, evaluations from the bound up.
+FrameResult expectBruteForceFrameWith(FrameRenderer& r, LightAssigner& assigner, Pipeline pipeline,
+                                      const std::vector<gpu::PointLight>& lights);
+
+// The value of the assigner's statistic `key` (a test failure and -1 if none).
+double statOf(const LightAssigner& assigner, const std::string& key);
 
 // The reference camera at 101 x 37 (a multiple of no tile or cluster size)
 // without lights, forward: no light evaluated, pixels still covered.

@@ -196,7 +196,7 @@ TEST(ViewScripted, RecordedPathReplaysThroughBench) {
 
 TEST(ViewScripted, RefusedValueNamesTheAction) {
   if (!test::haveXvfb()) GTEST_SKIP() << "xvfb-run is missing (Debian package xvfb): the viewer cannot be tested";
-  const auto r = test::runViewScript(json::array({{{"wait", 1}}, {{"param", {{"tile", "0"}}}}}), "refused");
+  const auto r = test::runViewScript(json::array({{{"wait", 1}}, {{"param", {{"tile", "257"}}}}}), "refused");
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("action 1 (param)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("tile"), std::string::npos) << r.err;
