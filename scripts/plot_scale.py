@@ -141,7 +141,8 @@ def previous_defaults(table):
 
 
 def plot_tightness(table, ax):
-    for run in sorted(table):
+    # Forward and deferred variants keep the same lists: the deferred ones stand for both.
+    for run in sorted(r for r in table if "-forward" not in r):
         pts = [(n, evals_over_bound(r)) for n, r in sorted(table[run].items())]
         pts = [(n, v) for n, v in pts if v]
         if pts:
@@ -150,7 +151,7 @@ def plot_tightness(table, ax):
     ax.axhline(1.0, color="k", linewidth=1)
     ax.set_xscale("log")
     ax.set_xlabel("lights (constant density)")
-    ax.set_title("light evaluations / exact lower bound")
+    ax.set_title("light evaluations / exact lower bound (deferred runs)")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
 
@@ -163,6 +164,7 @@ def plot(table, path):
     except ImportError:  # one line, not a traceback: the fix is a package
         sys.stderr.write("plot_scale.py: matplotlib is missing; install python3-matplotlib\n")
         sys.exit(2)
+    plt.rcParams["axes.prop_cycle"] = plt.cycler(color=plt.get_cmap("tab20").colors)
     fig, axes = plt.subplots(1, 3, figsize=(18, 5.2))
     panels = [(axes[0], time_metric, "assignment time per frame, ms (hashed: host build)"),
               (axes[1], lambda t, r: (r.get("memory") or 0) / 2**20 or None, "structure memory, MiB")]

@@ -52,9 +52,9 @@ unsigned bitsFor(unsigned count);  // bits to hold 0 .. count - 1
 // screen), and smaller as the lights get small on screen: the largest power of
 // two, down to 8, at most kClusterTilePerLightPixel times coveringLightPixels()
 // (host/assign/LightFootprint.hpp). On the default scene at constant density
-// the lists' evaluations / exact bound follow tile / light pixels: 1.1 at
-// 0.07, 1.45 at 0.125, 2.0 at 0.25, 3.6 at 0.5 (docs/scaling.md); 0.14 keeps
-// them near 1.45 or below from 1k to 1M lights. light_pixels 0 (no light in
+// the lists' evaluations / exact bound follow tile / light pixels: 1.2 at
+// 0.07, 1.45 at 0.125, 2.0 at 0.26, 3.6 at 0.51 (docs/scaling.md); 0.14 keeps
+// them at 1.46 or below from 1k to 1M lights. light_pixels 0 (no light in
 // view): the resolution's tile.
 constexpr double kClusterTilePerLightPixel = 0.14;
 unsigned autoClusterTile(unsigned width, unsigned height, double light_pixels = 0.0);
