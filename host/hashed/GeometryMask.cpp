@@ -391,6 +391,10 @@ bool GeometryMask::has(unsigned t, const glm::uvec3& c) const {
     const std::uint64_t i = c.x + side * (c.y + side * c.z);
     return (dense_[t][i >> 6] >> (i & 63)) & 1u;
   }
+  if (t == depth_ && !row_start_.empty()) {  // the row's few cells, not all of them (the merge asks per node)
+    const auto [first, last] = rowCells(c.y, c.z, c.x, c.x);
+    return first != last;
+  }
   const auto& v = sparse_[t];
   return std::binary_search(v.begin(), v.end(), packCoord(c));
 }

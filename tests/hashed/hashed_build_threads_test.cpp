@@ -144,5 +144,47 @@ TEST(HashedBuildThreads, RowLookupListsTheCellsOfThePerCellLookup) {
   }
 }
 
+// has() below the dense levels (depth 9 and deeper): the deepest level reads
+// the row index, the others search the level's keys; both must say what the
+// cell lookup says, and a parent holds geometry exactly when a child does.
+TEST(HashedBuildThreads, DeepHasMatchesTheCellLookup) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  Scene scene;
+  std::vector<glm::dvec3> centres;
+  for (int t = 0; t < 200; ++t) {
+    const glm::dvec3 c(uni(rng, 1, kBox - 1), uni(rng, 1, kBox - 1), uni(rng, 1, kBox - 1));
+    centres.push_back(c);
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 v = c + glm::dvec3(uni(rng, -0.1, 0.1), uni(rng, -0.1, 0.1), uni(rng, -0.1, 0.1));
+      scene.vertices.push_back({glm::vec3(v), glm::vec3(0, 1, 0), glm::vec2(0)});
+      scene.indices.push_back(std::uint32_t(scene.vertices.size() - 1));
+    }
+  }
+  const OctreeBounds b = boundsForBox(glm::dvec3(0), glm::dvec3(kBox), 0.03, 2);
+  ASSERT_GE(b.depth, 10u);
+  const GeometryMask mask(scene, b, 0.01);
+  std::size_t found = 0;
+  for (std::size_t i = 0; i < centres.size() + 2000; ++i) {
+    const glm::ivec3 base = i < centres.size() ? glm::ivec3(glm::floor(b.toCells(centres[i])))
+                                               : glm::ivec3(int(rng() % b.cellsPerAxis()), int(rng() % b.cellsPerAxis()),
+                                                            int(rng() % b.cellsPerAxis()));
+    for (int d = 0; d < 27; ++d) {
+      const glm::uvec3 c(glm::clamp(base + glm::ivec3(d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1), glm::ivec3(0),
+                                    glm::ivec3(int(b.cellsPerAxis()) - 1)));
+      const GeometryMask::Box* box = nullptr;
+      const bool has = mask.octantBoxes(c, box) != nullptr;
+      ASSERT_EQ(mask.has(b.depth, c), has) << c.x << "," << c.y << "," << c.z;
+      found += has;
+      const glm::uvec3 p = c >> 1u;
+      bool any_child = false;
+      for (unsigned k = 0; k < 8; ++k) any_child = any_child || mask.octantBoxes(childCoord(p, k), box) != nullptr;
+      ASSERT_EQ(mask.has(b.depth - 1, p), any_child) << "parent " << p.x << "," << p.y << "," << p.z;
+    }
+  }
+  EXPECT_GT(found, centres.size()) << "the triangles' cells were found";
+}
+
 }  // namespace
 }  // namespace ml::hashed
