@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include "gl/FrameRenderer.hpp"
-#include "host/assign/LightFootprint.hpp"
 #include "host/run/SceneInputs.hpp"
 #include "host/clustered/ClusteredAssigner.hpp"
 #include "support/shape_support.hpp"
@@ -56,21 +55,11 @@ TEST(RenderClusteredAuto, TileFollowsTheLightsAndListsStayComplete) {
   test::glContext();
   FrameRenderer r(test::runtime(), scene().scene, kW, kH);
   ClusteredAssigner clustered(test::runtime(), 0, UniqueMethod::PageTable, ClusterAssignMethod::Bvh);
-  std::vector<unsigned> tiles;
-  // Radii scaled to lights of about 20 px on screen, and of 130 px (a larger
-  // scale makes the near lights reach the camera, which the measure leaves out).
-  const double px = coveringLightPixels(scene().lights, scene().cameras.frames.front().params(kW, kH));
-  ASSERT_GT(px, 0.0);
-  for (const float scale : {float(20.0 / px), float(1000.0 / px), float(20.0 / px)}) {
-    SCOPED_TRACE("radius x " + std::to_string(scale));
-    std::vector<gpu::PointLight> lights = scene().lights;
-    for (auto& l : lights) l.position_radius.w *= scale;
-    EXPECT_GT(test::expectBruteForceFrameWith(r, clustered, Pipeline::Deferred, lights).lower_bound, 0u);
-    tiles.push_back(clustered.grid().tile_size);
-    const double now = coveringLightPixels(lights, scene().cameras.frames.front().params(kW, kH));
-    EXPECT_EQ(tiles.back(), autoClusterTile(kW, kH, now));
-    EXPECT_DOUBLE_EQ(test::statOf(clustered, "light radius px"), now);
-  }
+  const auto tiles = test::overThreeLightSizes(r, clustered, Pipeline::Deferred, [&](double px) {
+    EXPECT_EQ(clustered.grid().tile_size, autoClusterTile(kW, kH, px));
+    EXPECT_DOUBLE_EQ(test::statOf(clustered, "light radius px"), px);
+    return clustered.grid().tile_size;
+  });
   EXPECT_EQ(tiles, (std::vector<unsigned>{8, 16, 8}));
 }
 

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include "gl/FrameRenderer.hpp"
-#include "host/assign/LightFootprint.hpp"
 #include "host/run/SceneInputs.hpp"
 #include "host/tiled/TiledAssigner.hpp"
 #include "support/shape_support.hpp"
@@ -64,19 +63,11 @@ TEST(RenderTiledAuto, TileFollowsTheLightsAndListsStayComplete) {
   test::glContext();
   FrameRenderer r(test::runtime(), scene().scene, kW, kH);
   TiledAssigner tiled(test::runtime(), 0, TileDepthMode::Mask);
-  std::vector<unsigned> tiles;
-  // Radii scaled to lights of about 20 px on screen, and of 130 px (a larger
-  // scale makes the near lights reach the camera, which the measure leaves out).
-  const double px = coveringLightPixels(scene().lights, scene().cameras.frames.front().params(kW, kH));
-  ASSERT_GT(px, 0.0);
-  for (const float scale : {float(20.0 / px), float(1000.0 / px), float(20.0 / px)}) {
-    SCOPED_TRACE("radius x " + std::to_string(scale));
-    std::vector<gpu::PointLight> lights = scene().lights;
-    for (auto& l : lights) l.position_radius.w *= scale;
-    EXPECT_GT(test::expectBruteForceFrameWith(r, tiled, Pipeline::Deferred, lights).lower_bound, 0u);
-    tiles.push_back(unsigned(test::statOf(tiled, "tile size")));
-    EXPECT_EQ(tiles.back(), autoTileSize(coveringLightPixels(lights, scene().cameras.frames.front().params(kW, kH))));
-  }
+  const auto tiles = test::overThreeLightSizes(r, tiled, Pipeline::Deferred, [&](double px) {
+    const auto tile = unsigned(test::statOf(tiled, "tile size"));
+    EXPECT_EQ(tile, autoTileSize(px));
+    return tile;
+  });
   EXPECT_EQ(tiles, (std::vector<unsigned>{8, 16, 8}));
 }
 

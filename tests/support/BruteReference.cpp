@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "host/assign/BruteForceAssigner.hpp"
+#include "host/assign/LightFootprint.hpp"
 #include "support/ImageCompare.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
@@ -61,6 +62,22 @@ FrameResult expectBruteForceFrameWith(FrameRenderer& r, LightAssigner& assigner,
   EXPECT_EQ(got.covered_pixels, want.covered_pixels);
   EXPECT_GE(got.light_evaluations, got.lower_bound);
   return got;
+}
+
+std::vector<unsigned> overThreeLightSizes(FrameRenderer& r, LightAssigner& assigner, Pipeline pipeline,
+                                          const std::function<unsigned(double light_pixels)>& after_frame) {
+  const gpu::CameraParams cam = referenceScene().cameras.frames.front().params(kReferenceWidth, kReferenceHeight);
+  const double px = coveringLightPixels(referenceScene().lights, cam);
+  EXPECT_GT(px, 0.0);
+  std::vector<unsigned> out;
+  for (const double target : {20.0, 1000.0, 20.0}) {
+    SCOPED_TRACE("radii scaled for " + std::to_string(target) + " px");
+    std::vector<gpu::PointLight> lights = referenceScene().lights;
+    for (auto& l : lights) l.position_radius.w *= float(target / px);
+    EXPECT_GT(expectBruteForceFrameWith(r, assigner, pipeline, lights).lower_bound, 0u);
+    out.push_back(after_frame(coveringLightPixels(lights, cam)));
+  }
+  return out;
 }
 
 double statOf(const LightAssigner& assigner, const std::string& key) {

@@ -4,6 +4,7 @@
 // camera frame, at kReferenceWidth x kReferenceHeight with counts on. Loaded
 // and rendered once per test process (per pipeline), shared by every suite;
 // and the checks those suites make of every technique against them.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,15 @@ FrameResult expectBruteForceFrame(FrameRenderer& r, LightAssigner& assigner, Pip
 // pixels, evaluations from the bound up.
 FrameResult expectBruteForceFrameWith(FrameRenderer& r, LightAssigner& assigner, Pipeline pipeline,
                                       const std::vector<gpu::PointLight>& lights);
+
+// One assigner over three frames of the reference lights, their radii scaled
+// to about 20, 130 and 20 px on screen (coveringLightPixels of the reference
+// frame; larger scales saturate near 130 px, as the near lights then reach
+// the camera, which the measure leaves out): each frame checked by
+// expectBruteForceFrameWith, then handed to `after_frame` with its light
+// pixels, whose results are returned in order.
+std::vector<unsigned> overThreeLightSizes(FrameRenderer& r, LightAssigner& assigner, Pipeline pipeline,
+                                          const std::function<unsigned(double light_pixels)>& after_frame);
 
 // The value of the assigner's statistic `key` (a test failure and -1 if none).
 double statOf(const LightAssigner& assigner, const std::string& key);
