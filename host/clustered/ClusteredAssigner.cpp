@@ -21,7 +21,7 @@ ClusteredAssigner::ClusteredAssigner(ClRuntime& rt, unsigned tile_size, UniqueMe
 void ClusteredAssigner::assign(const FrameInputs& in) {
   cl::CommandQueue& q = rt_.queue();
   // Rebuilt per frame: it depends on the camera's near/far/fov and viewport.
-  light_pixels_ = coveringLightPixels(in.host_lights, in.camera_params);
+  if (!tile_size_) light_pixels_ = coveringLightPixels(in.host_lights, in.camera_params);  // only auto reads it
   grid_ = ClusterGrid::make(in.camera_params, tile_size_ ? tile_size_ : autoClusterTile(in.width, in.height, light_pixels_));
   map_->reserve(std::size_t(in.width) * in.height * sizeof(std::uint32_t));
   in.lights.acquireForCl(q, ClAccess::Read);

@@ -55,7 +55,7 @@ class ClusteredAssigner final : public LightAssigner {
   ClusterGrid grid_;
   std::unique_ptr<SharedBuffer> ranges_, records_, leaf_lights_, map_;
   std::uint32_t clusters_ = 0, last_records_ = 0;
-  double light_pixels_ = 0.0;  // coveringLightPixels() of the last frame
+  double light_pixels_ = 0.0;  // coveringLightPixels() of the last frame (auto tile only)
 };
 
 const TechniqueDescriptor& clusteredTechnique();

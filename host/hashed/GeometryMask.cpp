@@ -217,7 +217,6 @@ class HeldBytes {
     }
     if (now > limit_) throw GeometryMask::OverLimit(now);
   }
-  std::size_t held() const { return held_.load(); }
   std::size_t peak() const { return peak_.load(); }
 
  private:

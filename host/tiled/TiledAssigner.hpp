@@ -39,7 +39,7 @@ class TiledAssigner final : public LightAssigner {
   TileDepthMode mode_;
   KernelShape shape_;
   std::unique_ptr<TileLightCuller> culler_;  // the last frame's tile size
-  double light_pixels_ = 0.0;          // coveringLightPixels() of the last frame
+  double light_pixels_ = 0.0;          // coveringLightPixels() of the last frame (auto tile only)
   std::unique_ptr<SharedBuffer> grid_;
   std::unique_ptr<SharedBuffer> indices_;
   std::uint32_t last_total_ = 0;
