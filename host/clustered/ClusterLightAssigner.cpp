@@ -66,7 +66,8 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
       max_group_(checkedMaxGroup(max_group)),
       record_budget_(kDefaultRecordBudget),
       scan_(rt, compute::Options{shape_, max_group}),
-      radix_(rt, compute::Options{shape_, max_group}) {
+      radix_(rt, compute::Options{shape_, max_group}),
+      compact_(rt, compute::Options{shape_, max_group}) {
   const std::string leaf = std::to_string(leaf_size_) + "u";
   bounds_program_ = rt.programs().build("clustered/cluster_bounds.cl");
   bvh_program_ = rt.programs().build("clustered/light_bvh.cl",
@@ -78,6 +79,11 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
   boxes_ = cl::Kernel(bounds_program_, "cluster_boxes");
   finish_ = cl::Kernel(bounds_program_, "cluster_boxes_finish");
   morton_ = cl::Kernel(bvh_program_, "light_morton");
+  union_part_ = cl::Kernel(bvh_program_, "cluster_union_partial");
+  union_final_ = cl::Kernel(bvh_program_, "cluster_union_final");
+  reaches_k_ = cl::Kernel(bvh_program_, "light_reaches_union");
+  gather_k_ = cl::Kernel(bvh_program_, "gather_spheres");
+  remap_k_ = cl::Kernel(bvh_program_, "remap_leaf_ids");
   order_k_ = cl::Kernel(lists_program_, "cluster_order");
   ranges_ = cl::Kernel(lists_program_, "write_grid");
   // One kernel of each pass per shape.
@@ -95,9 +101,10 @@ ClusterLightAssigner::ClusterLightAssigner(ClRuntime& rt, ClusterAssignMethod me
   fitLocalSizes();
   block_start_ = checkedBuffer(rt, CL_MEM_READ_ONLY, kMaxLevels * 4, "cluster BVH");
   frame_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "cluster BVH");
+  box_union_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 32, "cluster BVH");
   for (cl::Buffer* b :
        {&spheres_, &codes_, &ids_, &soa_, &leaf_ids_, &node_lo_, &node_hi_, &node_sph_, &node_soa_, &rec_leaf_,
-        &rec_mask_, &order_codes_, &order_ids_})
+        &rec_mask_, &order_codes_, &order_ids_, &reaching_, &reaching_spheres_})
     *b = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "cluster BVH");
 }
 
@@ -105,7 +112,8 @@ void ClusterLightAssigner::fitLocalSizes() {
   const cl::Device& dev = rt_.device();
   const DeviceInfo& info = rt_.info();
   local_ = 1024;
-  for (const cl::Kernel* k : {&view_, &boxes_, &morton_, &order_k_, &finish_, &ranges_, &blocks_})
+  for (const cl::Kernel* k : {&view_, &boxes_, &morton_, &order_k_, &finish_, &ranges_, &blocks_, &union_part_,
+                              &reaches_k_, &gather_k_, &remap_k_})
     local_ = std::min(local_, elementLocalSize(*k, dev, info, max_group_));
   if (!gpu_) {
     // CPU shape: every pass is a work-item per element (tile, chunk, leaf, node, cluster).
@@ -127,7 +135,7 @@ void ClusterLightAssigner::fitLocalSizes() {
 }
 
 std::size_t ClusterLightAssigner::scratchBytes() const {
-  return light_capacity_ * (16 + 4 + 4) + leaf_capacity_ * leaf_size_ * (16 + 4) + node_capacity_ * 48 +
+  return light_capacity_ * (16 + 4 + 4 + 16 + 4) + leaf_capacity_ * leaf_size_ * (16 + 4) + node_capacity_ * 48 +
          block_capacity_ * kBranch * kNodeFloats * 4 +
          cluster_capacity_ * (32 + 12) + bounds_capacity_ * 4 + record_capacity_ * 8;
 }
@@ -198,6 +206,7 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
   const std::uint32_t clusters = clusters_;
   n_ = n;
+  tree_lights_ = n;
   bvh_ = method_ == ClusterAssignMethod::Bvh;
   n_leaves_ = 0;
   levels_ = 0;
@@ -207,28 +216,15 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
     spheres_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, light_capacity_ * 16, "clustered light assignment");
     codes_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, light_capacity_ * 4, "clustered light assignment");
     ids_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, light_capacity_ * 4, "clustered light assignment");
+    reaching_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, light_capacity_ * 4, "clustered light assignment");
+    reaching_spheres_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, light_capacity_ * 16, "clustered light assignment");
   }
   n_leaves_ = (n + leaf_size_ - 1) / leaf_size_;
   if (n > 0) {
     setArgs(view_, lights, n, cam, spheres_);
     launch1d(q, view_, n, local_, ev("cluster-light-view"));
-    if (bvh_) {
-      // Morton frame: the bounding cube of the light centres, on the device.
-      const std::uint32_t parts = (n + kMortonChunk - 1) / kMortonChunk;
-      if (parts > part_capacity_) {
-        part_capacity_ = std::size_t(parts) + parts / 2;
-        part_lo_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, part_capacity_ * 16, "clustered light assignment");
-        part_hi_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, part_capacity_ * 16, "clustered light assignment");
-      }
-      setArgs(bounds_part_, spheres_, n, part_lo_, part_hi_);
-      launchShaped(q, bounds_part_, parts, red_local_, ev("cluster-light-bounds"));
-      setArgs(bounds_final_, part_lo_, part_hi_, parts, frame_);
-      launchShaped(q, bounds_final_, 1, red_local_, ev("cluster-light-bounds"));
-      setArgs(morton_, spheres_, n, frame_, codes_, ids_);
-      launch1d(q, morton_, n, local_, ev("cluster-morton"));
-      radix_.sort(q, codes_, &ids_, n, 3 * kMortonAxisBits, timer);
-    }
-    packLeaves(q, n, bvh_, timer);
+    if (bvh_) buildBvh(q, keepReachingLights(q, n, timer), timer);
+    else packLeaves(q, spheres_, n, false, timer);
   }
   orderClusters(q, clusters, timer);
   // Record slots per cluster: an equal share of the budget, at most every leaf.
@@ -252,6 +248,52 @@ std::uint32_t ClusterLightAssigner::assign(cl::CommandQueue& q, const cl::Buffer
   return records;
 }
 
+// Bvh: the lights that reach the box around the cluster boxes, compacted
+// (reaching_: their indices, reaching_spheres_: their spheres); returns their count.
+std::uint32_t ClusterLightAssigner::keepReachingLights(cl::CommandQueue& q, std::uint32_t n, ClPassTimer* timer) {
+  auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
+  const std::uint32_t parts = (std::max(n, clusters_) + kMortonChunk - 1) / kMortonChunk;
+  if (parts > part_capacity_) {
+    part_capacity_ = std::size_t(parts) + parts / 2;
+    part_lo_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, part_capacity_ * 16, "clustered light assignment");
+    part_hi_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, part_capacity_ * 16, "clustered light assignment");
+  }
+  const std::uint32_t cluster_parts = (clusters_ + kMortonChunk - 1) / kMortonChunk;
+  setArgs(union_part_, box_lo_, box_hi_, clusters_, part_lo_, part_hi_);
+  launch1d(q, union_part_, cluster_parts, local_, ev("cluster-union"));
+  setArgs(union_final_, part_lo_, part_hi_, cluster_parts, box_union_);
+  launch1d(q, union_final_, 1, 1, ev("cluster-union"));
+  setArgs(reaches_k_, spheres_, n, box_union_, codes_);  // codes_ as the flags, before the Morton pass
+  launch1d(q, reaches_k_, n, local_, ev("cluster-light-reach"));
+  const auto m = std::uint32_t(compact_.compactIndices(q, codes_, reaching_, n, timer));
+  if (m > 0) {
+    setArgs(gather_k_, spheres_, reaching_, m, reaching_spheres_);
+    launch1d(q, gather_k_, m, local_, ev("cluster-light-reach"));
+  }
+  return m;
+}
+
+// Bvh over the m reaching lights: Morton frame (their bounding cube, on the
+// device), codes, sort, leaves and levels; leaf slots then name light indices.
+void ClusterLightAssigner::buildBvh(cl::CommandQueue& q, std::uint32_t m, ClPassTimer* timer) {
+  auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
+  tree_lights_ = m;
+  n_leaves_ = (m + leaf_size_ - 1) / leaf_size_;
+  if (m == 0) return;
+  const std::uint32_t parts = (m + kMortonChunk - 1) / kMortonChunk;
+  setArgs(bounds_part_, reaching_spheres_, m, part_lo_, part_hi_);
+  launchShaped(q, bounds_part_, parts, red_local_, ev("cluster-light-bounds"));
+  setArgs(bounds_final_, part_lo_, part_hi_, parts, frame_);
+  launchShaped(q, bounds_final_, 1, red_local_, ev("cluster-light-bounds"));
+  setArgs(morton_, reaching_spheres_, m, frame_, codes_, ids_);
+  launch1d(q, morton_, m, local_, ev("cluster-morton"));
+  radix_.sort(q, codes_, &ids_, m, 3 * kMortonAxisBits, timer);
+  packLeaves(q, reaching_spheres_, m, true, timer);
+  const auto slots = cl_uint(leafLightSlots());
+  setArgs(remap_k_, leaf_ids_, slots, reaching_);
+  launch1d(q, remap_k_, slots, local_, ev("cluster-bvh-leaves"));
+}
+
 // GPU shape: a work-group of `group` items per element; CPU: a work-item per element.
 void ClusterLightAssigner::launchShaped(cl::CommandQueue& q, const cl::Kernel& k, std::size_t elements,
                                         std::size_t group, cl::Event* event) const {
@@ -259,7 +301,8 @@ void ClusterLightAssigner::launchShaped(cl::CommandQueue& q, const cl::Kernel& k
   else launch1d(q, k, elements, local_, event);
 }
 
-void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer) {
+void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, const cl::Buffer& spheres, std::uint32_t n, bool bvh,
+                                      ClPassTimer* timer) {
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
   const std::uint32_t n_leaves = (n + leaf_size_ - 1) / leaf_size_;
   if (n_leaves > leaf_capacity_) {
@@ -294,7 +337,7 @@ void ClusterLightAssigner::packLeaves(cl::CommandQueue& q, std::uint32_t n, bool
     }
     q.enqueueWriteBuffer(block_start_, CL_TRUE, 0, levels_ * 4, block_start.data());
   }
-  setArgs(pack_, spheres_, ids_, cl_uint(bvh), n, soa_, leaf_ids_, node_lo_, node_hi_, node_sph_, cl_uint(bvh));
+  setArgs(pack_, spheres, ids_, cl_uint(bvh), n, soa_, leaf_ids_, node_lo_, node_hi_, node_sph_, cl_uint(bvh));
   launchShaped(q, pack_, n_leaves, leaf_local_, ev(bvh ? "cluster-bvh-leaves" : "cluster-pack-leaves"));
   for (unsigned l = 1; l < levels_; ++l) {
     setArgs(level_, node_lo_, node_hi_, node_sph_, start[l - 1], count[l - 1], start[l]);

@@ -17,12 +17,15 @@
 //
 // Lights are packed leafSize() to a leaf (structure of arrays) and tested a
 // leaf at a time into a hit mask. Brute: every cluster tests every leaf of the
-// lights in their given order (the reference). Bvh: Morton codes of the
-// view-space light centres (quantized in their bounding cube, reduced on the
+// lights in their given order (the reference). Bvh: the lights that reach
+// the box around all cluster boxes (the leaf test on it, so no list changes;
+// compacted on the device, the count read back), Morton codes of their
+// view-space centres (quantized in their bounding cube, reduced on the
 // device), radix sort, leaves of the sorted lights and a BVH of branching 32
 // over them (boxes and bounding spheres), rebuilt from scratch each assign()
 // (bottom-up, one launch per level); each cluster walks it, the clusters
-// taken in tile-Morton order so that consecutive walks share leaves. Both use the same leaf test, so their lists are the same sets
+// taken in tile-Morton order so that consecutive walks share leaves. Both
+// use the same leaf test, so their lists are the same sets
 // (BVH lists in Morton order, brute force ascending). Lists are count -> scan
 // -> fill and never truncate: count() records each cluster's hit leaves
 // in a bounded scratch, fill() copies them into place and walks again only
@@ -43,6 +46,7 @@
 #include "host/cl/ClRuntime.hpp"
 #include "host/cl/KernelLimits.hpp"
 #include "host/clustered/ClusterGeometry.hpp"
+#include "host/compute/Compact.hpp"
 #include "host/compute/RadixSort.hpp"
 #include "host/compute/Scan.hpp"
 
@@ -98,6 +102,9 @@ class ClusterLightAssigner {
   ClusterAssignMethod method() const { return method_; }
   void setMethod(ClusterAssignMethod m) { method_ = m; }
   unsigned bvhLevels() const { return levels_; }
+  // Bvh: the lights of the last assign() that reach the clusters' union box
+  // (the BVH's lights); brute force: all of them.
+  std::uint32_t treeLights() const { return tree_lights_; }
   unsigned leafSize() const { return leaf_size_; }
   KernelShape shape() const { return shape_; }  // resolved, never Auto
   // The last count()'s boxes (lo, hi as x, y, z(distance), 0), for tests.
@@ -119,7 +126,9 @@ class ClusterLightAssigner {
   void fitLocalSizes();
   void launchShaped(cl::CommandQueue& q, const cl::Kernel& k, std::size_t elements, std::size_t group,
                     cl::Event* event) const;
-  void packLeaves(cl::CommandQueue& q, std::uint32_t n, bool bvh, ClPassTimer* timer);
+  void packLeaves(cl::CommandQueue& q, const cl::Buffer& spheres, std::uint32_t n, bool bvh, ClPassTimer* timer);
+  std::uint32_t keepReachingLights(cl::CommandQueue& q, std::uint32_t n, ClPassTimer* timer);
+  void buildBvh(cl::CommandQueue& q, std::uint32_t n, ClPassTimer* timer);
   template <typename... Rest>
   void setAssignArgs(cl::Kernel& k, const Rest&... rest);
   void orderClusters(cl::CommandQueue& q, std::uint32_t clusters, ClPassTimer* timer);
@@ -133,6 +142,7 @@ class ClusterLightAssigner {
   cl::Program bounds_program_, bvh_program_, lists_program_;  // the three parts of the pass
   cl::Kernel view_, boxes_, pixel_boxes_, morton_, pack_, level_, blocks_, count_k_, fill_k_, ranges_;
   cl::Kernel bounds_part_, bounds_final_, order_k_, finish_;
+  cl::Kernel union_part_, union_final_, reaches_k_, gather_k_, remap_k_;
   // Work-group sizes: per-element kernels, and the GPU shape's groups (per
   // tile, reduction, leaf, node, cluster), fitted to each kernel's limits.
   std::size_t max_group_ = 0;
@@ -141,17 +151,19 @@ class ClusterLightAssigner {
   ClusterGrid order_grid_;
   std::size_t order_capacity_ = 0;
   bool cluster_order_ = true, use_order_ = false;
-  cl::Buffer part_lo_, part_hi_, frame_;
+  cl::Buffer part_lo_, part_hi_, frame_, box_union_;
+  cl::Buffer reaching_, reaching_spheres_;  // BVH: the lights that reach a cluster, and their spheres
   cl::Buffer spheres_, codes_, ids_, soa_, leaf_ids_, node_lo_, node_hi_, node_sph_, node_soa_, block_start_;
   cl::Buffer box_lo_, box_hi_, counts_, offsets_, bounds_, rec_leaf_, rec_mask_, hit_leaves_;
   std::size_t light_capacity_ = 0, leaf_capacity_ = 0, node_capacity_ = 0, cluster_capacity_ = 0;
   std::size_t bounds_capacity_ = 0, record_capacity_ = 0, block_capacity_ = 0, part_capacity_ = 0;
-  std::uint32_t n_ = 0, clusters_ = 0, n_leaves_ = 0, slots_ = 0;
+  std::uint32_t n_ = 0, clusters_ = 0, n_leaves_ = 0, slots_ = 0, tree_lights_ = 0;
   unsigned levels_ = 0;
   bool bvh_ = false;
   std::size_t record_budget_;
   compute::Scanner scan_;
   compute::RadixSorter radix_;
+  compute::Compactor compact_;
 };
 
 }  // namespace ml

@@ -95,7 +95,8 @@ std::vector<std::pair<std::string, double>> ClusteredAssigner::stats() const {
           {"light radius px", light_pixels_},
           {"pixel bounds", bounds_ == ClusterBounds::Pixels ? 1.0 : 0.0},
           {"depth slices", double(grid_.slices)},
-          {"bvh levels", double(lights_.method() == ClusterAssignMethod::Bvh ? lights_.bvhLevels() : 0)}};
+          {"bvh levels", double(lights_.method() == ClusterAssignMethod::Bvh ? lights_.bvhLevels() : 0)},
+          {"bvh lights", double(lights_.method() == ClusterAssignMethod::Bvh ? lights_.treeLights() : 0)}};
 }
 
 }  // namespace ml

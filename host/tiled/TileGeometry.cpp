@@ -114,10 +114,11 @@ LightTileRect lightTileRect(const gpu::PointLight& l, const gpu::CameraParams& c
     lr.tx1 = 0;
     return lr;
   }
-  if (c.z + r > -cam.near_plane) return lr;
+  // The cube cut at the near plane where the sphere straddles it (light_rect).
+  const float z_far = c.z - r, z_near = std::fmin(c.z + r, -cam.near_plane);
   float lox = INFINITY, loy = INFINITY, hix = -INFINITY, hiy = -INFINITY;
   for (int i = 0; i < 8; ++i) {
-    const V4 corner{c.x + ((i & 1) ? r : -r), c.y + ((i & 2) ? r : -r), c.z + ((i & 4) ? r : -r), 1.0f};
+    const V4 corner{c.x + ((i & 1) ? r : -r), c.y + ((i & 2) ? r : -r), (i & 4) ? z_near : z_far, 1.0f};
     const V4 clip = mul(cam.proj, corner);
     const float nx = clip.x / clip.w, ny = clip.y / clip.w;
     lox = std::fmin(lox, nx);

@@ -17,6 +17,8 @@ constexpr std::size_t kMarkWg = 256;  // MARK_WG in the kernel: most items of a 
 constexpr std::uint64_t kMax32 = 0xffffffffull;
 constexpr std::size_t kTileSideBytes = 48;     // TileSide in the kernel
 constexpr std::size_t kLanePad = 8;            // LANE_PAD in the kernel
+constexpr std::size_t kLanePlanes = 9;         // LANE_PLANES in the kernel
+constexpr cl_uint kBlockTiles = 8;             // BLOCK_TILES in the kernel
 constexpr std::size_t kChunksPerUnit = 8;      // CPU shape: work-items per compute unit, for load balance
 constexpr std::uint32_t kMinPerChunk = 64;     // ... but no fewer lights per work-item than this
 constexpr std::size_t kMaxChunkCounters = std::size_t(1) << 24;  // chunks x tiles (64 MiB of counters)
@@ -27,12 +29,15 @@ constexpr std::uint64_t kLoopCapMargin = 60000;  // loop iterations a work-item 
 // the most lights per chunk whose loops stay under the cap: the chunk's
 // counter row (n_tiles iterations), then per light at most what a light
 // covering the whole screen takes in mark_light (mask words, the cached
-// columns, per row 19 per 8 tiles and the row) and in cull_scatter_chunked
-// (a word and a bit per tile). Throws when not even one light fits.
+// columns, per row 19 per 8 tiles and the row, per block row its blocks'
+// depth test) and in cull_scatter_chunked (a word and a bit per tile).
+// Throws when not even one light fits.
 std::uint32_t lightsWithinLoopCap(std::uint64_t tiles_x, std::uint64_t tiles_y) {
   const std::uint64_t n_tiles = tiles_x * tiles_y;
+  const std::uint64_t block_tests =
+      (tiles_y / kBlockTiles + 2) * (std::min<std::uint64_t>(tiles_x / kBlockTiles + 2, 64) + 1);
   const std::uint64_t per_light =
-      n_tiles + n_tiles / 16 + 400 + (tiles_y + 1) * ((tiles_x / 8 + 2) * 19 + 1);
+      n_tiles + n_tiles / 16 + 400 + (tiles_y + 1) * ((tiles_x / 8 + 2) * 19 + 1) + block_tests;
   if (n_tiles + 2 + per_light > kLoopCapMargin)
     throw UserError("tiled culling: the device ends a work-item's loops after 65,535 iterations, which a light "
                     "covering all " + std::to_string(n_tiles) + " tiles could pass in the CPU kernel shape (a larger "
@@ -80,10 +85,14 @@ TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMod
   sides_k_ = cl::Kernel(program_, "tile_sides");
   totals_k_ = cl::Kernel(program_, "tile_chunk_totals");
   bases_k_ = cl::Kernel(program_, "tile_chunk_bases");
+  blocks_k_ = cl::Kernel(program_, "tile_blocks");
   const cl::Device& dev = rt.device();
   const DeviceInfo& info = rt.info();
   rects_local_ = elementLocalSize(rects_k_, dev, info);
   grid_local_ = elementLocalSize(write_grid_, dev, info);
+  // The other per-tile, per-side and per-block kernels launch with it too.
+  for (const cl::Kernel* k : {&sides_k_, &totals_k_, &bases_k_, &blocks_k_})
+    grid_local_ = std::min(grid_local_, elementLocalSize(*k, dev, info));
   element_local_ = elementLocalSize(scatter_, dev, info);
   if (group_bounds_)
     bounds_local_ = fitLocalSize(bounds_, dev, std::min<std::size_t>(std::size_t(tile_size) * tile_size, 256), 1, 0,
@@ -103,6 +112,8 @@ TileLightCuller::TileLightCuller(ClRuntime& rt, unsigned tile_size, TileDepthMod
   mask_offsets_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "tiled culling");
   hit_masks_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "tiled culling");
   chunk_counts_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "tiled culling");
+  blocks_lo_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "tiled culling");
+  blocks_hi_ = checkedBuffer(rt, CL_MEM_READ_WRITE, 16, "tiled culling");
 }
 
 void TileLightCuller::ensureTiles(const gpu::CameraParams& cam) {
@@ -114,7 +125,8 @@ void TileLightCuller::ensureTiles(const gpu::CameraParams& cam) {
   tile_bounds_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_float4), "tile depth bounds");
   tile_masks_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile depth masks");
   tile_boxes_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_float4), "tile depth boxes");
-  tile_lanes_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, (n + kLanePad) * 6 * sizeof(cl_float), "tile depth lanes");
+  tile_lanes_ =
+      checkedBuffer(rt_, CL_MEM_READ_WRITE, (n + kLanePad) * kLanePlanes * sizeof(cl_float), "tile depth lanes");
   counts_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile light counts");
   offsets_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile light offsets");
   cursor_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, n * sizeof(cl_uint), "tile light cursors");
@@ -156,8 +168,8 @@ void TileLightCuller::ensureLights(std::uint32_t n) {
 }
 
 std::size_t TileLightCuller::scratchBytes() const {
-  return tile_capacity_ * (2 * 16 + 4 * 4 + 6 * 4) + side_capacity_ * kTileSideBytes + light_capacity_ * (32 + 8) +
-         mask_capacity_ * 4 + chunk_capacity_ * 4;
+  return tile_capacity_ * (2 * 16 + 4 * 4 + kLanePlanes * 4) + side_capacity_ * kTileSideBytes +
+         light_capacity_ * (32 + 8) + mask_capacity_ * 4 + chunk_capacity_ * 4 + block_capacity_ * 32;
 }
 
 // The scan wraps mod 2^32. When n values of at most per_item_max each could
@@ -239,6 +251,23 @@ void TileLightCuller::writeSides(cl::CommandQueue& q, const gpu::CameraParams& c
   launch1d(q, sides_k_, sides, grid_local_, timer ? timer->next("tile-sides") : nullptr);
 }
 
+// CPU shape: the box around each block of kBlockTiles^2 tiles' boxes, which
+// lets a light skip the blocks it cannot reach (no blocks without depth bounds).
+cl_uint TileLightCuller::writeBlocks(cl::CommandQueue& q, ClPassTimer* timer) {
+  const cl_uint tiles_x = grid_.tilesX(), tiles_y = grid_.tilesY();
+  const cl_uint blocks_x = (tiles_x + kBlockTiles - 1) / kBlockTiles;
+  const std::size_t blocks = std::size_t(blocks_x) * ((tiles_y + kBlockTiles - 1) / kBlockTiles);
+  if (mode_ == TileDepthMode::None) return blocks_x;
+  if (blocks > block_capacity_) {
+    block_capacity_ = blocks;
+    blocks_lo_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, blocks * sizeof(cl_float4), "tile block boxes");
+    blocks_hi_ = checkedBuffer(rt_, CL_MEM_READ_WRITE, blocks * sizeof(cl_float4), "tile block boxes");
+  }
+  setArgs(blocks_k_, tile_bounds_, tile_boxes_, tiles_x, tiles_y, blocks_x, blocks_lo_, blocks_hi_);
+  launch1d(q, blocks_k_, blocks, grid_local_, timer ? timer->next("tile-blocks") : nullptr);
+  return blocks_x;
+}
+
 // CPU shape: each chunk counts into its own row; the rows' sums per tile feed
 // the scan in count().
 void TileLightCuller::markChunked(cl::CommandQueue& q, std::uint32_t n, const gpu::CameraParams& cam,
@@ -246,9 +275,10 @@ void TileLightCuller::markChunked(cl::CommandQueue& q, std::uint32_t n, const gp
   const cl_uint tiles_x = grid_.tilesX(), n_tiles = grid_.count();
   auto ev = [&](const char* name) { return timer ? timer->next(name) : nullptr; };
   writeSides(q, cam, timer);
+  const cl_uint blocks_x = writeBlocks(q, timer);
   ensureChunks(n, n_tiles);
-  setArgs(mark_, rects_, n, per_chunk_, n_tiles, tiles_x, tile_bounds_, tile_masks_, tile_boxes_, tile_lanes_,
-          tile_sides_, mask_offsets_, hit_masks_, chunk_counts_);
+  setArgs(mark_, rects_, n, per_chunk_, n_tiles, tiles_x, tile_lanes_, tile_sides_, blocks_lo_, blocks_hi_, blocks_x,
+          mask_offsets_, hit_masks_, chunk_counts_);
   launch1d(q, mark_, chunks_, 1, ev("tile-cull"));
   setArgs(totals_k_, chunk_counts_, chunks_, n_tiles, counts_);
   launch1d(q, totals_k_, n_tiles, grid_local_, ev("tile-chunk-totals"));

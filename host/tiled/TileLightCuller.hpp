@@ -58,6 +58,9 @@ class TileLightCuller {
             cl::Buffer& grid, cl::Buffer& indices, ClPassTimer* timer = nullptr);
 
   const TileGrid& tileGrid() const { return grid_; }
+  // Hit-mask words of the last count(): a word per 32 tiles of each light's
+  // rectangle (so the rectangles' sizes, as lightTileRect computes them).
+  std::uint32_t maskWords() const { return words_; }
   TileDepthMode mode() const { return mode_; }
   KernelShape shape() const { return shape_; }  // resolved, never Auto
   std::size_t scratchBytes() const;
@@ -67,6 +70,7 @@ class TileLightCuller {
   void ensureLights(std::uint32_t n);
   void ensureChunks(std::uint32_t n, std::size_t n_tiles);
   void writeSides(cl::CommandQueue& q, const gpu::CameraParams& cam, ClPassTimer* timer);
+  cl_uint writeBlocks(cl::CommandQueue& q, ClPassTimer* timer);
   void markChunked(cl::CommandQueue& q, std::uint32_t n, const gpu::CameraParams& cam, ClPassTimer* timer);
   std::uint64_t exactTotal(cl::CommandQueue& q, const cl::Buffer& values, std::size_t n, std::uint32_t wrapped,
                            std::uint64_t per_item_max) const;
@@ -79,12 +83,12 @@ class TileLightCuller {
   bool group_bounds_ = false;  // depth bounds by tile_depth_bounds_wg (a work-group per tile)
   std::size_t bounds_local_ = 1, element_local_ = 1, mark_local_ = 32, rects_local_ = 1, grid_local_ = 1;
   cl::Program program_;
-  cl::Kernel bounds_, rects_k_, mark_, scatter_, write_grid_, sides_k_, totals_k_, bases_k_;
+  cl::Kernel bounds_, rects_k_, mark_, scatter_, write_grid_, sides_k_, totals_k_, bases_k_, blocks_k_;
   cl::Buffer tile_bounds_, tile_masks_, tile_boxes_, tile_lanes_, tile_sides_, counts_, offsets_, cursor_, chunk_counts_;
-  cl::Buffer rects_, mask_words_, mask_offsets_, hit_masks_;
+  cl::Buffer rects_, mask_words_, mask_offsets_, hit_masks_, blocks_lo_, blocks_hi_;
   std::size_t tile_capacity_ = 0, light_capacity_ = 0, mask_capacity_ = 0;
   std::uint32_t words_ = 0;  // hit-mask words of the last count()
-  std::size_t side_capacity_ = 0, chunk_capacity_ = 0;
+  std::size_t side_capacity_ = 0, chunk_capacity_ = 0, block_capacity_ = 0;
   std::uint32_t chunks_ = 0, per_chunk_ = 0;  // CPU shape: work-items and lights per work-item of the last count()
   compute::Scanner scan_;
 };

@@ -2,6 +2,9 @@
  * clustered/bvh_layout.cl; the other parts: cluster_bounds.cl,
  * cluster_assign.cl).
  *
+ *   cluster_union_*       the box around every cluster box        [BVH only]
+ *   light_reaches_union   flags of the lights that reach it; (compaction of
+ *                         their indices), gather_spheres: their spheres
  *   light_bounds_*        bounding cube of the light centres (the Morton frame)
  *   light_morton          Morton code of each light's quantized position
  *                         (MORTON_AXIS_BITS per axis)
@@ -10,9 +13,12 @@
  *                         leaf boxes (BVH: Morton order; brute force: given order)
  *   bvh_level             nodes over 32 consecutive nodes of the level below
  *   node_blocks           the node boxes of each level as blocks of 32 siblings
+ *   remap_leaf_ids        leaf slots: gathered index -> light index [BVH only]
  *
- * light_morton is one work-item per light and serves both shapes; the GPU
- * shape builds the same leaves, tree and blocks in the same order.
+ * light_morton, light_reaches_union, gather_spheres and remap_leaf_ids are
+ * one work-item per element and cluster_union_* a loop per chunk, serving
+ * both shapes; the GPU shape builds the same leaves, tree and blocks in the
+ * same order.
  *
  * Kernel shapes: the kernels without a suffix are the CPU shape (a work-item
  * per chunk, leaf or node with private state; PoCL runs each as a plain loop); the *_wg
@@ -48,6 +54,11 @@ __kernel void pack_leaves(__global const float4* spheres, __global const uint* i
   /* The leaf's view-space centres (z as distance), gathered once for the
    * bounding sphere's two passes below. */
   float4 p_leaf[LEAF_SIZE];
+  /* The gathers first, all independent, so that their cache misses overlap
+   * (Morton order scatters them over the light array); then the writes. */
+  float4 gathered[LEAF_SIZE];
+  const uint count_here = min(LEAF_SIZE, n - first);
+  for (uint i = 0; i < count_here; ++i) gathered[i] = spheres[use_ids ? ids[first + i] : first + i];
   for (uint i = 0; i < LEAF_SIZE; ++i) {
     const uint k = first + i;
     if (k >= n) {
@@ -59,7 +70,7 @@ __kernel void pack_leaves(__global const float4* spheres, __global const uint* i
       continue;
     }
     const uint id = use_ids ? ids[k] : k;
-    const float4 s = spheres[id];
+    const float4 s = gathered[i];
     b[i] = s.x;
     b[LEAF_SIZE + i] = s.y;
     b[2u * LEAF_SIZE + i] = -s.z;
@@ -104,32 +115,94 @@ inline uint spread10(uint v) {
  * chunks of MORTON_CHUNK lights (one work-item each, private state), then by
  * one work-item into frame = (lo.xyz, 1 / extent). */
 #define MORTON_CHUNK 1024u
-__kernel void light_bounds_partial(__global const float4* spheres, uint n, __global float4* part_lo,
-                                   __global float4* part_hi) {
+/* Work-item g's part of a box reduction: the least of lo_in and the greatest
+ * of hi_in over elements [g * MORTON_CHUNK, + MORTON_CHUNK) of count (the
+ * light bounds pass both as the spheres; the cluster union the box arrays). */
+inline void box_part(__global const float4* lo_in, __global const float4* hi_in, uint count,
+                     __global float4* part_lo, __global float4* part_hi) {
   const uint g = get_global_id(0);
   const uint first = g * MORTON_CHUNK;
-  if (first >= n) return;
-  const uint last = min(first + MORTON_CHUNK, n);
+  if (first >= count) return;
+  const uint last = min(first + MORTON_CHUNK, count);
   float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
   for (uint i = first; i < last; ++i) {
-    const float4 s = spheres[i];
-    lo = fmin(lo, s);
-    hi = fmax(hi, s);
+    lo = fmin(lo, lo_in[i]);
+    hi = fmax(hi, hi_in[i]);
   }
   part_lo[g] = lo;
   part_hi[g] = hi;
 }
 
+/* The box over the parts, for one work-item. */
+inline void box_of_parts(__global const float4* part_lo, __global const float4* part_hi, uint parts, float4* lo,
+                         float4* hi) {
+  *lo = (float4)(INFINITY);
+  *hi = (float4)(-INFINITY);
+  for (uint i = 0; i < parts; ++i) {
+    *lo = fmin(*lo, part_lo[i]);
+    *hi = fmax(*hi, part_hi[i]);
+  }
+}
+
+__kernel void light_bounds_partial(__global const float4* spheres, uint n, __global float4* part_lo,
+                                   __global float4* part_hi) {
+  box_part(spheres, spheres, n, part_lo, part_hi);
+}
+
 __kernel void light_bounds_final(__global const float4* part_lo, __global const float4* part_hi, uint parts,
                                  __global float4* frame) {
   if (get_global_id(0) != 0u) return;
-  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
-  for (uint i = 0; i < parts; ++i) {
-    lo = fmin(lo, part_lo[i]);
-    hi = fmax(hi, part_hi[i]);
-  }
+  float4 lo, hi;
+  box_of_parts(part_lo, part_hi, parts, &lo, &hi);
   const float extent = fmax(fmax(hi.x - lo.x, hi.y - lo.y), hi.z - lo.z);
   frame[0] = (float4)(lo.xyz, extent > 0.0f ? 1.0f / extent : 0.0f);
+}
+
+/* Lights that can reach a cluster: only those enter the BVH. A light whose
+ * sphere misses the box around every cluster box misses each of them by the
+ * leaf test's own comparisons (assign's leaf_mask: a float distance to a
+ * farther bound is never smaller), so the lists do not change; at a million
+ * lights about half are behind the camera or beside the view, and the sort,
+ * the leaves and the tree shrink with them. One kernel of each serves both
+ * shapes (plain loops over MORTON_CHUNK clusters, then over the parts). */
+__kernel void cluster_union_partial(__global const float4* box_lo, __global const float4* box_hi, uint count,
+                                    __global float4* part_lo, __global float4* part_hi) {
+  box_part(box_lo, box_hi, count, part_lo, part_hi);
+}
+
+/* union[0] = lo, union[1] = hi over the parts. */
+__kernel void cluster_union_final(__global const float4* part_lo, __global const float4* part_hi, uint parts,
+                                  __global float4* box_union) {
+  if (get_global_id(0) != 0u) return;
+  float4 lo, hi;
+  box_of_parts(part_lo, part_hi, parts, &lo, &hi);
+  box_union[0] = lo;
+  box_union[1] = hi;
+}
+
+/* flags[i]: light i reaches the union box (leaf_mask's test on it). */
+__kernel void light_reaches_union(__global const float4* spheres, uint n, __global const float4* box_union,
+                                  __global uint* flags) {
+  const uint i = get_global_id(0);
+  if (i >= n) return;
+  const float4 s = spheres[i], lo = box_union[0], hi = box_union[1];
+  const float x = s.x, y = s.y, d = -s.z, r2 = s.w * s.w * (1.0f + 4.0f * DEPTH_EPS);
+  const float dx = x - clamp(x, lo.x, hi.x), dy = y - clamp(y, lo.y, hi.y), dz = d - clamp(d, lo.z, hi.z);
+  flags[i] = dx * dx + dy * dy + dz * dz <= r2 ? 1u : 0u;
+}
+
+/* out[k] = spheres[ids[k]]: the reaching lights, in light order. */
+__kernel void gather_spheres(__global const float4* spheres, __global const uint* ids, uint n, __global float4* out) {
+  const uint k = get_global_id(0);
+  if (k < n) out[k] = spheres[ids[k]];
+}
+
+/* Leaf slots held indices into the gathered lights; they become light indices. */
+__kernel void remap_leaf_ids(__global uint* leaf_ids, uint slots, __global const uint* ids) {
+  const uint k = get_global_id(0);
+  if (k >= slots) return;
+  const uint v = leaf_ids[k];
+  if (v != 0xffffffffu) leaf_ids[k] = ids[v];
 }
 
 /* Quantized in the cube [lo, lo + extent] of frame[0]; positions outside

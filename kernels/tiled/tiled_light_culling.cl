@@ -6,9 +6,11 @@
  *   tile_sides           side planes of each tile column and row
  *   light_rects          per light: screen tile rectangle, hit-mask size
  *   (scan of mask sizes -> per-light mask offsets)
+ *   tile_blocks          CPU shape: the box around each 8 x 8 block of tiles
  *   cull_mark_chunked    CPU shape: a work-item per chunk of lights walks each
- *                        light's rectangle once, sets the tile's bit in the
- *                        light's mask and counts into its own row of per-tile
+ *                        light's rectangle once (skipping the blocks it
+ *                        cannot reach), sets the tile's bit in the light's
+ *                        mask and counts into its own row of per-tile
  *                        counters (plain increments, no atomics)
  *   tile_chunk_totals    per tile: the sum of the chunk rows
  *   (scan of counts -> tile offsets and the list total)
@@ -82,25 +84,25 @@ inline float4 widen(float zmin, float zmax) {
   return (float4)(zmin - zmin * DEPTH_EPS, zmax + zmax * DEPTH_EPS, zmin, 1.0f / fmax(zmax - zmin, 1e-20f));
 }
 
-/* The tile records again as six planes of n_tiles + LANE_PAD floats (widened
- * zmin, zmax, box x0, x1, y0, y1), so that the CPU culler tests 8 tiles of a
- * row with one float8 load per plane; the pad keeps a load at the last tile
- * inside the buffer (lanes past a row's end are masked off). */
+/* The tile records again as LANE_PLANES planes of n_tiles + LANE_PAD floats
+ * (widened zmin, zmax, box x0, x1, y0, y1, then the mask's exact zmin, its
+ * 1/(zmax - zmin) and the mask's bits as a float's bits), so that the CPU
+ * culler tests 8 tiles of a row with one float8 load per plane; the pad keeps
+ * a load at the last tile inside the buffer (lanes past a row's end are
+ * masked off). */
 #define LANE_PAD 8
-inline void write_lanes(__global float* lanes, uint t, uint n_tiles, float4 zb, float4 box) {
+#define LANE_PLANES 9
+inline void write_lanes(__global float* lanes, uint t, uint n_tiles, float4 zb, float4 box, uint mask) {
   const size_t s = (size_t)n_tiles + LANE_PAD;
-  lanes[t] = zb.x;
-  lanes[s + t] = zb.y;
-  lanes[2 * s + t] = box.x;
-  lanes[3 * s + t] = box.y;
-  lanes[4 * s + t] = box.z;
-  lanes[5 * s + t] = box.w;
+  const float v[LANE_PLANES] = {zb.x, zb.y, box.x, box.y, box.z, box.w, zb.z, zb.w, as_float(mask)};
+  for (uint plane = 0; plane < LANE_PLANES; ++plane) lanes[plane * s + t] = v[plane];
   /* The last tile's item also fills the pad, as an empty tile (rejected by
    * every test): the loads past a row's end then read written values, so the
    * result does not depend on memory no kernel wrote (Oclgrind checks it). */
   if (t + 1u == n_tiles)
     for (uint p = n_tiles; p < n_tiles + LANE_PAD; ++p)
-      for (uint plane = 0; plane < 6u; ++plane) lanes[plane * s + p] = plane == 0u ? INFINITY : -INFINITY;
+      for (uint plane = 0; plane < LANE_PLANES; ++plane)
+        lanes[plane * s + p] = plane == 0u ? INFINITY : (plane < 6u ? -INFINITY : 0.0f);
 }
 
 /* CPU shape: one work-item per tile walks its pixels. */
@@ -136,7 +138,7 @@ __kernel void tile_depth_bounds(__global const float* depth, CameraParams cam, u
   bounds[t] = zb;
   masks[t] = mask;
   boxes[t] = tile_box(tx, ty, zb, &cam);
-  write_lanes(lanes, t, tiles_x * tiles_y, zb, boxes[t]);
+  write_lanes(lanes, t, tiles_x * tiles_y, zb, boxes[t], mask);
 }
 
 /* GPU shape: one work-group (TILE_SIZE x TILE_SIZE work-items, or fewer
@@ -186,7 +188,7 @@ __kernel void tile_depth_bounds_wg(__global const float* depth, CameraParams cam
     bounds[t] = zb;
     masks[t] = lmask;
     boxes[t] = tile_box(tx, ty, zb, &cam);
-    write_lanes(lanes, t, tiles_x * tiles_y, zb, boxes[t]);
+    write_lanes(lanes, t, tiles_x * tiles_y, zb, boxes[t], lmask);
   }
 }
 
@@ -213,10 +215,15 @@ inline LightRect light_rect(PointLight l, const CameraParams* cam, uint tiles_x,
     lr.tx1 = 0;
     return lr;
   }
-  if (c.z + r > -cam->near_plane) return lr; /* straddles the near plane: whole screen, planes decide */
+  /* The cube around the sphere, cut at the near plane where it straddles it:
+   * every shaded point lies at or beyond the near plane, and the cut box is
+   * all in front of the eye, so its corners' images bound what the light
+   * can reach on screen. (Whole-screen rectangles for such lights cost a
+   * pass over every tile each: thousands of them at a million lights.) */
+  const float z_far = c.z - r, z_near = fmin(c.z + r, -cam->near_plane);
   float2 lo = (float2)(INFINITY), hi = (float2)(-INFINITY);
   for (int i = 0; i < 8; ++i) {
-    const float4 corner = (float4)(c.x + ((i & 1) ? r : -r), c.y + ((i & 2) ? r : -r), c.z + ((i & 4) ? r : -r), 1.0f);
+    const float4 corner = (float4)(c.x + ((i & 1) ? r : -r), c.y + ((i & 2) ? r : -r), (i & 4) ? z_near : z_far, 1.0f);
     const float4 clip = mat_mul(cam->proj, corner);
     const float2 ndc = clip.xy / clip.w;
     lo = fmin(lo, ndc);
@@ -323,6 +330,60 @@ __kernel void tile_sides(CameraParams cam, uint tiles_x, uint tiles_y, __global 
   s.hi_len = sqrt(s.hi.x * s.hi.x + s.hi.y * s.hi.y + s.hi.z * s.hi.z);
   s.pad0 = s.pad1 = 0.0f;
   sides[i] = s;
+}
+
+/* Blocks of BLOCK_TILES x BLOCK_TILES tiles: the box around their tiles'
+ * boxes (lo: the least widened zmin, box x0, y0; hi: the greatest widened
+ * zmax, x1, y1, over the block's non-empty tiles; empty block: lo.x > hi.x).
+ * A light that misses a block's box misses every tile in it by the same
+ * comparisons on the same floats (each tile's box lies inside it, and a
+ * float difference to a farther bound is never smaller), so mark_light skips
+ * the block's tiles without changing a decision: at 8 px tiles most of a
+ * large light's rectangle is behind nearer geometry or in its corners. */
+#define BLOCK_TILES 8
+__kernel void tile_blocks(__global const float4* bounds, __global const float4* boxes, uint tiles_x, uint tiles_y,
+                          uint blocks_x, __global float4* blocks_lo, __global float4* blocks_hi) {
+  const uint b = get_global_id(0);
+  const uint blocks_y = (tiles_y + BLOCK_TILES - 1u) / BLOCK_TILES;
+  if (b >= blocks_x * blocks_y) return;
+  const uint by = b / blocks_x, bx = b - by * blocks_x;
+  const uint x0 = bx * BLOCK_TILES, y0 = by * BLOCK_TILES;
+  const uint x1 = min(x0 + BLOCK_TILES, tiles_x), y1 = min(y0 + BLOCK_TILES, tiles_y);
+  float4 lo = (float4)(INFINITY), hi = (float4)(-INFINITY);
+  for (uint y = y0; y < y1; ++y)
+    for (uint x = x0; x < x1; ++x) {
+      const uint t = y * tiles_x + x;
+      const float4 zb = bounds[t], box = boxes[t];
+      if (zb.x > zb.y) continue; /* empty tile */
+      lo = fmin(lo, (float4)(zb.x, box.x, box.z, 0.0f));
+      hi = fmax(hi, (float4)(zb.y, box.y, box.w, 0.0f));
+    }
+  blocks_lo[b] = lo;
+  blocks_hi[b] = hi;
+}
+
+/* Bit i: block column bx0 + i of block row `by` may hold a tile that the
+ * light reaches: depth_and_box_ok's range and box terms on the block's box
+ * (i < 64; the caller treats the rest as kept). */
+inline ulong blocks_in_reach(float4 c, uint by, uint bx0, uint bx1, uint blocks_x, __global const float4* blocks_lo,
+                             __global const float4* blocks_hi) {
+  const float lz = -c.z, r = c.w, r2 = c.w * c.w * (1.0f + 4.0f * DEPTH_EPS);
+  ulong keep = 0;
+  for (uint i = 0; i < 64u && bx0 + i <= bx1; ++i) {
+    const float4 lo = blocks_lo[by * blocks_x + bx0 + i], hi = blocks_hi[by * blocks_x + bx0 + i];
+    const float dx = c.x - clamp(c.x, lo.y, hi.y), dy = c.y - clamp(c.y, lo.z, hi.z);
+    const float dz = -c.z - clamp(-c.z, lo.x, hi.x);
+    if (!(lo.x > hi.x || lz + r < lo.x || lz - r > hi.x) && dx * dx + dy * dy + dz * dz <= r2) keep |= (ulong)1 << i;
+  }
+  return keep;
+}
+
+/* The 8 tiles x .. x + 7 of a row as bits, kept where their block is. */
+inline uint block_bits8(ulong keep, uint x, uint bx0) {
+  const uint rel = x / BLOCK_TILES - bx0, split = BLOCK_TILES - x % BLOCK_TILES;
+  const uint first = (1u << split) - 1u;
+  const uint a = rel < 64u ? (uint)(keep >> rel) & 1u : 1u, b = rel + 1u < 64u ? (uint)(keep >> (rel + 1u)) & 1u : 1u;
+  return ((a ? first : 0u) | (b ? ~first : 0u)) & 0xffu;
 }
 
 /* sphere_inside_plane with the normal's length given. */
@@ -444,10 +505,25 @@ __kernel void cull_scatter(__global const LightRect* rects, uint n, uint tiles_x
  * wider rectangles test the rest per tile. */
 #define COL_WORDS 8
 
+/* The 2.5D mask term of depth_and_box_ok for 8 tiles, lane by lane: the
+ * same bins from the same float operations (convert_uint8 truncates as the
+ * scalar cast does; a shift of 2u by 31 gives 0, so 0 - 1 is the full mask
+ * that the scalar code selects). */
+inline int8 mask_hits8(float4 c, uint t0, size_t s, __global const float* lanes) {
+  const float8 zmin = vload8(0, lanes + 6 * s + t0), inv = vload8(0, lanes + 7 * s + t0);
+  const uint8 bits = as_uint8(vload8(0, lanes + 8 * s + t0));
+  const float lz = -c.z, r = c.w;
+  const float8 lo = (float8)((lz - r) * (1.0f - DEPTH_EPS)), hi = (float8)((lz + r) * (1.0f + DEPTH_EPS));
+  const uint8 b0 = convert_uint8(fmin(fmax((lo - zmin) * inv * 32.0f, 0.0f), 31.0f));
+  const uint8 b1 = convert_uint8(fmin(fmax((hi - zmin) * inv * 32.0f, 0.0f), 31.0f));
+  const uint8 lmask = (((uint8)(2u) << b1) - 1u) & ~(((uint8)(1u) << b0) - 1u);
+  return (lmask & bits) != 0u;
+}
+
 /* depth_and_box_ok for the 8 tiles t0 .. t0 + 7 of a row, as bits 0..7: the
- * same comparisons lane by lane (the 2.5D mask term, when on, is left to the
- * caller). A comparison is -1 where true, and a NaN fails it as in the
- * scalar code; ~ turns "reject" into "keep" without changing that. */
+ * same comparisons lane by lane. A comparison is -1 where true, and a NaN
+ * fails it as in the scalar code; ~ turns "reject" into "keep" without
+ * changing that. */
 inline uint depth_and_box_bits8(float4 c, uint t0, size_t s, __global const float* lanes) {
   const float8 zlo = vload8(0, lanes + t0), zhi = vload8(0, lanes + s + t0);
   const float8 x0 = vload8(0, lanes + 2 * s + t0), x1 = vload8(0, lanes + 3 * s + t0);
@@ -455,51 +531,77 @@ inline uint depth_and_box_bits8(float4 c, uint t0, size_t s, __global const floa
   const float lz = -c.z, r = c.w;
   const float8 cx = (float8)(c.x), cy = (float8)(c.y), cz = (float8)(-c.z);
   const float8 dx = cx - clamp(cx, x0, x1), dy = cy - clamp(cy, y0, y1), dz = cz - clamp(cz, zlo, zhi);
-  const int8 ok = ~(zlo > zhi) & ~((float8)(lz + r) < zlo) & ~((float8)(lz - r) > zhi) &
-                  (dx * dx + dy * dy + dz * dz <= (float8)(c.w * c.w * (1.0f + 4.0f * DEPTH_EPS)));
+  int8 ok = ~(zlo > zhi) & ~((float8)(lz + r) < zlo) & ~((float8)(lz - r) > zhi) &
+           (dx * dx + dy * dy + dz * dz <= (float8)(c.w * c.w * (1.0f + 4.0f * DEPTH_EPS)));
+#if DEPTH_MODE == DEPTH_MASK
+  ok &= mask_hits8(c, t0, s, lanes);
+#endif
   return (uint)((ok.s0 & 1) | (ok.s1 & 2) | (ok.s2 & 4) | (ok.s3 & 8) | (ok.s4 & 16) | (ok.s5 & 32) |
                 (ok.s6 & 64) | (ok.s7 & 128));
 }
 
-/* Hit mask of one light (a bit per tile of its rectangle, row-major) and its
- * counts. The side tests are separable: a row's once per row (a row that the
- * sphere misses is skipped whole), a column's once per column; the depth and
- * box terms 8 tiles at a time. */
-inline void mark_light(const LightRect* lr, uint tiles_x, uint n_tiles, __global const float4* bounds,
-                       __global const uint* masks, __global const float4* boxes, __global const float* lanes,
-                       __global const TileSide* sides, __global uint* out, __global uint* counts) {
-  const uint w = (uint)(lr->tx1 - lr->tx0 + 1), area = w * (uint)(lr->ty1 - lr->ty0 + 1);
-  for (uint k = 0; k < (area + 31u) / 32u; ++k) out[k] = 0u;
-  const float4 c = lr->center;
-  __global const TileSide* col_sides = sides + lr->tx0;
-  uint cols[COL_WORDS];
-  const uint wc = min(w, 32u * COL_WORDS);
+/* Bit b of cols[j / 32]: the light is inside column j + b's side planes
+ * (j + b < wc). */
+inline void column_bits(__global const TileSide* col_sides, uint wc, float4 c, uint* cols) {
   for (uint j = 0; j < wc; j += 32u) {
     uint bits = 0;
     for (uint b = 0; b < min(32u, wc - j); ++b)
       if (inside_side(col_sides + j + b, c)) bits |= 1u << b;
     cols[j / 32u] = bits;
   }
+}
+
+/* Hit mask of one light (a bit per tile of its rectangle, row-major) and its
+ * counts. The side tests are separable: a row's once per row (a row that the
+ * sphere misses is skipped whole), a column's once per column; the depth and
+ * box terms 8 tiles at a time. */
+inline void mark_light(const LightRect* lr, uint tiles_x, uint n_tiles, __global const float* lanes,
+                       __global const TileSide* sides, __global const float4* blocks_lo,
+                       __global const float4* blocks_hi, uint blocks_x,
+                       __global uint* out, __global uint* counts) {
+  const uint w = (uint)(lr->tx1 - lr->tx0 + 1), area = w * (uint)(lr->ty1 - lr->ty0 + 1);
+  for (uint k = 0; k < (area + 31u) / 32u; ++k) out[k] = 0u;
+  const float4 c = lr->center;
+  __global const TileSide* col_sides = sides + lr->tx0;
+  uint cols[COL_WORDS];
+  const uint wc = min(w, 32u * COL_WORDS);
+  bool have_cols = false; /* tested at the first row that needs them: most rectangles have none */
   const size_t s = (size_t)n_tiles + LANE_PAD;
+  const uint bx0 = (uint)lr->tx0 / BLOCK_TILES, bx1 = (uint)lr->tx1 / BLOCK_TILES;
+  uint block_row = UINT_MAX;
+  ulong keep = ~(ulong)0;
   uint k = 0; /* bit of the row's first tile */
   for (int ty = lr->ty0; ty <= lr->ty1; ++ty, k += w) {
+#if DEPTH_MODE != DEPTH_NONE
+    if ((uint)ty / BLOCK_TILES != block_row) {
+      block_row = (uint)ty / BLOCK_TILES;
+      keep = blocks_in_reach(c, block_row, bx0, bx1, blocks_x, blocks_lo, blocks_hi);
+    }
+    if (keep == 0u && bx1 - bx0 < 64u) continue; /* the whole row is behind or before the light */
+#endif
     if (!inside_side(sides + tiles_x + ty, c)) continue;
+    if (!have_cols) column_bits(col_sides, wc, c, cols);
+    have_cols = true;
     const uint row = (uint)ty * tiles_x + (uint)lr->tx0;
     for (uint j = 0; j < w; j += 8u) {
-      uint col = (j + 8u <= wc) ? (cols[j / 32u] >> (j & 31u)) & 0xffu : 0u;
+#if DEPTH_MODE != DEPTH_NONE
+      const uint reach = block_bits8(keep, (uint)lr->tx0 + j, bx0);
+      if (reach == 0u) continue;
+#else
+      const uint reach = 0xffu;
+#endif
+      uint col = (j + 8u <= wc) ? (cols[j / 32u] >> (j & 31u)) & reach : 0u;
       for (uint l = 0; j + 8u > wc && l < 8u && j + l < w; ++l)
         if (j + l < wc ? ((cols[(j + l) / 32u] >> ((j + l) & 31u)) & 1u) : inside_side(col_sides + j + l, c))
           col |= 1u << l;
       if (w - j < 8u) col &= (1u << (w - j)) - 1u;
+      col &= reach;
 #if DEPTH_MODE != DEPTH_NONE
       if (col) col &= depth_and_box_bits8(c, row + j, s, lanes);
 #endif
       while (col) {
         const uint l = 31u - clz(col & (~col + 1u));
         col &= col - 1u;
-#if DEPTH_MODE == DEPTH_MASK
-        if (!depth_and_box_ok(c, row + j + l, bounds, masks, boxes)) continue;
-#endif
         out[(k + j + l) / 32u] |= 1u << ((k + j + l) & 31u);
         ++counts[row + j + l];
       }
@@ -508,9 +610,9 @@ inline void mark_light(const LightRect* lr, uint tiles_x, uint n_tiles, __global
 }
 
 __kernel void cull_mark_chunked(__global const LightRect* rects, uint n, uint per, uint n_tiles, uint tiles_x,
-                                __global const float4* bounds, __global const uint* masks,
-                                __global const float4* boxes, __global const float* lanes,
-                                __global const TileSide* sides, __global const uint* mask_offsets,
+                                __global const float* lanes, __global const TileSide* sides,
+                                __global const float4* blocks_lo, __global const float4* blocks_hi, uint blocks_x,
+                                __global const uint* mask_offsets,
                                 __global uint* hit_masks, __global uint* chunk_counts) {
   const size_t c = get_global_id(0);
   const ulong i0 = (ulong)c * per;
@@ -521,7 +623,8 @@ __kernel void cull_mark_chunked(__global const LightRect* rects, uint n, uint pe
   for (uint i = (uint)i0; i < i1; ++i) {
     const LightRect lr = rects[i];
     if (lr.tx0 <= lr.tx1 && lr.ty0 <= lr.ty1)
-      mark_light(&lr, tiles_x, n_tiles, bounds, masks, boxes, lanes, sides, hit_masks + mask_offsets[i], counts);
+      mark_light(&lr, tiles_x, n_tiles, lanes, sides, blocks_lo, blocks_hi, blocks_x, hit_masks + mask_offsets[i],
+                 counts);
   }
 }
 

@@ -71,9 +71,32 @@ TEST_P(TiledChunked, RectanglesWiderThanTheColumnCache) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  for (auto mode : {TileDepthMode::None, TileDepthMode::MinMax}) {
+  for (auto mode : {TileDepthMode::None, TileDepthMode::MinMax, TileDepthMode::Mask}) {
     TileLightCuller culler(test::runtime(), 1, mode, GetParam());
     expectMatchesReference(culler, randomCase(rng, 333, 7, 120), 1, mode);
+  }
+}
+
+// Tile 1 on a 600-pixel-wide screen: light rectangles spanning more than the
+// 64 blocks of 8 x 8 tiles whose depth ranges the CPU kernel keeps per block
+// row (the blocks past them are kept untested), and narrow ones that the block
+// test skips whole; lists equal the reference in every depth mode. A surface
+// across the last 100 columns and a light around the eye that reaches it make
+// sure tiles past the 64th block are in some list.
+TEST_P(TiledChunked, RectanglesWiderThanTheBlockCache) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  for (auto mode : {TileDepthMode::None, TileDepthMode::MinMax, TileDepthMode::Mask}) {
+    SCOPED_TRACE(tileDepthModeName(mode));
+    CullCase c = randomCase(rng, 600, 19, 150);
+    const glm::mat4 proj = c.camera.projection(float(c.width) / float(c.height));
+    for (unsigned y = 0; y < c.height; ++y)
+      for (unsigned x = c.width - 100; x < c.width; ++x)
+        c.depth[y * c.width + x] = gpu::distance_to_depth(3.0f + 0.01f * float(x % 7), proj[2][2], proj[3][2]);
+    c.lights.push_back(makeLight(c.camera.eye, 40.0f, {1, 1, 1}));
+    TileLightCuller culler(test::runtime(), 1, mode, GetParam());
+    expectMatchesReference(culler, c, 1, mode);
   }
 }
 

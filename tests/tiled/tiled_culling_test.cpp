@@ -150,6 +150,39 @@ TEST_P(TiledCullingEdges, LightContainingTheCameraReachesEveryTileWithGeometryIn
     for (const auto& l : runKernel(c, 16, mode, GetParam())) EXPECT_EQ(l, std::vector<std::uint32_t>{0});
 }
 
+// Every light's tile rectangle as the C++ twin computes it (the kernel's
+// hit-mask words are a word per 32 tiles of each), among them lights that
+// straddle the near plane (every 23rd of the random ones, and 20 beside the
+// view): the cube around such a light is cut at the near plane, so those
+// beside the view get no rectangle instead of the whole screen.
+TEST_P(TiledCullingEdges, RectanglesMatchTheReferenceAndAreCutAtTheNearPlane) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  CullCase c = randomCase(rng, 160, 90, 300);
+  const glm::mat4 inv_view = glm::inverse(c.camera.view());
+  const std::size_t beside = c.lights.size();
+  for (int i = 0; i < 20; ++i) {
+    const glm::vec4 v((i % 2 ? 1.0f : -1.0f) * (4.0f + float(i)), float(i % 3) - 1.0f, 0.05f, 1.0f);
+    c.lights.push_back(makeLight(glm::vec3(inv_view * v), 0.5f, {1, 1, 1}));
+  }
+  for (auto mode : {TileDepthMode::None, TileDepthMode::Mask}) {
+    TileLightCuller culler(test::runtime(), 8, mode, GetParam());
+    const auto got = test::runCuller(culler, c);
+    EXPECT_TRUE(test::listsMatch(got, test::runReference(c, 8, mode), "tile"));
+    const auto cam = c.cam();
+    std::uint64_t words = 0;
+    for (std::size_t i = 0; i < c.lights.size(); ++i) {
+      const LightTileRect lr = lightTileRect(c.lights[i], cam, culler.tileGrid());
+      if (!lr.empty()) words += (std::uint64_t(lr.tx1 - lr.tx0 + 1) * (lr.ty1 - lr.ty0 + 1) + 31) / 32;
+      if (i >= beside) {
+        EXPECT_TRUE(lr.empty()) << "light " << i << " beside the view got a rectangle";
+      }
+    }
+    EXPECT_EQ(culler.maskWords(), words);
+  }
+}
+
 TEST_P(TiledCullingEdges, ATileHoldingEveryLight) {
   std::mt19937_64 rng(test::freshSeed());
   CullCase c = randomCase(rng, 48, 48, 0);
