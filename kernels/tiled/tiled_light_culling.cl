@@ -362,18 +362,26 @@ __kernel void tile_blocks(__global const float4* bounds, __global const float4* 
   blocks_hi[b] = hi;
 }
 
+/* The range and box terms of the depth test: does the sphere c reach the
+ * view-space box (x0, x1, y0, y1) = box between the widened depths zlo and
+ * zhi (empty: zlo > zhi)? Tiles (depth_and_box_ok) and blocks of tiles
+ * (blocks_in_reach) ask it with the same operations. */
+inline bool reaches_depth_box(float4 c, float zlo, float zhi, float4 box) {
+  const float lz = -c.z, r = c.w;
+  if (zlo > zhi || lz + r < zlo || lz - r > zhi) return false;
+  const float dx = c.x - clamp(c.x, box.x, box.y), dy = c.y - clamp(c.y, box.z, box.w), dz = lz - clamp(lz, zlo, zhi);
+  return dx * dx + dy * dy + dz * dz <= c.w * c.w * (1.0f + 4.0f * DEPTH_EPS);
+}
+
 /* Bit i: block column bx0 + i of block row `by` may hold a tile that the
  * light reaches: depth_and_box_ok's range and box terms on the block's box
  * (i < 64; the caller treats the rest as kept). */
 inline ulong blocks_in_reach(float4 c, uint by, uint bx0, uint bx1, uint blocks_x, __global const float4* blocks_lo,
                              __global const float4* blocks_hi) {
-  const float lz = -c.z, r = c.w, r2 = c.w * c.w * (1.0f + 4.0f * DEPTH_EPS);
   ulong keep = 0;
   for (uint i = 0; i < 64u && bx0 + i <= bx1; ++i) {
     const float4 lo = blocks_lo[by * blocks_x + bx0 + i], hi = blocks_hi[by * blocks_x + bx0 + i];
-    const float dx = c.x - clamp(c.x, lo.y, hi.y), dy = c.y - clamp(c.y, lo.z, hi.z);
-    const float dz = -c.z - clamp(-c.z, lo.x, hi.x);
-    if (!(lo.x > hi.x || lz + r < lo.x || lz - r > hi.x) && dx * dx + dy * dy + dz * dz <= r2) keep |= (ulong)1 << i;
+    if (reaches_depth_box(c, lo.x, hi.x, (float4)(lo.y, hi.y, lo.z, hi.z))) keep |= (ulong)1 << i;
   }
   return keep;
 }
@@ -401,20 +409,15 @@ inline bool depth_and_box_ok(float4 c, uint t, __global const float4* bounds, __
                              __global const float4* boxes) {
 #if DEPTH_MODE != DEPTH_NONE
   const float4 zb = bounds[t];
-  if (zb.x > zb.y) return false;
-  const float lz = -c.z, r = c.w;
-  if (lz + r < zb.x || lz - r > zb.y) return false;
+  if (!reaches_depth_box(c, zb.x, zb.y, boxes[t])) return false;
 #if DEPTH_MODE == DEPTH_MASK
-  {
-    const uint b0 = bin_of((lz - r) * (1.0f - DEPTH_EPS), zb.z, zb.w);
-    const uint b1 = bin_of((lz + r) * (1.0f + DEPTH_EPS), zb.z, zb.w);
-    const uint lmask = (b1 >= 31u ? 0xffffffffu : ((2u << b1) - 1u)) & ~((1u << b0) - 1u);
-    if ((lmask & masks[t]) == 0u) return false;
-  }
+  const float lz = -c.z, r = c.w;
+  const uint b0 = bin_of((lz - r) * (1.0f - DEPTH_EPS), zb.z, zb.w);
+  const uint b1 = bin_of((lz + r) * (1.0f + DEPTH_EPS), zb.z, zb.w);
+  const uint lmask = (b1 >= 31u ? 0xffffffffu : ((2u << b1) - 1u)) & ~((1u << b0) - 1u);
+  if ((lmask & masks[t]) == 0u) return false;
 #endif
-  const float4 b = boxes[t];
-  const float dx = c.x - clamp(c.x, b.x, b.y), dy = c.y - clamp(c.y, b.z, b.w), dz = -c.z - clamp(-c.z, zb.x, zb.y);
-  return dx * dx + dy * dy + dz * dz <= c.w * c.w * (1.0f + 4.0f * DEPTH_EPS);
+  return true;
 #else
   return true;
 #endif
