@@ -11,9 +11,11 @@
 // The test can fail: with the weights broken (1 instead of pi / count) it must.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "gl/GlCheck.hpp"
 #include "host/vct/VoxelTextures.hpp"
@@ -102,12 +104,22 @@ std::pair<float, float> worst(const std::vector<F4>& r) {
   return {err, ao};
 }
 
+// Per point, the largest relative error of the irradiance / pi against L over the channels.
+std::vector<float> pointErrors(const std::vector<F4>& r) {
+  std::vector<float> e;
+  e.reserve(r.size());
+  for (const F4& v : r)
+    e.push_back(std::max({std::fabs(v.x - kL.x) / kL.x, std::fabs(v.y - kL.y) / kL.y, std::fabs(v.z - kL.z) / kL.z}));
+  return e;
+}
+
 // Random points at least 3 voxels inside [lo, hi)^3 and random unit normals.
-void furnacePoints(std::mt19937_64& rng, unsigned lo, unsigned hi, std::vector<F4>& points, std::vector<F4>& normals) {
+void furnacePoints(std::mt19937_64& rng, unsigned lo, unsigned hi, std::vector<F4>& points, std::vector<F4>& normals,
+                   int count = 200) {
   const float vs = 2.0f / kEdge;
   std::uniform_real_distribution<float> in(-1.0f + vs * float(lo + 3), -1.0f + vs * float(hi - 3));
   std::normal_distribution<float> g;
-  for (int i = 0; i < 200; ++i) {
+  for (int i = 0; i < count; ++i) {
     points.push_back({in(rng), in(rng), in(rng), 1});
     float x = g(rng), y = g(rng), z = g(rng);
     const float len = std::sqrt(x * x + y * y + z * z) + 1e-20f;
@@ -116,11 +128,12 @@ void furnacePoints(std::mt19937_64& rng, unsigned lo, unsigned hi, std::vector<F
 }
 
 // The GL context and the furnace's points inside [lo, hi)^3 from a fresh seed, which it returns.
-std::uint64_t furnaceInputs(unsigned lo, unsigned hi, std::vector<F4>& points, std::vector<F4>& normals) {
+std::uint64_t furnaceInputs(unsigned lo, unsigned hi, std::vector<F4>& points, std::vector<F4>& normals,
+                            int count = 200) {
   test::glContext();
   const std::uint64_t seed = test::freshSeed();
   std::mt19937_64 rng(seed);
-  furnacePoints(rng, lo, hi, points, normals);
+  furnacePoints(rng, lo, hi, points, normals, count);
   return seed;
 }
 
@@ -158,24 +171,41 @@ TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
 // coarse samples there must read the wall (the textures clamp to their edge
 // texel), no step may pass it (steps of half the sampled level's voxel, less
 // the growth of the samples' offset), and a slanted crossing must see it
-// opaque (the anisotropic faces' optical depths mixed). Worst point of 200,
-// 12 seeds: isotropic 0.038-0.078, anisotropic 0.161-0.226; with a
-// transparent border and steps of half the cone 0.37 and 0.47, with the
-// faces' opacities mixed (anisotropic) 0.28-0.31. What is left: a sample
-// lifted off its surface (kLevelOffset) can pass a wall the surface faces
-// within a few voxels (random normals here).
-constexpr float kShellToleranceIsotropic = 0.10f, kShellToleranceAnisotropic = 0.27f;
+// opaque (the anisotropic faces' optical depths mixed). What is left: a
+// sample lifted off its surface (kLevelOffset) can pass a wall the surface
+// faces within a few voxels (random normals here), so the error has a tail
+// of single points. Checked on 1000 points by the mean and the 99th
+// percentile (stable from seed to seed) and, loosely, the worst point (a
+// leak at one place). 30 fresh seeds: isotropic mean 0.0026-0.0036, p99
+// 0.033-0.057, worst 0.054-0.110; anisotropic mean 0.036-0.041, p99
+// 0.152-0.180, worst 0.191-0.265. With the faces' opacities mixed instead
+// of their optical depths: anisotropic mean 0.20, p99 0.38-0.40, worst 0.44-0.47;
+// with a transparent border (GL_CLAMP_TO_BORDER): mean 0.12 / 0.25, p99 0.30 / 0.45.
+// (The worst of 200 points alone, bounded by 0.27 before, reached 0.275.)
+struct ShellBounds {
+  float mean, p99, worst;
+};
+constexpr ShellBounds kShellIsotropic{0.01f, 0.08f, 0.18f}, kShellAnisotropic{0.06f, 0.22f, 0.35f};
 TEST(VctFurnace, AOneVoxelShellAtTheGridsEdgeHoldsAtEveryLevel) {
   std::vector<F4> points, normals;
-  const std::uint64_t seed = furnaceInputs(kShell, kEdge - kShell, points, normals);
+  const std::uint64_t seed = furnaceInputs(kShell, kEdge - kShell, points, normals, 1000);
   SCOPED_TRACE("seed=" + std::to_string(seed));
   for (bool aniso : {false, true}) {
     Furnace f(aniso, kShell, kEdge - kShell);
     ConeTraceSetup s{f.grid, &f.textures, aniso, diffuseCones(9), 45.0f, ConeBreak::None};
-    const auto [err, ao] = traceWorst(f, s, points, normals, "shell, ");
-    const float bound = aniso ? kShellToleranceAnisotropic : kShellToleranceIsotropic;
-    EXPECT_LE(err, bound) << "anisotropic " << aniso;
-    EXPECT_LE(ao, bound) << "anisotropic " << aniso;
+    const auto r = f.trace(s, points, normals);
+    std::vector<float> e = pointErrors(r);
+    std::sort(e.begin(), e.end());
+    double mean = 0;
+    for (float x : e) mean += double(x) / double(e.size());
+    const float p99 = e[e.size() * 99 / 100], ao = worst(r).second;
+    std::printf("shell, anisotropic %d: |E/pi - L| / L mean %.4f, p99 %.4f, worst %.4f; AO worst %.4f\n", int(aniso),
+                mean, double(p99), double(e.back()), double(ao));
+    const ShellBounds& b = aniso ? kShellAnisotropic : kShellIsotropic;
+    EXPECT_LE(mean, b.mean) << "anisotropic " << aniso;
+    EXPECT_LE(p99, b.p99) << "anisotropic " << aniso;
+    EXPECT_LE(e.back(), b.worst) << "anisotropic " << aniso;
+    EXPECT_LE(ao, b.worst) << "anisotropic " << aniso;
   }
 }
 
