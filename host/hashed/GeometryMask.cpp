@@ -44,10 +44,29 @@ void unite(CellGeometry& a, const CellGeometry& b) {
   }
 }
 
-// Sorts by cell and unites the boxes of equal cells, in place.
+// Sorts by cell and unites the boxes of equal cells, in place. The sort
+// orders (cell, position) pairs and then moves each ~250-byte pair once
+// along the permutation's cycles: sorting the pairs themselves moved them
+// O(log n) times and was most of the mask's serial time.
 template <class CellGeometry>
 void mergeByCell(std::vector<std::pair<std::uint64_t, CellGeometry>>& v) {
-  std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) order[i] = {v[i].first, std::uint32_t(i)};
+  std::sort(order.begin(), order.end());
+  // v[i] = old v[order[i].second]; a moved slot's source is set to itself.
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (order[i].second == i) continue;
+    auto held = std::move(v[i]);
+    std::size_t j = i;
+    while (order[j].second != i) {
+      const std::size_t from = order[j].second;
+      v[j] = std::move(v[from]);
+      order[j].second = std::uint32_t(j);
+      j = from;
+    }
+    v[j] = std::move(held);
+    order[j].second = std::uint32_t(j);
+  }
   std::size_t w = 0;
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (w > 0 && v[w - 1].first == v[i].first) {
@@ -283,7 +302,7 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
   tbb::enumerable_thread_specific<Local> local;
   HeldBytes held(byte_limit);
   const std::size_t tris = scene.indices.size() / 3;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris, 256), [&](const auto& range) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris, 8), [&](const auto& range) {
     Local& loc = local.local();
     for (std::size_t t = range.begin(); t != range.end(); ++t) {
       glm::dvec3 v[3];
@@ -297,6 +316,11 @@ GeometryMask::GeometryMask(const Scene& scene, const OctreeBounds& b, double mar
       }
     }
   });
+  // Each thread's pairs sorted and united in parallel: the final merge
+  // then mostly meets runs that are already in order.
+  std::vector<Local*> locals;
+  for (auto& l : local) locals.push_back(&l);
+  tbb::parallel_for(std::size_t(0), locals.size(), [&](std::size_t i) { mergeByCell(locals[i]->pairs); });
   std::size_t total = 0;
   for (const auto& l : local) total += l.pairs.size();
   held.add(total * sizeof(Pair));  // the gathered pairs beside the buffers, freed one by one
@@ -322,6 +346,9 @@ void GeometryMask::setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> 
   cell_keys_.clear();
   cell_boxes_.clear();
   cell_octants_.clear();
+  cell_keys_.reserve(boxes.size());
+  cell_boxes_.reserve(boxes.size());
+  cell_octants_.reserve(boxes.size());
   for (const auto& [k, g] : boxes) {
     cell_keys_.push_back(k);
     Box box = g.box;  // holds the octant boxes (floats rounded outwards; a clip's fallback)

@@ -3,6 +3,7 @@
 #include "host/hashed/DynamicLightUpdater.hpp"
 #include "host/hashed/LightOctreeBuilder.hpp"
 #include "host/hashed/OctantMask.hpp"
+#include "host/hashed/SceneOctreeBuild.hpp"
 #include "host/util/Error.hpp"
 #include "host/util/Stopwatch.hpp"
 
@@ -60,16 +61,15 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   mask_ = std::move(new_mask);
 
   auto t = SteadyClock::now();
-  octrees_ = buildLightOctrees(lights, bounds_, mask());
+  auto checkLit = [&](std::size_t lit) {
+    if (mask_) checkLitMemory(lights.size(), lit, cfg_.memory_limit, cfg_.node_size);
+  };
+  SceneOctreeBuild sb = buildSceneOctree(lights, bounds_, mask(), mask() != nullptr, checkLit);
   st.light_octrees_ms = msSince(t);
-  for (const auto& o : octrees_) st.filled_cells += o.filled_cells;
-  // With the mask, the scene octree's size is known only now (lit cells with geometry).
-  if (mask_) checkLitMemory(lights.size(), st.filled_cells, cfg_.memory_limit, cfg_.node_size);
-
-  t = SteadyClock::now();
-  tree_ = std::make_unique<SceneOctree>(bounds_, mask_.get());
-  for (const auto& o : octrees_) tree_->insert(o);
-  st.merge_ms = msSince(t);
+  st.merge_ms = sb.merge_ms;
+  st.filled_cells = sb.filled_cells;
+  tree_ = std::move(sb.tree);
+  octrees_ = std::move(sb.octrees);  // with the mask, kept for updates
 
   t = SteadyClock::now();
   tree_->normalize();
@@ -86,7 +86,6 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   st.total_ms = msSince(t0);
   build_stats_ = st;
   lights_ = lights;
-  if (!mask()) std::vector<LightOctree>().swap(octrees_);  // updates need none
   ++builds_;
 }
 

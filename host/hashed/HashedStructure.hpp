@@ -3,7 +3,7 @@
 // bounds, the optional geometry mask, the scene octree and its linkless form.
 // Contract:
 //  - build() is the thesis's pipeline (Fig. 7.14): bounds -> per-light grids
-//    and octrees (parallel) -> Table 7.1 merge into the scene octree ->
+//    and octrees (parallel) overlapped with the Table 7.1 merge into the scene octree ->
 //    canonical merge (relaxed by geometry when masked) -> per-layer perfect
 //    spatial hashes (parallel) -> light index list. Timed per stage.
 //  - update() applies a new light array incrementally (DynamicLightUpdater):
@@ -27,6 +27,8 @@
 namespace ml::hashed {
 
 struct BuildStats {
+  // light_octrees_ms: the light octrees and the merge, which overlap (wall
+  // time, SceneOctreeBuild.hpp); merge_ms: the merge's own share of it.
   double bounds_ms = 0, mask_ms = 0, light_octrees_ms = 0, merge_ms = 0, normalize_ms = 0, hash_ms = 0,
          total_ms = 0;
   std::size_t filled_cells = 0;        // (light, cell) overlaps, summed

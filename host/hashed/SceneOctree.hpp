@@ -200,7 +200,7 @@ inline void SceneOctree::recordParent(std::uint64_t key) {
 inline bool SceneOctree::addToSet(std::int32_t n, std::uint32_t l) {
   auto& s = sets_[n];
   if (s.empty() || s.back() < l) {
-    s.push_back(l);  // full builds insert lights in index order
+    s.push_back(l);  // a light after every one the set holds (the fast path of a sorted insert)
   } else {
     const auto it = std::lower_bound(s.begin(), s.end(), l);
     if (it != s.end() && *it == l) return false;
