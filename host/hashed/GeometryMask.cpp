@@ -93,53 +93,51 @@ void addCell(std::vector<std::pair<std::uint64_t, CellGeometry>>& out, std::uint
   out.push_back({key, g});
 }
 
-// Bounds of triangle v[0..2] clipped to the box [lo, hi] (Sutherland-Hodgman);
-// false when nothing is left.
-bool clippedBounds(const glm::dvec3 v[3], const glm::dvec3& lo, const glm::dvec3& hi, GeometryMask::Box& out) {
-  glm::dvec3 poly[12], next[12];
-  int n = 3;
-  for (int i = 0; i < 3; ++i) poly[i] = v[i];
-  for (int plane = 0; plane < 6 && n > 0; ++plane) {
-    const int a = plane / 2;
-    const bool upper = plane & 1;
-    const double bound = upper ? hi[a] : lo[a];
-    auto inside = [&](const glm::dvec3& p) { return upper ? p[a] <= bound : p[a] >= bound; };
-    int m = 0;
-    for (int i = 0; i < n; ++i) {
-      const glm::dvec3& p = poly[i];
-      const glm::dvec3& q = poly[(i + 1) % n];
-      const bool pin = inside(p), qin = inside(q);
-      if (pin) next[m++] = p;
-      if (pin != qin && m < 12) {
-        const double t = (bound - p[a]) / (q[a] - p[a]);
-        glm::dvec3 x = p + t * (q - p);
-        x[a] = bound;
-        next[m++] = x;
-      }
+// A convex polygon being clipped (a triangle cut by up to 9 planes).
+struct Polygon {
+  glm::dvec3 p[12];
+  int n = 0;
+};
+
+// Sutherland-Hodgman against one plane: keeps p[a] >= bound, or p[a] <=
+// bound when `upper`.
+void clipPlane(Polygon& poly, int a, bool upper, double bound) {
+  auto inside = [&](const glm::dvec3& p) { return upper ? p[a] <= bound : p[a] >= bound; };
+  glm::dvec3 next[12];
+  int m = 0;
+  for (int i = 0; i < poly.n; ++i) {
+    const glm::dvec3& p = poly.p[i];
+    const glm::dvec3& q = poly.p[(i + 1) % poly.n];
+    const bool pin = inside(p), qin = inside(q);
+    if (pin) next[m++] = p;
+    if (pin != qin && m < 12) {
+      const double t = (bound - p[a]) / (q[a] - p[a]);
+      glm::dvec3 x = p + t * (q - p);
+      x[a] = bound;
+      next[m++] = x;
     }
-    n = m;
-    for (int i = 0; i < n; ++i) poly[i] = next[i];
   }
-  if (n == 0) return false;
-  out.lo = out.hi = poly[0];
-  for (int i = 1; i < n; ++i) {
-    out.lo = glm::min(out.lo, poly[i]);
-    out.hi = glm::max(out.hi, poly[i]);
+  poly.n = m;
+  for (int i = 0; i < m; ++i) poly.p[i] = next[i];
+}
+
+bool polygonBounds(const Polygon& poly, GeometryMask::Box& out) {
+  if (poly.n == 0) return false;
+  out.lo = out.hi = poly.p[0];
+  for (int i = 1; i < poly.n; ++i) {
+    out.lo = glm::min(out.lo, poly.p[i]);
+    out.hi = glm::max(out.hi, poly.p[i]);
   }
   return true;
 }
 
-// The bounds of triangle v[0..2] clipped to [lo, hi], as clippedBounds() gives
-// them, without clipping when the triangle's bounds [tlo, thi] lie inside the
-// box (then no plane cuts it: the bounds are the triangle's own). Most
-// triangles of a detailed scene are far smaller than a cell.
-bool clippedBounds(const glm::dvec3 v[3], const glm::dvec3& tlo, const glm::dvec3& thi, const glm::dvec3& lo,
-                   const glm::dvec3& hi, GeometryMask::Box& out) {
-  if (glm::all(glm::greaterThanEqual(tlo, lo)) && glm::all(glm::lessThanEqual(thi, hi))) {
-    out = {tlo, thi};
-    return true;
-  }
-  return clippedBounds(v, lo, hi, out);
+// Triangle v[0..2] clipped to the box [lo, hi]; empty when nothing is left.
+Polygon clippedTriangle(const glm::dvec3 v[3], const glm::dvec3& lo, const glm::dvec3& hi) {
+  Polygon poly;
+  poly.n = 3;
+  for (int i = 0; i < 3; ++i) poly.p[i] = v[i];
+  for (int plane = 0; plane < 6 && poly.n > 0; ++plane) clipPlane(poly, plane / 2, plane & 1, plane & 1 ? hi[plane / 2] : lo[plane / 2]);
+  return poly;
 }
 
 // The box-axis part of triangleBoxOverlap() on the triangle's bounds (the
@@ -245,6 +243,78 @@ class HeldBytes {
 
 }  // namespace
 
+namespace {
+
+// One triangle in cell units, with its bounds, as the voxeliser tests it.
+struct TriangleInCells {
+  const glm::dvec3* v;      // 3 vertices
+  glm::dvec3 tlo, thi;      // bounds
+  glm::dvec3 lo, hi;        // bounds widened by the margin
+  // Whether it touches the box centred at `centre` with half size h.
+  bool touches(const glm::dvec3& centre, double h) const {
+    return boundsOverlap(tlo, thi, centre, h) && triangleBoxOverlap(v[0] - centre, v[1] - centre, v[2] - centre, h);
+  }
+  // Where clipping lost a part that the separating-axis test says touches
+  // (rounding): the box and the widened bounds' overlap stands in.
+  GeometryMask::Box fallback(const glm::dvec3& centre, double h) const {
+    return {glm::max(lo, centre - h), glm::min(hi, centre + h)};
+  }
+};
+
+// The triangle's part in the widened cell centred at `centre` (half size h):
+// the triangle itself when it lies inside, else clipped to the box.
+Polygon cellPart(const TriangleInCells& tri, const glm::dvec3& centre, double h) {
+  if (glm::all(glm::greaterThanEqual(tri.tlo, centre - h)) && glm::all(glm::lessThanEqual(tri.thi, centre + h))) {
+    Polygon poly;
+    poly.n = 3;
+    for (int i = 0; i < 3; ++i) poly.p[i] = tri.v[i];
+    return poly;
+  }
+  return clippedTriangle(tri.v, centre - h, centre + h);
+}
+
+// The bounds of the triangle's part in octant k's widened box (centre oc,
+// half size h) from its part in the widened cell: the octant's box lies
+// inside the cell's, so only its 3 inner faces cut (3 planes per octant
+// instead of 6, and the separating-axis test only where nothing is left).
+bool octantPart(const TriangleInCells& tri, const Polygon& in_cell, const glm::dvec3& oc, double h, unsigned k,
+                GeometryMask::Box& out) {
+  if (in_cell.n > 0) {
+    Polygon q = in_cell;
+    for (int a = 0; a < 3 && q.n > 0; ++a) {
+      const bool high = (k >> a) & 1u;  // the octant's upper half on axis a: its low face cuts
+      clipPlane(q, a, !high, high ? oc[a] - h : oc[a] + h);
+    }
+    if (polygonBounds(q, out)) return true;
+  }
+  if (!tri.touches(oc, h)) return false;
+  out = tri.fallback(oc, h);
+  return true;
+}
+
+// One cell's geometry: false when the triangle misses the widened cell.
+template <class CellGeometry>
+bool cellGeometry(const TriangleInCells& tri, const glm::dvec3& centre, double margin, CellGeometry& g) {
+  const double hc = 0.5 + margin, ho = 0.25 + margin;
+  if (!tri.touches(centre, hc)) return false;
+  const Polygon in_cell = cellPart(tri, centre, hc);
+  if (!polygonBounds(in_cell, g.box)) g.box = tri.fallback(centre, hc);
+  g.box.lo -= margin;
+  g.box.hi += margin;
+  for (unsigned k = 0; k < 8; ++k) {
+    const glm::dvec3 oc = centre + glm::dvec3((k & 1) ? 0.25 : -0.25, (k & 2) ? 0.25 : -0.25, (k & 4) ? 0.25 : -0.25);
+    GeometryMask::Box ob;
+    if (!octantPart(tri, in_cell, oc, ho, k, ob)) continue;
+    for (int a = 0; a < 3; ++a) {
+      g.oct.lo[k][a] = floatDown(ob.lo[a] - margin);
+      g.oct.hi[k][a] = floatUp(ob.hi[a] + margin);
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 // One triangle's (cell, geometry) pairs: every cell whose box widened by
 // `margin` the triangle touches, with the bounds of the triangle's part in the
 // widened cell and in each widened octant, each widened by the margin again
@@ -253,36 +323,18 @@ class HeldBytes {
 template <class CellGeometry>
 void voxelizeTriangle(const glm::dvec3 v[3], double margin, double n,
                       std::vector<std::pair<std::uint64_t, CellGeometry>>& out, HeldBytes& held) {
-  const glm::dvec3 tlo = glm::min(v[0], glm::min(v[1], v[2])), thi = glm::max(v[0], glm::max(v[1], v[2]));
-  const glm::dvec3 lo = tlo - margin, hi = thi + margin;
+  TriangleInCells tri{v, glm::min(v[0], glm::min(v[1], v[2])), glm::max(v[0], glm::max(v[1], v[2])), {}, {}};
+  tri.lo = tri.tlo - margin;
+  tri.hi = tri.thi + margin;
+  const glm::dvec3 &lo = tri.lo, &hi = tri.hi;
   if (hi.x < 0 || hi.y < 0 || hi.z < 0 || lo.x >= n || lo.y >= n || lo.z >= n) return;
   const glm::ivec3 clo(glm::clamp(glm::floor(lo), glm::dvec3(0.0), glm::dvec3(n - 1)));
   const glm::ivec3 chi(glm::clamp(glm::floor(hi), glm::dvec3(0.0), glm::dvec3(n - 1)));
-  // The triangle's part in the box centred at `centre` with half size h.
-  auto partIn = [&](const glm::dvec3& centre, double h, GeometryMask::Box& box) {
-    if (!boundsOverlap(tlo, thi, centre, h)) return false;
-    if (!triangleBoxOverlap(v[0] - centre, v[1] - centre, v[2] - centre, h)) return false;
-    if (!clippedBounds(v, tlo, thi, centre - h, centre + h, box))
-      box = {glm::max(lo, centre - h), glm::min(hi, centre + h)};
-    return true;
-  };
   for (int z = clo.z; z <= chi.z; ++z)
     for (int y = clo.y; y <= chi.y; ++y)
       for (int x = clo.x; x <= chi.x; ++x) {
-        const glm::dvec3 centre(x + 0.5, y + 0.5, z + 0.5);
         CellGeometry g;
-        if (!partIn(centre, 0.5 + margin, g.box)) continue;
-        g.box.lo -= margin;
-        g.box.hi += margin;
-        for (unsigned k = 0; k < 8; ++k) {
-          const glm::dvec3 oc = centre + glm::dvec3((k & 1) ? 0.25 : -0.25, (k & 2) ? 0.25 : -0.25, (k & 4) ? 0.25 : -0.25);
-          GeometryMask::Box ob;
-          if (!partIn(oc, 0.25 + margin, ob)) continue;
-          for (int a = 0; a < 3; ++a) {
-            g.oct.lo[k][a] = floatDown(ob.lo[a] - margin);
-            g.oct.hi[k][a] = floatUp(ob.hi[a] + margin);
-          }
-        }
+        if (!cellGeometry(tri, glm::dvec3(x + 0.5, y + 0.5, z + 0.5), margin, g)) continue;
         const std::size_t capacity = out.capacity();
         addCell(out, packCoord(glm::uvec3(x, y, z)), g);
         // Counted at every growth: one large triangle can make millions of pairs.

@@ -21,7 +21,9 @@
 //    without geometry cannot be lit and may join full nodes. That predicate
 //    is not convex in the cell position, so the flood fill and the decision
 //    tree's closest/farthest shortcuts give way to testing every cell of the
-//    grid and merging bottom-up; the result is still a minimal octree.
+//    grid; a node is then a branch exactly when it holds a lit cell and an
+//    unlit one (or one outside the grid), read from the grid's box counts,
+//    so the result is still a minimal octree.
 #include <glm/glm.hpp>
 
 #include <algorithm>
@@ -151,10 +153,11 @@ class LightCells {
   std::vector<double> axis_d2_;  // per axis and box cell: squared distance from the centre
 };
 
-// Scratch space reused across lights by one thread (the grid).
+// Scratch space reused across lights by one thread (the grid and its counts).
 struct LightGridScratch {
   std::vector<std::uint8_t> grid;
   std::vector<std::uint32_t> queue;
+  std::vector<std::uint64_t> sums;  // the grid's summed-volume table (with a geometry mask)
 };
 
 LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, const OctreeBounds& bounds,

@@ -7,12 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <functional>
 #include <random>
 
 #include <tbb/task_arena.h>
 
 #include "hashed_support.hpp"
 #include "host/hashed/GeometryMask.hpp"
+#include "host/hashed/LightOctreeBuilder.hpp"
 #include "host/hashed/OctantMask.hpp"
 #include "host/hashed/OctreeBounds.hpp"
 #include "host/hashed/SceneOctree.hpp"
@@ -177,10 +180,150 @@ TEST_F(HashedMaskGeometry, SurfacePointsLieInTheirOctantBox) {
   EXPECT_GT(empty_octants, 0u) << "octants refine some cells (of " << cells << ")";
 }
 
+// And they are tight: an octant's box lies within the union, over the
+// triangles, of each triangle's bounds cut to the octant's box widened by
+// the margin, widened by the margin again (plus float rounding); octants no
+// triangle's bounds reach are empty. (Boxes of whole octants or cells fail.)
+TEST_F(HashedMaskGeometry, OctantBoxesHoldOnlyTheTrianglesParts) {
+  const double margin = 0.01 + b.eps_cells, slack = margin + 1e-5;
+  const int n = int(b.cellsPerAxis());
+  std::size_t octants = 0;
+  for (int z = 0; z < n; ++z)
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const GeometryMask::Box* cb = nullptr;
+        const auto* oct = mask.octantBoxes(glm::uvec3(x, y, z), cb);
+        if (!oct) continue;
+        for (unsigned k = 0; k < 8; ++k) {
+          const glm::dvec3 oc = glm::dvec3(x, y, z) + glm::dvec3(k & 1 ? 0.75 : 0.25, k & 2 ? 0.75 : 0.25, k & 4 ? 0.75 : 0.25);
+          const double h = 0.25 + margin;
+          glm::dvec3 ulo(1e300), uhi(-1e300);
+          for (std::size_t t = 0; t + 2 < s.indices.size(); t += 3) {
+            glm::dvec3 v[3];
+            for (int j = 0; j < 3; ++j) v[j] = b.toCells(glm::dvec3(s.vertices[s.indices[t + std::size_t(j)]].position));
+            const glm::dvec3 lo = glm::max(glm::min(v[0], glm::min(v[1], v[2])), oc - h);
+            const glm::dvec3 hi = glm::min(glm::max(v[0], glm::max(v[1], v[2])), oc + h);
+            if (glm::any(glm::greaterThan(lo, hi))) continue;
+            ulo = glm::min(ulo, lo);
+            uhi = glm::max(uhi, hi);
+          }
+          const std::string at = "cell " + std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z) +
+                                  " octant " + std::to_string(k);
+          if (ulo.x > uhi.x) {
+            ASSERT_TRUE(oct->empty(k)) << at << ": no triangle reaches it";
+            continue;
+          }
+          if (oct->empty(k)) continue;  // the separating-axis test is finer than the bounds
+          ++octants;
+          for (int a = 0; a < 3; ++a) {
+            ASSERT_GE(double(oct->lo[k][a]), ulo[a] - slack) << at << " axis " << a;
+            ASSERT_LE(double(oct->hi[k][a]), uhi[a] + slack) << at << " axis " << a;
+          }
+        }
+      }
+  EXPECT_GT(octants, 0u);
+}
+
 // Octant bits reduced by the geometry (LightOctants::onGeometry): a subset of
 // the plain bits, bit k kept exactly when octant k's box (widened by eps) is
 // within the radius (also through the cell box's shortcuts), and every light
 // containing a surface point keeps the bit of that point's octant.
+// A light octree built against the geometry mask covers exactly the cells
+// with geometry whose geometry the sphere reaches (the cell's box and one
+// of its octants' boxes, widened by eps, as LightOctreeBuilder states),
+// no cell outside the light's cell box, and is minimal: a branch holds a
+// lit cell and an unlit one (geometry unreached, or outside the box), a
+// full leaf no unlit cell, an empty leaf no lit cell. Cells without
+// geometry may go either way. Checked on every cell of the 8^3 octree.
+TEST_F(HashedMaskGeometry, LightOctreesCoverExactlyTheCellsWhoseGeometryTheSphereReaches) {
+  const auto lights = randomLights(rng, 300, side, 0.2, 3.0, true);
+  const int n = int(b.cellsPerAxis());
+  LightGridScratch scratch;
+  std::size_t lit_cells = 0, branches = 0;
+  for (std::uint32_t i = 0; i < lights.size(); ++i) {
+    SCOPED_TRACE("light " + std::to_string(i));
+    const auto& l = lights[i];
+    const glm::dvec3 c = b.toCells(glm::dvec3(l.position_radius.x, l.position_radius.y, l.position_radius.z));
+    const double r = b.radiusCells(l.position_radius.w), e = b.eps_cells;
+    const CellBox box = lightCellBox(l, b);
+    auto reaches = [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+      const glm::dvec3 d = glm::max(glm::max(lo - e - c, c - (hi + e)), glm::dvec3(0.0));
+      return glm::dot(d, d) < r * r;
+    };
+    // Per cell: 1 lit, 0 unlit, -1 free (no geometry).
+    std::vector<int> want(std::size_t(n * n * n), 0);
+    for (int z = 0; z < n; ++z)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          const GeometryMask::Box* cb = nullptr;
+          const auto* oct = mask.octantBoxes(glm::uvec3(x, y, z), cb);
+          const bool in_box = !box.empty() && glm::all(glm::greaterThanEqual(glm::ivec3(x, y, z), box.lo)) &&
+                              glm::all(glm::lessThanEqual(glm::ivec3(x, y, z), box.hi));
+          int& w = want[std::size_t(x + n * (y + n * z))];
+          if (!oct) {
+            w = in_box ? -1 : 0;
+            continue;
+          }
+          bool lit = in_box && reaches(cb->lo, cb->hi);
+          bool any = false;
+          for (unsigned k = 0; k < 8 && lit; ++k)
+            any = any || (!oct->empty(k) && reaches(glm::dvec3(oct->lo[k]), glm::dvec3(oct->hi[k])));
+          w = lit && any ? 1 : 0;
+          lit_cells += w == 1;
+        }
+    const LightOctree lo = buildLightOctree(l, i, b, scratch, &mask);
+    // The kinds of cells in node (t, cc): bit 0 a lit cell, bit 1 an unlit one.
+    auto kinds = [&](unsigned t, const glm::ivec3& cc) {
+      const int size = n >> t;
+      int k = 0;
+      for (int z = cc.z * size; z < (cc.z + 1) * size; ++z)
+        for (int y = cc.y * size; y < (cc.y + 1) * size; ++y)
+          for (int x = cc.x * size; x < (cc.x + 1) * size; ++x) {
+            const int w = want[std::size_t(x + n * (y + n * z))];
+            k |= w == 1 ? 1 : w == 0 ? 2 : 0;
+          }
+      return k;
+    };
+    const LightNode* cur = nullptr;
+    std::function<void(unsigned, glm::ivec3)> walk = [&](unsigned t, glm::ivec3 cc) {
+      const LightNode type = *cur++;
+      const int k = kinds(t, cc);
+      const std::string at = "node depth " + std::to_string(t) + " at " + std::to_string(cc.x) + "," +
+                             std::to_string(cc.y) + "," + std::to_string(cc.z);
+      if (type == LightNode::Full) {
+        ASSERT_EQ(k & 2, 0) << "full leaf over an unlit cell, " << at;
+      }
+      if (type == LightNode::Empty) {
+        ASSERT_EQ(k & 1, 0) << "empty leaf over a lit cell, " << at;
+      }
+      if (type != LightNode::Branch) return;
+      ++branches;
+      ASSERT_EQ(k, 3) << "branch not holding both a lit and an unlit cell, " << at;
+      for (int j = 0; j < 8; ++j) walk(t + 1, cc * 2 + glm::ivec3(j & 1, (j >> 1) & 1, (j >> 2) & 1));
+    };
+    int covered_lit = 0, root_lit = 0;
+    for (unsigned ri = 0; ri < lo.root_count; ++ri) {
+      cur = lo.nodes.data() + lo.root_start[ri];
+      walk(lo.root_depth, glm::ivec3(lo.roots[ri]));
+      if (HasFatalFailure()) return;
+    }
+    // Every lit cell lies under one of the roots (the roots hold the box).
+    for (int z = 0; z < n; ++z)
+      for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+          if (want[std::size_t(x + n * (y + n * z))] != 1) continue;
+          ++root_lit;
+          for (unsigned ri = 0; ri < lo.root_count; ++ri)
+            if (glm::all(glm::equal(glm::uvec3(x, y, z) >> (b.depth - lo.root_depth), lo.roots[ri]))) ++covered_lit;
+        }
+    ASSERT_EQ(covered_lit, root_lit) << "lit cells outside the roots";
+    EXPECT_EQ(lo.filled_cells == 0, root_lit == 0);
+  }
+  std::printf("%zu lit cells, %zu branches over %zu lights\n", lit_cells, branches, lights.size());
+  EXPECT_GT(lit_cells, 0u);
+  EXPECT_GT(branches, 0u);
+}
+
 TEST_F(HashedMaskGeometry, GeometryOctantBitsKeepEveryLightOfASurfacePoint) {
   const auto lights = randomLights(rng, 200, side, 0.2, 2.5, false);
   std::size_t plain = 0, kept = 0;
