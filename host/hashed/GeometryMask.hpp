@@ -82,7 +82,10 @@ class GeometryMask {
     Box box;
     OctantBoxes oct;
   };
-  void setBoxes(std::vector<std::pair<std::uint64_t, CellGeometry>> boxes, std::size_t byte_limit);
+  // The final arrays from runs of (cell, geometry) pairs, each sorted by
+  // cell without repeats (a cell in several runs is united).
+  void setBoxes(const std::vector<std::vector<std::pair<std::uint64_t, CellGeometry>>*>& runs,
+                std::size_t byte_limit);
   void setRowIndex();
   bool indexOf(const glm::uvec3& c, std::size_t& at) const;
   unsigned depth_;
