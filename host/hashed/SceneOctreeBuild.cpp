@@ -90,14 +90,21 @@ SceneOctreeBuild buildSceneOctree(const std::vector<gpu::PointLight>& lights, co
     for (const auto& o : c.octrees) out.filled_cells += o.filled_cells;
     checkLit(out.filled_cells);
     for (const auto& o : c.octrees) out.tree->insert(o);
+    out.merge_ms += msSince(t);
+    return c;
+  };
+  // Into their lights' slots after the merge, in parallel: the slots lie
+  // anywhere in the array, and those writes missed the cache on the
+  // merge's serial path.
+  auto keep = [&](Chunk c) {
     if (keep_octrees)
       for (auto& o : c.octrees) out.octrees[o.light] = std::move(o);
-    out.merge_ms += msSince(t);
   };
   const std::size_t tokens = 4 * std::size_t(tbb::this_task_arena::max_concurrency());
   tbb::parallel_pipeline(tokens, tbb::make_filter<void, Chunk>(tbb::filter_mode::serial_in_order, take) &
                                      tbb::make_filter<Chunk, Chunk>(tbb::filter_mode::parallel, build) &
-                                     tbb::make_filter<Chunk, void>(tbb::filter_mode::serial_in_order, merge));
+                                     tbb::make_filter<Chunk, Chunk>(tbb::filter_mode::serial_in_order, merge) &
+                                     tbb::make_filter<Chunk, void>(tbb::filter_mode::parallel, keep));
   return out;
 }
 
