@@ -61,10 +61,10 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   mask_ = std::move(new_mask);
 
   auto t = SteadyClock::now();
-  auto checkLit = [&](std::size_t lit) {
+  auto check_lit = [&](std::size_t lit) {
     if (mask_) checkLitMemory(lights.size(), lit, cfg_.memory_limit, cfg_.node_size);
   };
-  SceneOctreeBuild sb = buildSceneOctree(lights, bounds_, mask(), mask() != nullptr, checkLit);
+  SceneOctreeBuild sb = buildSceneOctree(lights, bounds_, mask(), mask() != nullptr, check_lit);
   st.light_octrees_ms = msSince(t);
   st.merge_ms = sb.merge_ms;
   st.filled_cells = sb.filled_cells;

@@ -42,9 +42,10 @@ std::vector<std::uint32_t> mortonOrder(const std::vector<gpu::PointLight>& light
   std::vector<std::uint64_t> keys(lights.size()), scratch;
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const auto& p = lights[i].position_radius;
-    const glm::dvec3 c = glm::clamp(glm::floor(b.toCells({p.x, p.y, p.z})), glm::dvec3(0.0), glm::dvec3(top));
-    const glm::u64vec3 q = glm::u64vec3(c) >> std::uint64_t(shift);
-    keys[i] = ((spread3(q.x) | spread3(q.y) << 1 | spread3(q.z) << 2) << 32) | i;  // NaN centres: cell 0
+    const glm::dvec3 f = glm::floor(b.toCells({p.x, p.y, p.z}));
+    glm::u64vec3 q;
+    for (int a = 0; a < 3; ++a) q[a] = std::uint64_t(f[a] >= 0.0 ? std::min(f[a], top) : 0.0) >> shift;  // NaN: 0
+    keys[i] = ((spread3(q.x) | spread3(q.y) << 1 | spread3(q.z) << 2) << 32) | i;
   }
   if (keys.size() < kRadixSortMinItems)
     std::sort(keys.begin(), keys.end());
@@ -57,7 +58,7 @@ std::vector<std::uint32_t> mortonOrder(const std::vector<gpu::PointLight>& light
 
 SceneOctreeBuild buildSceneOctree(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b,
                                   const GeometryMask* mask, bool keep_octrees,
-                                  const std::function<void(std::size_t)>& checkLit) {
+                                  const std::function<void(std::size_t)>& check_lit) {
   SceneOctreeBuild out;
   out.tree = std::make_unique<SceneOctree>(b, mask);
   if (keep_octrees) out.octrees.resize(lights.size());
@@ -88,7 +89,7 @@ SceneOctreeBuild buildSceneOctree(const std::vector<gpu::PointLight>& lights, co
   auto merge = [&](Chunk c) {
     const auto t = SteadyClock::now();
     for (const auto& o : c.octrees) out.filled_cells += o.filled_cells;
-    checkLit(out.filled_cells);
+    check_lit(out.filled_cells);
     for (const auto& o : c.octrees) out.tree->insert(o);
     out.merge_ms += msSince(t);
     return c;

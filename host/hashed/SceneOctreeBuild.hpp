@@ -8,7 +8,7 @@
 //  - The tree, after SceneOctree::normalize(), is the one inserting the
 //    lights in any order gives (the canonical form depends only on the light
 //    set): the same for any thread count (hashed_build_threads_test).
-//  - `checkLit` sees the running count of lit (light, cell) pairs before each
+//  - `check_lit` sees the running count of lit (light, cell) pairs before each
 //    chunk is merged and may throw to stop the build before the merge grows
 //    past a memory limit (the count only grows, so the last call sees the total).
 #include <cstddef>
@@ -32,7 +32,7 @@ struct SceneOctreeBuild {
 
 SceneOctreeBuild buildSceneOctree(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds,
                                   const GeometryMask* mask, bool keep_octrees,
-                                  const std::function<void(std::size_t)>& checkLit);
+                                  const std::function<void(std::size_t)>& check_lit);
 
 // The light indices in Morton order of their centre cells (coarsened to at
 // most 10 bits an axis; centres outside the bounds clamped), ties by index.

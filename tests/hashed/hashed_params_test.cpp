@@ -106,9 +106,9 @@ TEST(HashedParams, GeometryMaskNeedsASceneAndFitsTheLimit) {
 }
 
 // With the mask, the first check counts the light octrees only; the lit
-// cells with geometry, known after them, are checked before the scene octree
-// grows: a limit between the two estimates refuses the build there, and one
-// at the second lets it through.
+// cells with geometry, counted as the octrees are built, are checked before
+// each chunk of them is merged: a limit between the two estimates refuses
+// the build, and one at the second lets it through.
 TEST(HashedParams, GeometryMaskBuildsCheckTheirLitCells) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed " + std::to_string(seed));
