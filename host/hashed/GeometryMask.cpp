@@ -131,12 +131,21 @@ bool polygonBounds(const Polygon& poly, GeometryMask::Box& out) {
   return true;
 }
 
-// Triangle v[0..2] clipped to the box [lo, hi]; empty when nothing is left.
-Polygon clippedTriangle(const glm::dvec3 v[3], const glm::dvec3& lo, const glm::dvec3& hi) {
+Polygon trianglePolygon(const glm::dvec3 v[3]) {
   Polygon poly;
   poly.n = 3;
   for (int i = 0; i < 3; ++i) poly.p[i] = v[i];
-  for (int plane = 0; plane < 6 && poly.n > 0; ++plane) clipPlane(poly, plane / 2, plane & 1, plane & 1 ? hi[plane / 2] : lo[plane / 2]);
+  return poly;
+}
+
+// Triangle v[0..2] clipped to the box [lo, hi]; empty when nothing is left.
+Polygon clippedTriangle(const glm::dvec3 v[3], const glm::dvec3& lo, const glm::dvec3& hi) {
+  Polygon poly = trianglePolygon(v);
+  for (int plane = 0; plane < 6 && poly.n > 0; ++plane) {
+    const int a = plane / 2;
+    const bool upper = plane & 1;
+    clipPlane(poly, a, upper, upper ? hi[a] : lo[a]);
+  }
   return poly;
 }
 
@@ -264,12 +273,8 @@ struct TriangleInCells {
 // The triangle's part in the widened cell centred at `centre` (half size h):
 // the triangle itself when it lies inside, else clipped to the box.
 Polygon cellPart(const TriangleInCells& tri, const glm::dvec3& centre, double h) {
-  if (glm::all(glm::greaterThanEqual(tri.tlo, centre - h)) && glm::all(glm::lessThanEqual(tri.thi, centre + h))) {
-    Polygon poly;
-    poly.n = 3;
-    for (int i = 0; i < 3; ++i) poly.p[i] = tri.v[i];
-    return poly;
-  }
+  if (glm::all(glm::greaterThanEqual(tri.tlo, centre - h)) && glm::all(glm::lessThanEqual(tri.thi, centre + h)))
+    return trianglePolygon(tri.v);
   return clippedTriangle(tri.v, centre - h, centre + h);
 }
 

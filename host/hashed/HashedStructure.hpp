@@ -68,6 +68,9 @@ class HashedStructure {
   // The geometry mask, which the light octrees test against (geometry-tight
   // light sets), or null.
   const GeometryMask* mask() const { return mask_.get(); }
+  // With the geometry mask, every light's octree as the build kept it
+  // (lightOctrees()[i] of lights()[i]); empty without it.
+  const std::vector<LightOctree>& lightOctrees() const { return octrees_; }
   const std::vector<gpu::PointLight>& lights() const { return lights_; }
   const BuildStats& lastBuild() const { return build_stats_; }
   const UpdateStats& lastUpdate() const { return update_stats_; }

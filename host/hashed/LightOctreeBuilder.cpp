@@ -1,8 +1,5 @@
 #include "host/hashed/LightOctreeBuilder.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -81,7 +78,7 @@ GridCounts countGrid(const Grid& g, std::vector<std::uint64_t>& sums) {
   for (int z = 0; z < n.z; ++z)
     for (int y = 0; y < n.y; ++y)
       for (int x = 0; x < n.x; ++x) {
-        const std::uint8_t v = g.cells[std::size_t(x) + std::size_t(n.x) * (std::size_t(y) + std::size_t(n.y) * std::size_t(z))];
+        const std::uint8_t v = g.cells[g.index(g.lo + glm::ivec3(x, y, z))];
         const std::uint64_t c = v == kTestedIn ? 1u : v == kOutside ? std::uint64_t(1) << 32 : 0u;
         at(x + 1, y + 1, z + 1) = c + at(x, y + 1, z + 1) + at(x + 1, y, z + 1) + at(x + 1, y + 1, z) -
                                   at(x, y, z + 1) - at(x, y + 1, z) - at(x + 1, y, z) + at(x, y, z);
@@ -220,9 +217,6 @@ std::size_t floodOutsideCells(const Sphere& s, const CellBox& box, Grid& g, std:
   return std::size_t(n.x) * n.y * n.z - q.size();
 }
 
-// Fewer lights are less work than waking the worker threads.
-constexpr std::size_t kParallelOctreesMinLights = 256;
-
 }  // namespace
 
 LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, const OctreeBounds& b,
@@ -272,23 +266,6 @@ LightCells::LightCells(const gpu::PointLight& light, const OctreeBounds& b)
       const int x = box_.lo[a] + i;
       axis_d2_[std::size_t(axis_off_[a] + i)] = axisGap2(c[a], x, x, eps);
     }
-}
-
-std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b,
-                                           const GeometryMask* geometry) {
-  std::vector<LightOctree> out(lights.size());
-  if (lights.size() < kParallelOctreesMinLights) {
-    LightGridScratch s;
-    for (std::size_t i = 0; i < lights.size(); ++i) out[i] = buildLightOctree(lights[i], std::uint32_t(i), b, s, geometry);
-    return out;
-  }
-  tbb::enumerable_thread_specific<LightGridScratch> scratch;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lights.size(), 16), [&](const auto& range) {
-    LightGridScratch& s = scratch.local();
-    for (std::size_t i = range.begin(); i != range.end(); ++i)
-      out[i] = buildLightOctree(lights[i], std::uint32_t(i), b, s, geometry);
-  });
-  return out;
 }
 
 }  // namespace ml::hashed

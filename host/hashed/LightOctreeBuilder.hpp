@@ -163,9 +163,7 @@ struct LightGridScratch {
 LightOctree buildLightOctree(const gpu::PointLight& light, std::uint32_t index, const OctreeBounds& bounds,
                              LightGridScratch& scratch, const GeometryMask* geometry = nullptr);
 
-// Every light's octree, built in parallel (TBB); out[i] belongs to lights[i].
-std::vector<LightOctree> buildLightOctrees(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds,
-                                           const GeometryMask* geometry = nullptr);
+// (Every light's octree of a full build: buildSceneOctree(), SceneOctreeBuild.hpp.)
 
 // Skips the preorder subtree starting at `cursor`.
 inline void skipLightSubtree(const LightNode*& cursor) {

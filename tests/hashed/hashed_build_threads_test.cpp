@@ -49,7 +49,7 @@ Built buildAll(const std::vector<gpu::PointLight>& lights, const HashedConfig& c
   Built out;
   out.hs = std::make_unique<HashedStructure>(cfg, &scene);
   out.hs->build(lights);
-  out.octrees = buildLightOctrees(lights, out.hs->bounds(), out.hs->mask());
+  out.octrees = out.hs->lightOctrees();
   return out;
 }
 

@@ -290,8 +290,9 @@ TEST(HashedOctree, SceneOctreeIsCanonical) {
   });
   // Insertion order does not matter: reversed insertion gives the same tree.
   SceneOctree rev(hs.bounds(), nullptr);
-  const auto octrees = buildLightOctrees(lights, hs.bounds());
-  for (auto it = octrees.rbegin(); it != octrees.rend(); ++it) rev.insert(*it);
+  LightGridScratch scratch;
+  for (std::size_t i = lights.size(); i-- > 0;)
+    rev.insert(buildLightOctree(lights[i], std::uint32_t(i), hs.bounds(), scratch));
   rev.normalize();
   const auto a = hs.tree().countsPerDepth(), b = rev.countsPerDepth();
   for (std::size_t t = 0; t < a.size(); ++t) {
