@@ -18,7 +18,7 @@ constexpr const char* kPasses[] = {"vct-lists", "vct-inject", "vct-mips", "vct-t
 struct SweepScene {
   std::string name;
   SceneInputs in;
-  std::vector<float> reference;
+  IndirectImage reference;  // with its noise estimate
 };
 
 // `lights` > 0: that many lights generated as `render --lights N` does; 0: the scene's own set.
@@ -33,7 +33,7 @@ SweepScene loadScene(const std::string& name, unsigned lights, const FrameSweepO
   if (lights > 0) a.lights = std::to_string(lights);
   SweepScene s{name, loadSceneInputs(a), {}};
   const IndirectOptions r{o.reference_samples, kThesisSeed, false};
-  s.reference = traceIndirectReference(s.in.scene, s.in.lights, s.in.cameras.frames.front(), o.width, o.height, r).rgba;
+  s.reference = traceIndirectReference(s.in.scene, s.in.lights, s.in.cameras.frames.front(), o.width, o.height, r);
   return s;
 }
 
@@ -49,10 +49,12 @@ nlohmann::json row(RunContext& ctx, FrameRenderer& renderer, const SweepScene& s
   // textures) as with moving lights; with static lights it would reuse it.
   const TimedFrame t = timedRenders(renderer, *assigner, options, cam, static_cast<unsigned>(o.reps),
                                     [&] { renderer.setLights(s.in.lights); });
-  const IndirectError e = indirectRelRmse(gi.indirectRgba(), s.reference);
+  const IndirectComparison c = compareWithReference(gi.indirectRgba(), s.reference);
+  const IndirectError& e = c.error;
   nlohmann::json j{{"scene", s.name},         {"lights", s.in.lights.size()}, {"voxels", v.grid.voxels},
                    {"levels", v.grid.levels}, {"anisotropic", v.grid.anisotropic}, {"cones", v.cones},
-                   {"vct-voxelize", voxelize}, {"gi_rel_rmse", e.rel_rmse}, {"voxel_bytes", vct::voxelBytes(v.grid)},
+                   {"vct-voxelize", voxelize}, {"gi_rel_rmse", e.rel_rmse}, {"gi_ref_noise", c.ref_noise},
+                   {"gi_rel_rmse_corrected", c.corrected}, {"voxel_bytes", vct::voxelBytes(v.grid)},
                    {"vct_updates", gi.volumeUpdates()}};
   double sum = voxelize;
   std::printf("%-8s %7zu %5u^3 %-5s %5u %9.2f", s.name.c_str(), s.in.lights.size(), v.grid.voxels,
@@ -63,7 +65,8 @@ nlohmann::json row(RunContext& ctx, FrameRenderer& renderer, const SweepScene& s
     sum += ms;
     std::printf(" %9s", passTimeText(ms, 2).c_str());
   }
-  std::printf(" %9s %8.4f %9.1f\n", passTimeText(sum, 2).c_str(), e.rel_rmse, double(vct::voxelBytes(v.grid)) / 1e6);
+  std::printf(" %9s %8.4f %9.4f %9.1f\n", passTimeText(sum, 2).c_str(), e.rel_rmse, c.corrected,
+              double(vct::voxelBytes(v.grid)) / 1e6);
   return j;
 }
 
@@ -74,11 +77,11 @@ nlohmann::json frameSweep(const FrameSweepOptions& o) {
   ctx.printDevices();
   std::printf("\nVCT in %s frames, %ux%u (trace at 0.5), ms: vct-voxelize of the first frame, the rest median of %d "
               "frames, each updating the volume (the lights set again, as if they moved); rel RMSE vs the Embree "
-              "reference (%u samples/pixel)\n",
+              "reference (%u samples/pixel) and without the reference's own noise (corrected)\n",
               o.technique.c_str(), o.width, o.height, o.reps, o.reference_samples);
   std::printf("%-8s %7s %7s %-5s %5s %9s", "scene", "lights", "voxels", "vol", "cones", "voxelize");
   for (const char* p : kPasses) std::printf(" %9s", p + 4);
-  std::printf(" %9s %8s %9s\n", "sum", "rel RMSE", "MB");
+  std::printf(" %9s %8s %9s %9s\n", "sum", "rel RMSE", "corrected", "MB");
   nlohmann::json records = nlohmann::json::array();
   const std::vector<unsigned> light_sets = o.lights.empty() ? std::vector<unsigned>{0} : o.lights;
   for (const char* name : {"cornell", "default"})
@@ -90,7 +93,7 @@ nlohmann::json frameSweep(const FrameSweepOptions& o) {
         for (bool aniso : {false, true})
           for (unsigned cones : o.cones) {
             vct::VctGiSettings v;
-            v.grid = {voxels, o.levels, aniso};
+            v.grid = {voxels, o.levels ? o.levels : vct::autoLevels(voxels), aniso};
             v.cones = cones;
             records.push_back(row(ctx, renderer, s, v, o));
           }

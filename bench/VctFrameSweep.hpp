@@ -25,7 +25,7 @@ struct FrameSweepOptions {
   std::vector<unsigned> cones{5, 9, 16};
   std::vector<unsigned> lights;  // generated light counts; empty: each scene's own lights
   std::string technique = "deferred";
-  unsigned levels = 4;
+  unsigned levels = 0;  // 0: vct::autoLevels(voxels), as render --levels auto
   unsigned width = 320, height = 180;
   int reps = 3;
   unsigned reference_samples = 256;

@@ -241,7 +241,8 @@ void parseArgs(CLI::App& app, Args& a) {
       ->capture_default_str();
   app.add_option("--json", a.common.json_path, "write records as JSON");
   app.add_option("--edges", a.edges, "mip grid edges (powers of two)")->capture_default_str();
-  app.add_option("--levels", a.levels, "mip levels")->capture_default_str();
+  app.add_option("--levels", a.levels, "mip levels (--frame: default auto, log2(edge) - 1 per edge)")
+      ->capture_default_str();
   app.add_option("--lights", a.light_counts, "injection light counts")->capture_default_str();
   app.add_option("--inject-edge", a.inject_edge, "injection grid edge")->capture_default_str();
   app.add_option("--radius", a.radius, "light radius, as a fraction of the room")->capture_default_str();
@@ -270,7 +271,7 @@ int run(int argc, char** argv) {
     for (unsigned c : o.cones) vct::checkConeSettings(c, 45.0f);
     if (!a.frame_lights.empty()) o.lights = parseCounts(a.frame_lights, "--frame-lights");
     o.technique = findTechnique(a.frame_technique, "--frame-technique").name;
-    o.levels = a.levels;
+    o.levels = app.count("--levels") ? a.levels : 0;
     o.reps = a.common.reps;
     o.device = a.common.device;
     benchutil::writeJson(a.common.json_path, benchvct::frameSweep(o));

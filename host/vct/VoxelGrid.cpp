@@ -17,6 +17,11 @@ unsigned log2Exact(unsigned pow2) {
   return k;
 }
 
+unsigned autoLevels(unsigned voxels) {
+  const unsigned k = log2Exact(voxels);
+  return k > 2 ? k - 1 : 1;
+}
+
 void checkVoxelGrid(const VoxelGridSettings& s) {
   if (!isPow2(s.voxels) || s.voxels > ML_VOXEL_MAX_EDGE)
     throw UserError("--voxels " + std::to_string(s.voxels) + ": must be a power of two from 1 to " +

@@ -20,14 +20,22 @@ namespace ml::vct {
 
 struct VoxelGridSettings {
   unsigned voxels = 64;  // level-0 voxels per axis
-  unsigned levels = 4;
-  bool anisotropic = false;
+  unsigned levels = 5;   // autoLevels(64), --levels auto
+  bool anisotropic = true;  // --anisotropic (on by default)
 };
 
 void checkVoxelGrid(const VoxelGridSettings& s);  // UserError naming --voxels / --levels
 
 // log2 of a power of two.
 unsigned log2Exact(unsigned pow2);
+
+// --levels auto: log2(voxels) - 1 (at least 1), so the coarsest level is four
+// voxels across, the same world size at every --voxels: a finer grid refines
+// every level. A fixed count made the coarsest level shrink with the voxels,
+// and wide cones read it too sharp (Cornell box, anisotropic, 9 cones,
+// relative RMSE at 128^3: 4 levels 0.161, 5 0.151, auto (6) 0.141; 64^3: 4
+// levels 0.163, auto (5) 0.148).
+unsigned autoLevels(unsigned voxels);
 
 // Voxels of levels 0 .. levels - 1 together, and of levels 1 .. levels - 1.
 std::size_t voxelsAllLevels(unsigned edge, unsigned levels);

@@ -46,7 +46,7 @@ TEST(BenchGi, SweepOfTwoVctKeysGivesFourRecordsWithTheirSettingsAndPasses) {
     EXPECT_EQ(rec.at("gi"), "vct");
     const auto& s = rec.at("gi_settings");
     seen.emplace(s.at("voxels").get<std::string>(), s.at("cones").get<std::string>());
-    EXPECT_EQ(s.at("levels"), "4");  // the unswept settings keep the table's defaults
+    EXPECT_EQ(s.at("levels"), "auto");  // the unswept settings keep the table's defaults
     for (const char* pass : {"vct-voxelize", "vct-inject", "vct-mips", "vct-trace", "vct-upsample"})
       EXPECT_TRUE(rec.at("passes").contains(pass)) << pass;
     bytes.insert(rec.at("voxel_bytes").get<std::size_t>());
@@ -158,7 +158,7 @@ TEST(BenchGi, ReferenceErrorEqualsRendersOfTheSameFrameAndSettings) {
     const std::string stats = tmp.file("r_" + aniso + ".json");
     const auto r = test::runManylights("render --scene " + dir + "cornell.gltf --lights " + dir + "lights.json --camera " +
                                        dir + "camera.json --technique deferred --size 64x48 --frame 0 --frames 1 "
-                                       "--warmup 0 --gi vct --voxels 32 " + (aniso == "on" ? "--anisotropic " : "") +
+                                       "--warmup 0 --gi vct --voxels 32 --anisotropic=" + aniso + " " +
                                        "--gi-reference --gi-samples 8 --stats-json " + stats);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const double want = readJson(stats).at("gi_rel_rmse").get<double>();

@@ -36,6 +36,8 @@ TEST(ViewerGi, RefusedValuesKeepTheLastWorkingState) {
   ViewerGi gi(test::runtime(), box);
   EXPECT_FALSE(gi.on());
   gi.setParam("voxels", "16");  // accepted while off: used when turned on
+  EXPECT_EQ(gi.params().text("levels"), "auto");
+  gi.setParam("levels", "4");
   gi.setMode("vct");
   ASSERT_TRUE(gi.on());
   EXPECT_EQ(gi.params().text("voxels"), "16");
