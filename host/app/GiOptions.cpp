@@ -66,7 +66,7 @@ void addPassFlags(CLI::App& cmd, GiArgs& a) {
 }
 
 std::string giModesHelp() {
-  std::string s = "global illumination: none, reference (ray-traced one-bounce diffuse indirect light, written as "
+  std::string s = "global illumination: none, reference (ray-traced diffuse indirect light, --gi-bounces, written as "
                   "<out>_gi_reference.exr/.png)";
   for (const GiDescriptor* d : giDescriptors())
     s += ", " + d->name + " (" + d->summary + ", its indirect image as <out>_gi_" + d->name + ".exr/.png)";
@@ -84,6 +84,10 @@ void addGiFlags(CLI::App& cmd, GiArgs& a) {
                  "--gi reference: visibility of the lights from the bounce points (none|ray; default: none, or the "
                  "transport the GI pass models with --gi-reference)");
   cmd.add_option("--gi-seed", a.seed, "--gi reference: seed of the hemisphere samples")->capture_default_str();
+  cmd.add_option("--gi-bounces", a.bounces,
+                 "--gi reference: bounces of the indirect light (1.." + std::to_string(kMaxIndirectBounces) +
+                     "; a GI pass's reference (--gi-reference) traces the one bounce the passes model)")
+      ->capture_default_str();
   addPassFlags(cmd, a);
   cmd.add_flag("--gi-reference", a.with_reference,
                "with a GI pass: also trace the Embree reference (--gi-samples, --gi-seed) and report gi_rel_rmse");
@@ -177,10 +181,16 @@ void checkGiFlags(const GiArgs& a, const std::string& out) {
     throw UserError("--gi-samples: expected 1.." + std::to_string(kMaxGiSamples) + ", got " + std::to_string(a.samples));
   if (!a.shadows.empty() && a.shadows != "none" && a.shadows != "ray")
     throw UserError("--gi-shadows: expected none|ray, got '" + a.shadows + "'");
+  if (a.bounces < 1 || a.bounces > kMaxIndirectBounces)
+    throw UserError("--gi-bounces: expected 1.." + std::to_string(kMaxIndirectBounces) + ", got " +
+                    std::to_string(a.bounces));
   checkGiParams(a);
   const GiDescriptor* pass = giPassOf(a);
   if (a.with_reference && !(pass && pass->reference_shadows))
     throw UserError("--gi-reference: only with --gi " + referencePasses());
+  if (a.with_reference && a.bounces != 1)
+    throw UserError("--gi-bounces " + std::to_string(a.bounces) + ": --gi " + pass->name +
+                    " models one bounce, so its reference traces one (more bounces: --gi reference)");
   if (a.with_reference) {
     const std::string models = pass->reference_shadows(giParams(*pass, givenFor(*pass, a.given)));
     if (giShadows(a) != models)

@@ -38,6 +38,7 @@ struct GiArgs {
   unsigned samples = 64;           // hemisphere samples per pixel
   std::string shadows;             // none | ray: visibility of lights from the secondary hits; empty: giShadows()
   std::uint64_t seed = kThesisSeed;
+  unsigned bounces = 1;            // --gi-bounces: of the reference (1..kMaxIndirectBounces)
   SettingList given;               // GI pass parameters given (--KEY, --gi-param KEY=VALUE), in order
   SettingList view;                // GI view parameters given (--voxel-view ...)
   bool with_reference = false;     // --gi-reference

@@ -63,13 +63,14 @@ GiResult runGi(const GiArgs& a, const SceneInputs& inputs, const Camera& camera,
   std::vector<float> image;
   if (pass) image = passOutputs(a, *pass, camera, width, height, out, r);
   if (a.mode == "reference" || a.with_reference) {
-    const IndirectOptions o{a.samples, a.seed, giShadows(a) == "ray"};
+    const IndirectOptions o{a.samples, a.seed, giShadows(a) == "ray", a.bounces};
     const CachedReference ref = cachedIndirectReference(inputs.scene, inputs.lights, camera, width, height, o);
     const IndirectImage& img = ref.image;
     r.has_reference = true;
     r.reference_cached = ref.from_cache;
     r.ms = img.ms;
-    std::printf("\ngi reference: %u samples/pixel, shadows %s: %.1f ms%s\n", a.samples, giShadows(a).c_str(), img.ms,
+    std::printf("\ngi reference: %u samples/pixel, %u bounce%s, shadows %s: %.1f ms%s\n", a.samples, a.bounces,
+                a.bounces == 1 ? "" : "s", giShadows(a).c_str(), img.ms,
                 ref.from_cache ? " (read from the reference cache)" : "");
     writeGiImages(out, "reference", width, height, img.rgba, r);
     if (!image.empty()) {

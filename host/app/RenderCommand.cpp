@@ -229,6 +229,7 @@ void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j
   if (!gi.has_reference) return;
   j["gi_samples"] = a.samples;
   j["gi_shadows"] = giShadows(a);
+  j["gi_bounces"] = a.bounces;
   j["gi_reference_ms"] = gi.ms;
   j["gi_reference_cached"] = gi.reference_cached;
   if (gi.has_pass) {

@@ -96,6 +96,7 @@ class Tracer {
   bool visible(const glm::vec3& from, const glm::vec3& to) const;
   glm::vec3 pixel(const glm::vec3& eye, const glm::vec3& dir, PixelRng& rng, bool& covered, float& noise_var) const;
   glm::dvec3 replicaSum(const Surface& x, unsigned s, PixelRng& rng) const;
+  glm::vec3 pathRadiance(Surface y, PixelRng& rng) const;
 
  private:
   const Scene& scene_;
@@ -217,7 +218,32 @@ glm::dvec3 Tracer::replicaSum(const Surface& x, unsigned s, PixelRng& rng) const
     const float r = std::sqrt(u1), phi = 6.28318530718f * u2;
     const glm::vec3 w = r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
     Surface y;
-    if (intersect(org, glm::normalize(w), y)) sum += glm::dvec3(directRadiance(y));
+    if (intersect(org, glm::normalize(w), y)) sum += glm::dvec3(pathRadiance(y, rng));
+  }
+  return sum;
+}
+
+// A cosine-weighted direction around n from two uniform numbers (Malley).
+glm::vec3 cosineDirection(const glm::vec3& n, float u1, float u2) {
+  const float sign = std::copysign(1.0f, n.z), a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+  const glm::vec3 t1(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x), t2(b, sign + n.y * n.y * a, -n.y);
+  const float r = std::sqrt(u1), phi = 6.28318530718f * u2;
+  return glm::normalize(r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * n);
+}
+
+// The radiance a path sample brings back from its first hit y: y's direct
+// light, then, for bounces > 1, the light of one cosine-weighted continuation
+// per further bounce, weighted by the albedos along the way (each continuation
+// is the estimate of albedo/pi * integral of B cos, as at x).
+glm::vec3 Tracer::pathRadiance(Surface y, PixelRng& rng) const {
+  glm::vec3 sum = directRadiance(y), throughput(1.0f);
+  for (unsigned b = 1; b < options_.bounces; ++b) {
+    throughput *= y.albedo;
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    Surface z;
+    if (!intersect(y.p + eps_ * y.n, cosineDirection(y.n, u1, u2), z)) break;
+    sum += throughput * directRadiance(z);
+    y = z;
   }
   return sum;
 }
@@ -228,6 +254,8 @@ IndirectImage traceIndirectReference(const Scene& scene, const std::vector<gpu::
                                      const Camera& camera, unsigned width, unsigned height,
                                      const IndirectOptions& options) {
   if (options.samples == 0) throw UserError("indirect reference: samples must be at least 1");
+  if (options.bounces < 1 || options.bounces > kMaxIndirectBounces)
+    throw UserError("indirect reference: bounces must be 1.." + std::to_string(kMaxIndirectBounces));
   if (width == 0 || height == 0) throw UserError("indirect reference: empty image");
   const auto start = std::chrono::steady_clock::now();
   IndirectImage img;

@@ -1,6 +1,7 @@
 #pragma once
-// Ray-traced one-bounce diffuse indirect light on the CPU (Embree 3, TBB): the
-// reference voxel cone tracing is measured against.
+// Ray-traced diffuse indirect light on the CPU (Embree 3, TBB): the reference
+// voxel cone tracing is measured against. One bounce unless `bounces` says
+// more.
 //
 // Per pixel: the primary hit x of the camera ray through the pixel centre
 // (the GL renderer's camera and pixel convention); `samples` cosine-weighted
@@ -13,7 +14,11 @@
 //     B(y) = albedo(y) * sum_i I_i * max(0, n_y . l_i) * clamp(1 - d_i / r_i, 0, 1)^2
 // optionally only over lights visible from y (a shadow ray each); then
 //     indirect(x) = albedo(x) * mean over the samples of B(y)
-// (the cosine-weighted estimate of albedo/pi * integral of B cos). Normals are
+// (the cosine-weighted estimate of albedo/pi * integral of B cos). With
+// bounces = k > 1 each sample's path goes on from y: one cosine-weighted
+// direction from y to z adds albedo(y) * B(z), from z the next, k - 1 times
+// in all (light that bounced k times before x; a path that leaves the scene
+// adds nothing more). Normals are
 // the interpolated vertex normals, turned to the side of the surface (by its
 // geometric normal) that the ray arrived on; albedo is the material's base colour times its texture (bilinear,
 // level 0, the bytes as GL samples them). Misses contribute 0.
@@ -30,7 +35,8 @@ namespace ml {
 struct IndirectOptions {
   unsigned samples = 64;      // hemisphere samples per pixel, >= 1
   std::uint64_t seed = kThesisSeed;
-  bool shadow_rays = false;   // visibility of the lights from the secondary hits
+  bool shadow_rays = false;   // visibility of the lights from the secondary hits (every hit of a path)
+  unsigned bounces = 1;       // 1..kMaxIndirectBounces
 };
 
 struct IndirectImage {
@@ -45,7 +51,10 @@ struct IndirectImage {
   double ms = 0;  // wall time of the trace (scene build included), or of reading it from the cache
 };
 
-// Throws UserError for samples == 0 or a zero-sized image.
+inline constexpr unsigned kMaxIndirectBounces = 8;
+
+// Throws UserError for samples == 0, bounces outside 1..kMaxIndirectBounces
+// or a zero-sized image.
 IndirectImage traceIndirectReference(const Scene& scene, const std::vector<gpu::PointLight>& lights,
                                      const Camera& camera, unsigned width, unsigned height,
                                      const IndirectOptions& options);

@@ -106,6 +106,7 @@ std::uint64_t indirectReferenceKey(const Scene& scene, const std::vector<gpu::Po
   f.value(camera.fovy_degrees), f.value(camera.near_plane), f.value(camera.far_plane);
   f.value(width), f.value(height), f.value(options.samples), f.value(options.seed);
   f.value(static_cast<unsigned char>(options.shadow_rays));
+  f.value(options.bounces);
   return f.h;
 }
 

@@ -8,7 +8,7 @@
 // tracer's version (kIndirectTracerVersion, raised with any change to
 // IndirectReference.cpp's output), the scene's vertices, indices, batches,
 // materials and texture bytes, the lights, the camera, the size, the samples,
-// the seed and the shadow rays. A file is used only when it reads back whole
+// the seed, the shadow rays and the bounces. A file is used only when it reads back whole
 // with the same key, size and magic; otherwise the reference is traced and the
 // file written again (a temporary file renamed into place, so a reader never
 // sees half a file). Folder: $MANYLIGHTS_CACHE_DIR/gi-reference, else

@@ -30,6 +30,7 @@
 #include "host/assign/BruteForceAssigner.hpp"
 #include "host/reference/IndirectReference.hpp"
 #include "host/reference/LightSphereGrid.hpp"
+#include "host/util/Error.hpp"
 #include "host/util/ImageIO.hpp"
 #include "ml_test_paths.h"  // MANYLIGHTS_TEST_DATA_DIR
 #include "support/InProcessCli.hpp"
@@ -166,6 +167,43 @@ TEST(ReferenceIndirect, UniformSphereMeetsTheFurnaceBound) {
   }
 }
 
+// The same furnace with k bounces: every hit of a path has the same direct
+// radiance B = a I w (w between the bound's ends), so a path that stays in
+// the closed sphere brings back B (1 + a + .. + a^(k-1)) and the pixel a times
+// that, exactly (no noise: each continuation only adds a factor of the bound).
+// A missing continuation, a wrong albedo weight or one bounce too many or too
+// few leaves the bound: the bound is 1% wide (hi / lo), the last bounce adds
+// a^(k-1) / (1 + .. + a^(k-2)) >= 7% for a >= 0.5 and k <= 4.
+TEST(ReferenceIndirect, UniformSphereHoldsTheFurnaceBoundForEveryBounceCount) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937 rng(static_cast<unsigned>(seed));
+  std::uniform_real_distribution<float> u(0.2f, 0.9f), albedo(0.5f, 0.9f), dir(-1.0f, 1.0f);
+  const float R = 1.0f, r = R * (1.2f + 2.0f * u(rng)), I = 4.0f * u(rng), a = albedo(rng);
+  const Scene s = insideSphere(R, 96, 48, 2.0f, {a, a, a, 1}, {a, a, a, 1});
+  double h = 0, share = 0;
+  sphereFacts(s, h, share);
+  const std::vector<gpu::PointLight> light = {{{0, 0, 0, r}, {I, I, I, 0}}};
+  ASSERT_LT(std::pow(1 - h / r, 2) / std::pow(1 - R / r, 2), 1.01);  // the bound is tight
+  double sum = 0;
+  for (unsigned k = 1; k <= 4; ++k) {
+    sum += std::pow(double(a), k - 1);
+    const double lo = a * a * I * std::pow(1 - R / r, 2) * sum, hi = a * a * I * std::pow(1 - h / r, 2) * sum;
+    const IndirectImage img = traceIndirectReference(s, light, insideCamera({dir(rng), dir(rng), dir(rng)}), 16, 12,
+                                                     {8, seed, k % 2 == 0, k});
+    for (std::size_t i = 0; i < img.rgba.size(); i += 4) {
+      ASSERT_EQ(img.rgba[i + 3], 1.0f) << "pixel " << i / 4 << " missed the sphere";
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_GE(img.rgba[i + c], lo * (1 - 1e-4)) << "pixel " << i / 4 << " bounces " << k;
+        ASSERT_LE(img.rgba[i + c], hi * (1 + 1e-4)) << "pixel " << i / 4 << " bounces " << k;
+      }
+    }
+  }
+  EXPECT_THROW(traceIndirectReference(s, light, insideCamera({0, 0, 1}), 4, 4, {1, seed, false, 0}), UserError);
+  EXPECT_THROW(traceIndirectReference(s, light, insideCamera({0, 0, 1}), 4, 4, {1, seed, false, kMaxIndirectBounces + 1}),
+               UserError);
+}
+
 TEST(ReferenceIndirect, CapOnASphereGetsItsFormFactor) {
   const std::uint64_t seed = test::freshSeed();
   SCOPED_TRACE("seed=" + std::to_string(seed));
@@ -291,8 +329,14 @@ TEST(ReferenceIndirect, RenderCommandWritesTheImagesAndChecksItsFlags) {
   const auto j = nlohmann::json::parse(std::ifstream(stats));
   EXPECT_EQ(j.at("gi").get<std::string>(), "reference");
   EXPECT_GT(j.at("gi_reference_ms").get<double>(), 0.0);
+  EXPECT_EQ(j.at("gi_bounces").get<unsigned>(), 1u);
   for (const auto& bad : std::vector<std::vector<std::string>>{
-           {"--gi", "vct-someday"}, {"--gi", "reference", "--gi-samples", "0"}, {"--gi-shadows", "maybe"}}) {
+           {"--gi", "vct-someday"},
+           {"--gi", "reference", "--gi-samples", "0"},
+           {"--gi-shadows", "maybe"},
+           {"--gi", "reference", "--gi-bounces", "0"},
+           {"--gi", "reference", "--gi-bounces", "9"},
+           {"--gi", "vct", "--gi-reference", "--gi-bounces", "2"}}) {
     const auto r = with(bad);
     EXPECT_EQ(r.exit_code, 2) << bad[0] << " " << bad[1];
     EXPECT_NE(r.err.find(bad[bad.size() - 2]), std::string::npos) << r.err;
