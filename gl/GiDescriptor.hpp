@@ -30,6 +30,7 @@ struct GiContext {
   ClRuntime& cl;
   const ParamValues& params;  // every parameter of the pass, checked
   const Scene& scene;
+  unsigned bounces = 1;       // --gi-bounces: light bounces to model, 1..the descriptor's max_bounces
 };
 
 using SettingList = std::vector<std::pair<std::string, std::string>>;
@@ -44,6 +45,7 @@ struct GiDescriptor {
   // with these parameters; empty: no --gi-reference comparison.
   std::function<std::string(const ParamValues&)> reference_shadows{};
   std::vector<std::string> extra_images{};  // GiPass::extraImages() suffixes: <out>_gi_NAME_<suffix>.png
+  unsigned max_bounces = 1;                 // the most --gi-bounces the pass models
 
   // Views of the pass's data (GiPass::view): the viewer's view mode
   // `view_name` ("" : none) and render's files when a view flag is given.

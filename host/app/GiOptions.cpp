@@ -85,8 +85,8 @@ void addGiFlags(CLI::App& cmd, GiArgs& a) {
                  "transport the GI pass models with --gi-reference)");
   cmd.add_option("--gi-seed", a.seed, "--gi reference: seed of the hemisphere samples")->capture_default_str();
   cmd.add_option("--gi-bounces", a.bounces,
-                 "--gi reference: bounces of the indirect light (1.." + std::to_string(kMaxIndirectBounces) +
-                     "; a GI pass's reference (--gi-reference) traces the one bounce the passes model)")
+                 "bounces of the indirect light (1.." + std::to_string(kMaxIndirectBounces) +
+                     "): of --gi reference, and of a GI pass up to what it models (its --gi-reference traces as many)")
       ->capture_default_str();
   addPassFlags(cmd, a);
   cmd.add_flag("--gi-reference", a.with_reference,
@@ -188,9 +188,9 @@ void checkGiFlags(const GiArgs& a, const std::string& out) {
   const GiDescriptor* pass = giPassOf(a);
   if (a.with_reference && !(pass && pass->reference_shadows))
     throw UserError("--gi-reference: only with --gi " + referencePasses());
-  if (a.with_reference && a.bounces != 1)
-    throw UserError("--gi-bounces " + std::to_string(a.bounces) + ": --gi " + pass->name +
-                    " models one bounce, so its reference traces one (more bounces: --gi reference)");
+  if (pass && a.bounces > pass->max_bounces)
+    throw UserError("--gi-bounces " + std::to_string(a.bounces) + ": --gi " + pass->name + " models 1.." +
+                    std::to_string(pass->max_bounces) + " (more: --gi reference)");
   if (a.with_reference) {
     const std::string models = pass->reference_shadows(giParams(*pass, givenFor(*pass, a.given)));
     if (giShadows(a) != models)
@@ -209,7 +209,7 @@ ParamValues giPassParams(const GiArgs& a) {
 std::unique_ptr<GiPass> makeFrameGiPass(const GiArgs& a, ClRuntime& cl, const Scene& scene) {
   const GiDescriptor* d = giPassOf(a);
   if (!d) return nullptr;
-  return makeGiPass(*d, cl, giPassParams(a), scene);
+  return makeGiPass(*d, cl, giPassParams(a), scene, a.bounces);
 }
 
 std::string giOutputPath(const std::string& out, const std::string& kind, const std::string& ext) {

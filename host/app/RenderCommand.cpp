@@ -233,10 +233,11 @@ void writeGiStats(const GiArgs& a, const GiResult& gi, nlohmann::ordered_json& j
   j["gi_reference_ms"] = gi.ms;
   j["gi_reference_cached"] = gi.reference_cached;
   if (gi.has_pass) {
+    const std::string bounces = a.bounces == 1 ? "one bounce" : std::to_string(a.bounces) + " bounces";
     j["gi_reference_transport"] = giShadows(a) == "ray"
-                                      ? "one bounce, diffuse; visibility of the lights from the bounce points "
-                                        "(--gi-shadows ray)"
-                                      : "one bounce, diffuse; no visibility in the bounce light (--gi-shadows none)";
+                                      ? bounces + ", diffuse; visibility of the lights from the bounce points "
+                                                  "(--gi-shadows ray)"
+                                      : bounces + ", diffuse; no visibility in the bounce light (--gi-shadows none)";
     j["gi_rel_rmse"] = gi.error.error.rel_rmse;
     j["gi_rel_rmse_pixels"] = gi.error.error.pixels;
     // The reference's own noise and the error without it (null: no estimate, 1 sample).

@@ -126,8 +126,8 @@ SettingList giSettingList(const GiDescriptor& d, const ParamValues& params) {
 }
 
 std::unique_ptr<GiPass> makeGiPass(const GiDescriptor& d, ClRuntime& cl, const ParamValues& params,
-                                   const Scene& scene) {
-  return d.make(GiContext{cl, params, scene});
+                                   const Scene& scene, unsigned bounces) {
+  return d.make(GiContext{cl, params, scene, bounces});
 }
 
 }  // namespace ml

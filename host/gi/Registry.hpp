@@ -39,6 +39,6 @@ ParamValues giViewParams(const GiDescriptor& d, const ParamValues& params, const
 // Every parameter in the descriptor's order, as giParams wrote it.
 SettingList giSettingList(const GiDescriptor& d, const ParamValues& params);
 std::unique_ptr<GiPass> makeGiPass(const GiDescriptor& d, ClRuntime& cl, const ParamValues& params,
-                                   const Scene& scene);
+                                   const Scene& scene, unsigned bounces = 1);
 
 }  // namespace ml

@@ -14,6 +14,12 @@
 /* Voxelization: the accumulation buffer (VoxelAccum[], voxel_types.h). */
 #define ML_BINDING_VOXELIZE_ACCUM 0
 
+/* Second bounce (vct_bounce.comp): level 0's sums and the radiance volume;
+ * the cones' textures take the trace's units (ML_UNIT_VCT_VOXELS ..). */
+#define ML_BINDING_BOUNCE_ACCUM 0
+#define ML_BINDING_BOUNCE_RADIANCE 1
+#define ML_VOXEL_ALBEDO_SCALE_GLSL 255 /* ML_VOXEL_ALBEDO_SCALE (voxel_types.h), which GLSL does not include */
+
 /* Voxel view: the volume's buffers and the output image. */
 #define ML_BINDING_VOXEL_VIEW_RADIANCE 0 /* every level */
 #define ML_BINDING_VOXEL_VIEW_ACCUM 1    /* level 0 */

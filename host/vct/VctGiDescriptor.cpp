@@ -101,8 +101,11 @@ GiDescriptor describe() {
   d.params = vctParams();
   d.check = [](const ParamValues& p) { checkVctGiSettings(vctSettingsOf(p)); };
   d.make = [](const GiContext& c) -> std::unique_ptr<GiPass> {
-    return std::make_unique<VctGiPass>(c.cl, vctSettingsOf(c.params), c.scene.bounds);
+    VctGiSettings s = vctSettingsOf(c.params);
+    s.bounces = c.bounces;
+    return std::make_unique<VctGiPass>(c.cl, s, c.scene.bounds);
   };
+  d.max_bounces = kMaxVctBounces;
   d.reference_shadows = [](const ParamValues& p) { return p.text("vct-shadows") == "voxel" ? "ray" : "none"; };
   d.extra_images = {"ao"};
   d.view_name = "voxels";

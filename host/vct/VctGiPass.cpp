@@ -40,6 +40,9 @@ void checkVctGiSettings(const VctGiSettings& s) {
     throw UserError("--gi-scale: expected a fraction of the resolution in (0, 1], got " + std::to_string(s.gi_scale));
   if (s.shadows != "none" && s.shadows != "voxel")
     throw UserError("--vct-shadows: expected none|voxel, got '" + s.shadows + "'");
+  if (s.bounces < 1 || s.bounces > kMaxVctBounces)
+    throw UserError("--gi-bounces: --gi vct models 1.." + std::to_string(kMaxVctBounces) + ", got " +
+                    std::to_string(s.bounces));
 }
 
 VctGiPass::VctGiPass(ClRuntime& rt, const VctGiSettings& s, const Aabb& scene_bounds)
@@ -47,7 +50,8 @@ VctGiPass::VctGiPass(ClRuntime& rt, const VctGiSettings& s, const Aabb& scene_bo
       pipeline_(rt, pipelineOptions(s), scene_bounds),
       cones_(diffuseCones(s.cones)),
       trace_({"vct/vct_trace.comp"}, traceDefines(s)),
-      upsample_({"vct/vct_upsample.comp"}) {}
+      upsample_({"vct/vct_upsample.comp"}),
+      bounce_(s.bounces > 1 ? std::make_unique<VoxelBouncePass>() : nullptr) {}
 
 VctGiPass::~VctGiPass() { freeImages(); }
 
@@ -78,7 +82,20 @@ void VctGiPass::update(const GiSceneInputs& in) {
     return;
   }
   pipeline_.update(in.scene, in.lights, in.passes);
+  // The second bounce: the voxels gather from the volume just built, then
+  // the mips and textures take the sum (Crassin et al. 2011).
+  if (bounce_) {
+    GlPassTimer timer;
+    bounce_->run(pipeline_.volume(), coneSetup(), &timer);
+    timer.collect(in.passes);
+    pipeline_.refilter(in.passes);
+  }
   volume_lights_ = in.lights_version;
+}
+
+ConeTraceSetup VctGiPass::coneSetup() const {
+  const bool aniso = pipeline_.volume().anisotropic() != nullptr;
+  return {pipeline_.volume().params(), &pipeline_.textures(), aniso, cones_, s_.aperture_deg, s_.broken};
 }
 
 // What the volume reads: the scene (voxelized on the first update, or on every
@@ -100,9 +117,7 @@ void VctGiPass::trace(const GiFrameInputs& in) {
   GlPassScope scope(in.timer, "vct-trace");
   trace_.use();
   setViewUniforms(trace_, in.view, in.proj, in.width, in.height);
-  const bool aniso = pipeline_.volume().anisotropic() != nullptr;
-  bindConeTracing(trace_, {pipeline_.volume().params(), &pipeline_.textures(), aniso, cones_, s_.aperture_deg,
-                           s_.broken});
+  bindConeTracing(trace_, coneSetup());
   trace_.setU2("u_lo_size", lo_w_, lo_h_);
   trace_.set("u_specular_tan", std::tan(kSpecularApertureDeg * 3.14159265f / 360.0f));
   glBindTextureUnit(ML_UNIT_VCT_GBUFFER_NORMAL, in.normal);

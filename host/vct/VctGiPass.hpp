@@ -39,12 +39,14 @@
 #include "gl/GiPass.hpp"
 #include "host/vct/ConeTracing.hpp"
 #include "host/vct/VctPipeline.hpp"
+#include "host/vct/VoxelBouncePass.hpp"
 #include "host/vct/VoxelView.hpp"
 
 namespace ml::vct {
 
 inline constexpr float kSpecularWeight = 0.04f;
 inline constexpr float kSpecularApertureDeg = 10.0f;
+inline constexpr unsigned kMaxVctBounces = 2;  // --gi-bounces
 
 struct VctGiSettings {
   VoxelGridSettings grid;   // --voxels, --levels, --anisotropic
@@ -54,6 +56,7 @@ struct VctGiSettings {
   bool specular = false;    // --specular
   std::string shadows = "none";  // --vct-shadows: none | voxel (visibility through level-0 opacity)
   bool revoxelize = false;       // --revoxelize: voxelize every frame (moving geometry), not only the first
+  unsigned bounces = 1;          // --gi-bounces: 1, or 2 (each voxel gathers once more: VoxelBouncePass)
   bool brute_inject = false;     // inject from every light instead of the hashed lists
   ConeBreak broken = ConeBreak::None;  // tests only
 };
@@ -85,6 +88,7 @@ class VctGiPass final : public GiPass {
 
  private:
   bool volumeStale(const GiSceneInputs& in) const;
+  ConeTraceSetup coneSetup() const;
   void allocate(unsigned width, unsigned height);
   void freeImages();
   void trace(const GiFrameInputs& in);
@@ -98,6 +102,7 @@ class VctGiPass final : public GiPass {
   std::uint64_t volume_lights_ = 0;  // lights_version of the last update; 0: none yet
   std::size_t reuses_ = 0;
   std::unique_ptr<VoxelViewPass> voxel_view_;  // made by the first view()
+  std::unique_ptr<VoxelBouncePass> bounce_;    // with bounces > 1
   GLuint lo_irradiance_ = 0, lo_geometry_ = 0, lo_specular_ = 0, indirect_ = 0, ao_ = 0;
 };
 

@@ -18,7 +18,8 @@ std::string printed(const char* format, auto... args) {
 nlohmann::ordered_json settingsJson(const VctGiSettings& v) {
   return {{"voxels", v.grid.voxels},  {"levels", v.grid.levels}, {"anisotropic", v.grid.anisotropic},
           {"cones", v.cones},         {"cone_aperture", v.aperture_deg}, {"gi_scale", v.gi_scale},
-          {"specular", v.specular},   {"vct_shadows", v.shadows}, {"revoxelize", v.revoxelize}};
+          {"specular", v.specular},   {"vct_shadows", v.shadows}, {"revoxelize", v.revoxelize},
+          {"bounces", v.bounces}};
 }
 
 // The hashed lists' builds and uploads (all 0 with brute-force injection).
@@ -54,10 +55,11 @@ GiStats VctGiPass::stats() const {
   st.json["vct_voxelizations"] = pipeline_.voxelizations();
   st.json["vct_reused"] = reuses_;  // frames that reused the volume: their vct-inject etc. count 0 ms in the medians
   addLists(pipeline_, st);
+  const std::string bounces = s_.bounces == 1 ? "one bounce" : "two bounces (the second gathered per voxel)";
   st.json["gi_transport"] = s_.shadows == "voxel"
-                                ? "one bounce, diffuse; visibility of the lights in the injected direct light "
-                                  "through level-0 voxel opacity (--vct-shadows voxel)"
-                                : "one bounce, diffuse; no visibility in the injected direct light";
+                                ? bounces + ", diffuse; visibility of the lights in the injected direct light "
+                                            "through level-0 voxel opacity (--vct-shadows voxel)"
+                                : bounces + ", diffuse; no visibility in the injected direct light";
   return st;
 }
 

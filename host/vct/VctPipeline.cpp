@@ -36,18 +36,38 @@ void VctPipeline::update(const SceneGpu& scene, const std::vector<gpu::PointLigh
     occupancy_stale_ = false;
   }
   inject(q, lights, timings, timer);
-  mips_.isotropic(q, volume_.params(), volume_.radiance().cl(), &timer);
-  if (volume_.anisotropic())
-    mips_.anisotropic(q, volume_.params(), volume_.radiance().cl(), volume_.anisotropic()->cl(), &timer);
+  mips(q, timer);
   timer.collect(timings);
   if (volume_.anisotropic()) volume_.anisotropic()->releaseToGl(q);
   volume_.radiance().releaseToGl(q);
   volume_.accum().releaseToGl(q);
+  unpackTextures(timings);
+  ++updates_;
+}
+
+void VctPipeline::refilter(PassTimings& timings) {
+  cl::CommandQueue& q = rt_.queue();
+  ClPassTimer timer;
+  volume_.radiance().acquireForCl(q, ClAccess::ReadWrite);
+  if (volume_.anisotropic()) volume_.anisotropic()->acquireForCl(q, ClAccess::Write);
+  mips(q, timer);
+  timer.collect(timings);
+  if (volume_.anisotropic()) volume_.anisotropic()->releaseToGl(q);
+  volume_.radiance().releaseToGl(q);
+  unpackTextures(timings);
+}
+
+void VctPipeline::mips(cl::CommandQueue& q, ClPassTimer& timer) {
+  mips_.isotropic(q, volume_.params(), volume_.radiance().cl(), &timer);
+  if (volume_.anisotropic())
+    mips_.anisotropic(q, volume_.params(), volume_.radiance().cl(), volume_.anisotropic()->cl(), &timer);
+}
+
+void VctPipeline::unpackTextures(PassTimings& timings) {
   GlPassTimer gl_timer;
   textures_.unpack(volume_.params(), volume_.radiance().gl(), volume_.anisotropic() ? volume_.anisotropic()->gl() : 0,
                    &gl_timer);
   gl_timer.collect(timings);
-  ++updates_;
 }
 
 // Lights go to a grown device buffer (never empty: an OpenCL buffer needs a

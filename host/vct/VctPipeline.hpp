@@ -53,6 +53,9 @@ class VctPipeline {
   VctPipeline(ClRuntime& rt, const VctPipelineOptions& options, const Aabb& scene_bounds);
 
   void update(const SceneGpu& scene, const std::vector<gpu::PointLight>& lights, PassTimings& timings);
+  // After a GL pass rewrote level 0 of the radiance volume (VoxelBouncePass):
+  // the mips and the textures again, added to `vct-mips` and `vct-textures`.
+  void refilter(PassTimings& timings);
 
   VoxelVolume& volume() { return volume_; }
   const VoxelVolume& volume() const { return volume_; }
@@ -70,6 +73,8 @@ class VctPipeline {
  private:
   void inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>& lights, PassTimings& timings,
               ClPassTimer& timer);
+  void mips(cl::CommandQueue& q, ClPassTimer& timer);
+  void unpackTextures(PassTimings& timings);
   const VoxelOccupancy* occupancy() const { return options_.shadows ? &occupancy_ : nullptr; }
   bool occupancy_stale_ = true;  // voxelized since the occupancy was built
 

@@ -336,7 +336,7 @@ TEST(ReferenceIndirect, RenderCommandWritesTheImagesAndChecksItsFlags) {
            {"--gi-shadows", "maybe"},
            {"--gi", "reference", "--gi-bounces", "0"},
            {"--gi", "reference", "--gi-bounces", "9"},
-           {"--gi", "vct", "--gi-reference", "--gi-bounces", "2"}}) {
+           {"--gi", "vct", "--gi-reference", "--gi-bounces", "3"}}) {
     const auto r = with(bad);
     EXPECT_EQ(r.exit_code, 2) << bad[0] << " " << bad[1];
     EXPECT_NE(r.err.find(bad[bad.size() - 2]), std::string::npos) << r.err;
