@@ -200,35 +200,30 @@ glm::vec3 Tracer::pixel(const glm::vec3& eye, const glm::vec3& dir, PixelRng& rn
   return x.albedo * glm::vec3((sums[0] + sums[1]) / double(s));
 }
 
-// The sum of `s` Latin-hypercube, cosine-weighted bounces from x: stratum i
-// in u1, a shuffled stratum in u2.
-glm::dvec3 Tracer::replicaSum(const Surface& x, unsigned s, PixelRng& rng) const {
-  glm::dvec3 sum(0.0);
-  if (s == 0) return sum;
-  // Orthonormal basis around the normal (Duff et al. 2017).
-  const glm::vec3 n = x.n;
-  const float sign = std::copysign(1.0f, n.z), a = -1.0f / (sign + n.z), b = n.x * n.y * a;
-  const glm::vec3 t1(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x), t2(b, sign + n.y * n.y * a, -n.y);
-  std::vector<unsigned> perm(s);
-  std::iota(perm.begin(), perm.end(), 0u);
-  for (unsigned i = s; i > 1; --i) std::swap(perm[i - 1], perm[rng.next() % i]);
-  const glm::vec3 org = x.p + eps_ * n;
-  for (unsigned i = 0; i < s; ++i) {
-    const float u1 = (float(i) + rng.uniform()) / float(s), u2 = (float(perm[i]) + rng.uniform()) / float(s);
-    const float r = std::sqrt(u1), phi = 6.28318530718f * u2;
-    const glm::vec3 w = r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
-    Surface y;
-    if (intersect(org, glm::normalize(w), y)) sum += glm::dvec3(pathRadiance(y, rng));
-  }
-  return sum;
-}
-
-// A cosine-weighted direction around n from two uniform numbers (Malley).
+// A cosine-weighted direction around n from two uniform numbers (Malley), in
+// the orthonormal basis around n of Duff et al. 2017.
 glm::vec3 cosineDirection(const glm::vec3& n, float u1, float u2) {
   const float sign = std::copysign(1.0f, n.z), a = -1.0f / (sign + n.z), b = n.x * n.y * a;
   const glm::vec3 t1(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x), t2(b, sign + n.y * n.y * a, -n.y);
   const float r = std::sqrt(u1), phi = 6.28318530718f * u2;
   return glm::normalize(r * std::cos(phi) * t1 + r * std::sin(phi) * t2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * n);
+}
+
+// The sum of `s` Latin-hypercube, cosine-weighted bounces from x: stratum i
+// in u1, a shuffled stratum in u2.
+glm::dvec3 Tracer::replicaSum(const Surface& x, unsigned s, PixelRng& rng) const {
+  glm::dvec3 sum(0.0);
+  if (s == 0) return sum;
+  std::vector<unsigned> perm(s);
+  std::iota(perm.begin(), perm.end(), 0u);
+  for (unsigned i = s; i > 1; --i) std::swap(perm[i - 1], perm[rng.next() % i]);
+  const glm::vec3 org = x.p + eps_ * x.n;
+  for (unsigned i = 0; i < s; ++i) {
+    const float u1 = (float(i) + rng.uniform()) / float(s), u2 = (float(perm[i]) + rng.uniform()) / float(s);
+    Surface y;
+    if (intersect(org, cosineDirection(x.n, u1, u2), y)) sum += glm::dvec3(pathRadiance(y, rng));
+  }
+  return sum;
 }
 
 // The radiance a path sample brings back from its first hit y: y's direct

@@ -12,10 +12,11 @@
 // a_step = 1 - exp(-density * step / edge), before
 //   c += (1 - A) c_step,  A += (1 - A) a_step.
 // It stops at opacity 0.99 or where it leaves the grid (outside is empty).
-// Cornell box, anisotropic, 9 cones of 45 degrees, --levels auto, against a
-// 4096-sample reference (relative RMSE, energy): 32^3 0.160 (0.93), 64^3
-// 0.148 (0.93), 128^3 0.141 (0.97); before the density, the bias and this
-// offset: 0.180, 0.192, 0.185 at 4 levels (bench/RESULTS-vct.md).
+// Cornell box with its camera, 320x320, anisotropic, 9 cones of 45 degrees,
+// --levels auto, against a 4096-sample reference (relative RMSE, energy):
+// 32^3 0.164 (0.93), 64^3 0.159 (0.91), 128^3 0.142 (0.94); before the
+// density, the bias, this offset and the faces' colour mix: 0.197, 0.227,
+// 0.185 at 4 levels (docs/vct.md, "Accuracy").
 #include "vct_bindings.h"
 layout(binding = ML_UNIT_VCT_VOXELS) uniform sampler3D u_voxels;
 layout(binding = ML_UNIT_VCT_VOXEL_DIRS) uniform sampler3D u_voxel_dirs[6];  // +X -X +Y -Y +Z -Z (direction of travel)
@@ -34,15 +35,17 @@ const float kConeStep = 0.5;        // step, in voxels of the sampled level
 // disk of diameter D has D / 4. So the level whose voxel is half the cone's
 // diameter (bias 1) matches the cone's cross-section, where bias 0 blurred
 // it twice as wide: the finer the grid, the worse (Cornell box as above,
-// 32^3 / 64^3 / 128^3: bias 0 0.166 / 0.234 / 0.264; 0.5 0.158 / 0.175 /
-// 0.188; 1 0.160 / 0.148 / 0.141; 1.5 0.168 / 0.148 / 0.135).
+// 32^3 / 64^3 / 128^3: bias 0.5 0.165 / 0.176 / 0.173; 1 0.164 / 0.159 /
+// 0.142; 1.5 0.173 / 0.166 / 0.150; bias 0, from the glTF's default view
+// before the colour mix: 0.166 / 0.234 / 0.264 against 0.160 / 0.148 / 0.141
+// at bias 1).
 const float kLodBias = 1.0;
 // Each sample sits off the surface along the normal by the larger of one
 // level-0 voxel and kLevelOffset voxels of the level it reads, so a coarse
 // sample's trilinear footprint does not take in the surface's own voxel
 // (self-occlusion and self-lighting). Cornell box as above at 32^3 / 64^3 /
-// 128^3: 0 0.164 / 0.153 / 0.145; 0.25 0.160 / 0.148 / 0.141; 0.5 0.155 /
-// 0.157 / 0.151.
+// 128^3: 0 0.164 / 0.159 / 0.143; 0.25 0.164 / 0.159 / 0.142; 0.5 0.163 /
+// 0.171 / 0.155.
 const float kLevelOffset = 0.25;
 const float kConeOpaque = 0.99;
 const float kPi = 3.14159265358979;
