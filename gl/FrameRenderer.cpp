@@ -113,7 +113,7 @@ FrameResult FrameRenderer::render(const Camera& camera, LightAssigner& assigner,
   const glm::mat4 proj = camera.projection(aspect);
 
   // 0. The GI pass's own update (its GL passes set their own state, so it goes first).
-  if (gi) gi->update({*scene_, host_lights_, result.passes, lights_version_});
+  if (gi) gi->update({*scene_, host_lights_, result.passes, lights_version_, camera.eye});
   beginFrame(options.count_lights);
   // 1. Depth: G-buffer (deferred, or forward with GI) and the pre-pass (forward, if needed).
   depthPasses(deferred, options, view, proj, assigner);

@@ -51,6 +51,7 @@ struct GiSceneInputs {
   // number, unique in the process (nextLightsVersion()), so equal versions are
   // the same lights whichever renderer set them. 0: unknown, treat as changed.
   std::uint64_t lights_version = 0;
+  glm::vec3 eye{0.0f};  // the frame's camera position (VCT's cascade follows it)
 };
 
 // A fresh light-set version, never 0 (thread-safe; one counter per process).

@@ -130,5 +130,14 @@ void ShaderProgram::set4(const char* n, float x, float y, float z, float w) cons
   glProgramUniform4f(id_, loc(n), x, y, z, w);
 }
 void ShaderProgram::setU2(const char* n, unsigned x, unsigned y) const { glProgramUniform2ui(id_, loc(n), x, y); }
+void ShaderProgram::setU3(const char* n, unsigned x, unsigned y, unsigned z) const {
+  glProgramUniform3ui(id_, loc(n), x, y, z);
+}
+void ShaderProgram::setI3v(const char* n, int count, const int* v) const {
+  glProgramUniform3iv(id_, loc(n), count, v);
+}
+void ShaderProgram::set4v(const char* n, int count, const float* v) const {
+  glProgramUniform4fv(id_, loc(n), count, v);
+}
 
 }  // namespace ml

@@ -45,6 +45,10 @@ class ShaderProgram {
   void set3(const char* name, float x, float y, float z) const;
   void set4(const char* name, float x, float y, float z, float w) const;
   void setU2(const char* name, unsigned x, unsigned y) const;
+  void setU3(const char* name, unsigned x, unsigned y, unsigned z) const;
+  // Arrays: `count` elements of 3 ints, of 4 floats.
+  void setI3v(const char* name, int count, const int* v) const;
+  void set4v(const char* name, int count, const float* v) const;
 
  private:
   GLint loc(const char* name) const { return glGetUniformLocation(id_, name); }

@@ -27,14 +27,19 @@
 #define ML_IMAGE_VOXEL_VIEW_OUT 0
 
 /* Texture units of the trace and upsample passes: the G-buffer (the units
- * deferred shading reads it from), the voxel textures of the cones (the 6
- * direction textures take ML_UNIT_VCT_VOXEL_DIRS .. + 5) and the upsample's
- * reduced-resolution inputs. */
+ * deferred shading reads it from), the voxel textures of the cones and the
+ * upsample's reduced-resolution inputs. The cones read ML_VCT_MAX_LEVELS
+ * cascade levels (a shader define, 1 unless the program sets it): level c's
+ * radiance at ML_UNIT_VCT_VOXELS + c, its 6 direction textures from
+ * ML_UNIT_VCT_VOXEL_DIRS + 6 c (host/vct/ConeTracing.cpp: the same units). */
+#ifndef ML_VCT_MAX_LEVELS
+#define ML_VCT_MAX_LEVELS 1
+#endif
 #define ML_UNIT_VCT_GBUFFER_ALBEDO ML_UNIT_GBUFFER_ALBEDO
 #define ML_UNIT_VCT_GBUFFER_NORMAL ML_UNIT_GBUFFER_NORMAL
 #define ML_UNIT_VCT_GBUFFER_DEPTH ML_UNIT_GBUFFER_DEPTH
 #define ML_UNIT_VCT_VOXELS 4
-#define ML_UNIT_VCT_VOXEL_DIRS 5
+#define ML_UNIT_VCT_VOXEL_DIRS (ML_UNIT_VCT_VOXELS + ML_VCT_MAX_LEVELS)
 #define ML_UNIT_VCT_LO_IRRADIANCE 4
 #define ML_UNIT_VCT_LO_GEOMETRY 5
 #define ML_UNIT_VCT_LO_SPECULAR 6

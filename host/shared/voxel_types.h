@@ -12,6 +12,9 @@
 #define MANYLIGHTS_VOXEL_TYPES_H
 
 #include "gpu_types.h"
+#ifndef __OPENCL_VERSION__
+#include <cmath>
+#endif
 
 #ifndef __OPENCL_VERSION__
 namespace ml::gpu {
@@ -25,7 +28,17 @@ typedef struct VoxelGridParams {
   ml_float4 origin_voxel_size;
   ml_uint edge;   /* level-0 voxels per axis, a power of two <= ML_VOXEL_MAX_EDGE */
   ml_uint levels; /* 1 .. log2(edge) + 1 */
-  ml_uint pad0;
+  /* 0: voxel v of the window (0..edge-1 per axis) is stored at v. 1: toroidal
+   * (a camera-centred cascade level, host/vct/VoxelCascade.hpp): the corner
+   * lies on the lattice of the voxel size, corner = k * voxel size with
+   * integer k, and v is stored at (v + k) mod edge per axis, so a voxel keeps
+   * its place while the window scrolls; k is a multiple of 2^(levels - 1), so
+   * level l's voxel (v + k / 2^l) mod (edge >> l) has its 8 children at level
+   * l - 1 in the same places as an unscrolled grid's (the mips need no
+   * change). voxel_shift() gives k mod edge. A toroidal voxel's centre is
+   * (k + v + 0.5) * voxel size, from its lattice index, so a voxel that
+   * stays in the window while it scrolls keeps its bits. */
+  ml_uint wrap;
   ml_uint pad1;
 } VoxelGridParams;
 ML_STATIC_ASSERT(sizeof(VoxelGridParams) == 32, "VoxelGridParams layout changed: update kernels and GLSL");
@@ -88,6 +101,29 @@ inline constexpr ml_uint voxel_aniso_index(ml_uint edge, ml_uint level, ml_uint 
 }
 
 #ifndef __OPENCL_VERSION__
+/* A toroidal grid's corner as a lattice index k (corner / voxel size,
+ * rounded: the corner is k * voxel size exactly), and where window voxel 0
+ * is stored, k mod edge per axis (0 for an unscrolled grid). Kernels and
+ * shaders get them as arguments. */
+struct VoxelCorner {
+  ml_int x, y, z;
+};
+inline VoxelCorner voxel_corner(const VoxelGridParams& g) {
+  if (!g.wrap) return VoxelCorner{0, 0, 0};
+  const float o[3] = {g.origin_voxel_size.x, g.origin_voxel_size.y, g.origin_voxel_size.z};
+  ml_int k[3];
+  for (int c = 0; c < 3; ++c) k[c] = static_cast<ml_int>(std::lround(o[c] / g.origin_voxel_size.w));
+  return VoxelCorner{k[0], k[1], k[2]};
+}
+struct VoxelShift {
+  ml_uint x, y, z;
+};
+inline VoxelShift voxel_shift(const VoxelGridParams& g) {
+  const VoxelCorner k = voxel_corner(g);
+  const ml_uint mask = g.edge - 1u;  /* edge is a power of two: & is mod for negative k too */
+  return VoxelShift{static_cast<ml_uint>(k.x) & mask, static_cast<ml_uint>(k.y) & mask,
+                    static_cast<ml_uint>(k.z) & mask};
+}
 }  // namespace ml::gpu
 #endif
 #endif

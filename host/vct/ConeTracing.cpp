@@ -35,14 +35,39 @@ std::vector<Cone> diffuseCones(unsigned count) {
   return cones;
 }
 
+ShaderDefines coneTracingDefines(unsigned levels) {
+  GLint units = 0;
+  glGetIntegerv(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, &units);
+  glCheck("reading the compute texture unit limit");
+  const unsigned need = ML_UNIT_VCT_VOXELS + 7 * levels;
+  if (units > 0 && need > static_cast<unsigned>(units))
+    throw UserError("--vct-cascades " + std::to_string(levels) + ": the cones need " + std::to_string(need) +
+                    " texture units, this GL has " + std::to_string(units));
+  return {{"ML_VCT_MAX_LEVELS", std::to_string(levels)}};
+}
+
 void bindConeTracing(const ShaderProgram& p, const ConeTraceSetup& s) {
-  glBindTextureUnit(ML_UNIT_VCT_VOXELS, s.textures->radiance());
-  for (unsigned d = 0; d < ML_VOXEL_DIRECTIONS; ++d)
-    glBindTextureUnit(ML_UNIT_VCT_VOXEL_DIRS + d, s.anisotropic ? s.textures->direction(d) : s.textures->radiance());
+  const std::vector<ConeLevel> levels = s.levels.empty() ? std::vector<ConeLevel>{{s.grid, s.textures}} : s.levels;
+  const auto n = static_cast<unsigned>(levels.size());
+  std::vector<float> origin_size, shift_lod;
+  for (unsigned c = 0; c < n; ++c) {
+    const ConeLevel& l = levels[c];
+    glBindTextureUnit(ML_UNIT_VCT_VOXELS + c, l.textures->radiance());
+    for (unsigned d = 0; d < ML_VOXEL_DIRECTIONS; ++d)
+      glBindTextureUnit(ML_UNIT_VCT_VOXELS + n + 6 * c + d,
+                        s.anisotropic ? l.textures->direction(d) : l.textures->radiance());
+    const auto& o = l.grid.origin_voxel_size;
+    origin_size.insert(origin_size.end(), {o.x, o.y, o.z, o.w});
+    const gpu::VoxelShift sh = gpu::voxel_shift(l.grid);
+    const float e = float(l.grid.edge);
+    shift_lod.insert(shift_lod.end(), {float(sh.x) / e, float(sh.y) / e, float(sh.z) / e, float(l.grid.levels - 1)});
+  }
   const auto& o = s.grid.origin_voxel_size;
   p.set4("u_grid_origin_size", o.x, o.y, o.z, o.w);
   p.set("u_grid_edge", float(s.grid.edge));
-  p.set("u_grid_max_lod", float(s.grid.levels - 1));
+  p.set("u_levels", static_cast<int>(n));
+  p.set4v("u_level_origin_size", static_cast<int>(n), origin_size.data());
+  p.set4v("u_level_shift_lod", static_cast<int>(n), shift_lod.data());
   p.set("u_anisotropic", s.anisotropic ? 1 : 0);
   p.set("u_cone_tan", std::tan(s.aperture_deg * kPi / 360.0f));
   std::vector<float> packed;

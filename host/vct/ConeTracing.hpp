@@ -35,17 +35,30 @@ std::vector<Cone> diffuseCones(unsigned count);
 // notice): every cone weighted 1 instead of pi / count.
 enum class ConeBreak { None, Weights };
 
-struct ConeTraceSetup {
+// A cascade level the cones read: its grid and textures.
+struct ConeLevel {
   gpu::VoxelGridParams grid;
   const VoxelTextures* textures = nullptr;
+};
+
+struct ConeTraceSetup {
+  gpu::VoxelGridParams grid;                // the single grid, or the cascade's outermost level
+  const VoxelTextures* textures = nullptr;  // its textures
   bool anisotropic = false;
   std::vector<Cone> cones;
   float aperture_deg = 45.0f;
   ConeBreak broken = ConeBreak::None;
+  std::vector<ConeLevel> levels;  // a cascade, finest first (empty: {grid, textures} alone)
 };
 
-// Binds the volume's textures (units 4, 5..10) and sets the cone uniforms of
-// `p`, which must include vct_cones.glsl and be in use.
+// The define a program that includes vct_cones.glsl needs for `levels`
+// cascade levels (ML_VCT_MAX_LEVELS); UserError naming --vct-cascades when
+// the GL has too few compute texture units for them.
+ShaderDefines coneTracingDefines(unsigned levels);
+
+// Binds the levels' textures (level c: unit ML_UNIT_VCT_VOXELS + c and its 6
+// directions from ML_UNIT_VCT_VOXELS + L + 6 c) and sets the cone uniforms of
+// `p`, which must include vct_cones.glsl built with coneTracingDefines(L).
 void bindConeTracing(const ShaderProgram& p, const ConeTraceSetup& s);
 
 }  // namespace ml::vct

@@ -16,9 +16,15 @@ bool resolveVoxel(const gpu::VoxelAccum& a, unsigned i, const gpu::VoxelGridPara
   const float n[3] = {nx, ny, nz};
   for (int c = 0; c < 3; ++c) s.n[c] = len > 0.0f ? n[c] / len : 0.0f;
   const unsigned e = g.edge;
-  const unsigned xyz[3] = {i % e, i / e % e, i / e / e};
+  const gpu::VoxelShift sh = gpu::voxel_shift(g);
+  // Window coordinates of stored voxel i (the kernel's window_voxel()).
+  const unsigned xyz[3] = {(i % e + e - sh.x) % e, (i / e % e + e - sh.y) % e, (i / e / e + e - sh.z) % e};
   const float o[3] = {g.origin_voxel_size.x, g.origin_voxel_size.y, g.origin_voxel_size.z};
-  for (int c = 0; c < 3; ++c) s.p[c] = o[c] + (float(xyz[c]) + 0.5f) * g.origin_voxel_size.w;
+  const gpu::VoxelCorner k = gpu::voxel_corner(g);
+  const int corner[3] = {k.x, k.y, k.z};
+  for (int c = 0; c < 3; ++c)
+    s.p[c] = g.wrap ? (float(corner[c] + int(xyz[c])) + 0.5f) * g.origin_voxel_size.w  // lattice: kernel's bits
+                    : o[c] + (float(xyz[c]) + 0.5f) * g.origin_voxel_size.w;
   return true;
 }
 

@@ -8,6 +8,7 @@
 #include "host/scene/Scene.hpp"
 #include "host/shared/voxel_types.h"
 #include "host/util/Error.hpp"
+#include "host/vct/VoxelCascade.hpp"
 #include "host/vct/VoxelSlice.hpp"
 #include "host/vct/VoxelView.hpp"
 
@@ -56,6 +57,9 @@ std::vector<ParamSpec> vctParams() {
                   "visibility of the lights in the injected direct light (none, or voxel: marched through level-0 "
                   "opacity)"),
       switchParam("revoxelize", false, "voxelize the scene every frame (moving geometry), not only the first"),
+      countParam("vct-cascades", "1", 1, kMaxCascades,
+                 "levels of the camera-centred cascade (1: one grid around the scene; L: the scene's grid and L - 1 "
+                 "finer grids of --voxels around the camera, each half the extent of the one outside it)"),
   };
 }
 
@@ -133,6 +137,7 @@ VctGiSettings vctSettingsOf(const ParamValues& p) {
   s.specular = p.on("specular");
   s.shadows = p.text("vct-shadows");
   s.revoxelize = p.on("revoxelize");
+  s.cascades = p.count("vct-cascades");
   return s;
 }
 

@@ -21,12 +21,14 @@ VctPipelineOptions pipelineOptions(const VctGiSettings& s) {
   o.brute_force = s.brute_inject;
   o.shadows = s.shadows == "voxel";
   o.revoxelize = s.revoxelize;
+  o.cascades = s.cascades;
   return o;
 }
 
 ShaderDefines traceDefines(const VctGiSettings& s) {
-  if (s.specular) return {{"VCT_SPECULAR", "1"}};
-  return {};
+  ShaderDefines d = coneTracingDefines(s.cascades);
+  if (s.specular) d.push_back({"VCT_SPECULAR", "1"});
+  return d;
 }
 
 GLuint groups(unsigned n) { return (n + kGroup - 1) / kGroup; }
@@ -43,6 +45,12 @@ void checkVctGiSettings(const VctGiSettings& s) {
   if (s.bounces < 1 || s.bounces > kMaxVctBounces)
     throw UserError("--gi-bounces: --gi vct models 1.." + std::to_string(kMaxVctBounces) + ", got " +
                     std::to_string(s.bounces));
+  checkCascades(s.cascades);
+  if (s.cascades > 1 && s.bounces > 1)
+    throw UserError("--gi-bounces " + std::to_string(s.bounces) + ": needs --vct-cascades 1 (the second bounce "
+                    "gathers within one grid)");
+  if (s.cascades > 1 && s.shadows != "none")
+    throw UserError("--vct-shadows " + s.shadows + ": needs --vct-cascades 1 (the shadow march reads one grid)");
 }
 
 VctGiPass::VctGiPass(ClRuntime& rt, const VctGiSettings& s, const Aabb& scene_bounds)
@@ -81,7 +89,10 @@ void VctGiPass::update(const GiSceneInputs& in) {
     ++reuses_;
     return;
   }
-  pipeline_.update(in.scene, in.lights, in.passes);
+  const bool relight = in.lights_version == 0 || in.lights_version != volume_lights_;
+  pipeline_.update(in.scene, in.lights, in.passes, {in.eye, relight});
+  scrolls_ += pipeline_.lastUpdate().scrolled_levels;
+  scrolled_voxels_ += pipeline_.lastUpdate().scrolled_voxels;
   // The second bounce: the voxels gather from the volume just built, then
   // the mips and textures take the sum (Crassin et al. 2011).
   if (bounce_) {
@@ -95,14 +106,20 @@ void VctGiPass::update(const GiSceneInputs& in) {
 
 ConeTraceSetup VctGiPass::coneSetup() const {
   const bool aniso = pipeline_.volume().anisotropic() != nullptr;
-  return {pipeline_.volume().params(), &pipeline_.textures(), aniso, cones_, s_.aperture_deg, s_.broken};
+  ConeTraceSetup setup{pipeline_.volume().params(), &pipeline_.textures(), aniso, cones_, s_.aperture_deg, s_.broken,
+                       {}};
+  for (unsigned c = 0; c < pipeline_.cascades(); ++c)
+    setup.levels.push_back({pipeline_.level(c).volume.params(), &pipeline_.level(c).textures});
+  return setup;
 }
 
 // What the volume reads: the scene (voxelized on the first update, or on every
 // one with revoxelize), the lights (by version: volume_lights_ starts at 0,
-// which no light set has, so the first frame updates) and the settings (fixed).
+// which no light set has, so the first frame updates), the camera (cascades)
+// and the settings (fixed).
 bool VctGiPass::volumeStale(const GiSceneInputs& in) const {
-  return s_.revoxelize || in.lights_version == 0 || in.lights_version != volume_lights_;
+  return s_.revoxelize || in.lights_version == 0 || in.lights_version != volume_lights_ ||
+         (s_.cascades > 1 && pipeline_.moves(in.eye));
 }
 
 void VctGiPass::addIndirect(const GiFrameInputs& in) {
@@ -167,9 +184,13 @@ std::vector<float> VctGiPass::ambientOcclusion() const {
 
 std::size_t VctGiPass::memoryBytes() const {
   const std::size_t lo = std::size_t(lo_w_) * lo_h_, full = std::size_t(width_) * height_;
-  const std::size_t voxels = voxelsAllLevels(s_.grid.voxels, s_.grid.levels);
+  std::size_t voxels = 0;
+  for (unsigned c = 0; c < s_.cascades; ++c) {
+    const VoxelGridSettings l = cascadeLevelSettings(s_.grid, s_.cascades, c);
+    voxels += voxelsAllLevels(l.voxels, l.levels);
+  }
   const std::size_t textures = voxels * 8 * (s_.grid.anisotropic ? 7 : 1);  // RGBA16F
-  return voxelBytes(s_.grid) + textures + lo * (8 + 16 + 8) + full * (16 + 4);
+  return pipeline_.bytes() + textures + lo * (8 + 16 + 8) + full * (16 + 4);
 }
 
 }  // namespace ml::vct

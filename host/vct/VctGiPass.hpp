@@ -13,7 +13,9 @@
 //                  hashed technique's skipped update). The settings are fixed
 //                  for the pass's life (the viewer builds a new pass on any
 //                  change) and the volume does not depend on the resolution;
-//                  the hashed lists follow moved lights incrementally;
+//                  the hashed lists follow moved lights incrementally.
+//                  With cascades, a frame whose camera moves a level updates
+//                  too: the scrolled slabs only (VctPipeline);
 //   addIndirect(): `vct-trace` (gl/shaders/vct/vct_trace.comp: diffuse cones, the
 //                  ambient occlusion and, with `specular`, a specular cone, at
 //                  gi_scale of the frame's resolution) and `vct-upsample`
@@ -57,6 +59,7 @@ struct VctGiSettings {
   std::string shadows = "none";  // --vct-shadows: none | voxel (visibility through level-0 opacity)
   bool revoxelize = false;       // --revoxelize: voxelize every frame (moving geometry), not only the first
   unsigned bounces = 1;          // --gi-bounces: 1, or 2 (each voxel gathers once more: VoxelBouncePass)
+  unsigned cascades = 1;         // --vct-cascades: levels of the camera-centred cascade (VoxelCascade.hpp)
   bool brute_inject = false;     // inject from every light instead of the hashed lists
   ConeBreak broken = ConeBreak::None;  // tests only
 };
@@ -101,6 +104,7 @@ class VctGiPass final : public GiPass {
   unsigned width_ = 0, height_ = 0, lo_w_ = 0, lo_h_ = 0;
   std::uint64_t volume_lights_ = 0;  // lights_version of the last update; 0: none yet
   std::size_t reuses_ = 0;
+  std::size_t scrolls_ = 0, scrolled_voxels_ = 0;  // cascade levels scrolled, voxels they redid
   std::unique_ptr<VoxelViewPass> voxel_view_;  // made by the first view()
   std::unique_ptr<VoxelBouncePass> bounce_;    // with bounces > 1
   GLuint lo_irradiance_ = 0, lo_geometry_ = 0, lo_specular_ = 0, indirect_ = 0, ao_ = 0;

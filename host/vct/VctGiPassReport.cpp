@@ -19,7 +19,7 @@ nlohmann::ordered_json settingsJson(const VctGiSettings& v) {
   return {{"voxels", v.grid.voxels},  {"levels", v.grid.levels}, {"anisotropic", v.grid.anisotropic},
           {"cones", v.cones},         {"cone_aperture", v.aperture_deg}, {"gi_scale", v.gi_scale},
           {"specular", v.specular},   {"vct_shadows", v.shadows}, {"revoxelize", v.revoxelize},
-          {"bounces", v.bounces}};
+          {"bounces", v.bounces}, {"cascades", v.cascades}};
 }
 
 // The hashed lists' builds and uploads (all 0 with brute-force injection).
@@ -43,7 +43,7 @@ void addLists(const VctPipeline& p, GiStats& st) {
 
 GiStats VctGiPass::stats() const {
   GiStats st;
-  st.data_bytes = voxelBytes(s_.grid);
+  st.data_bytes = pipeline_.bytes();
   st.lines.push_back(printed("gi vct: %zu voxelizations in %zu updates%s; %zu frames reused the volume (unchanged "
                              "lights)",
                              pipeline_.voxelizations(), pipeline_.updates(),
@@ -54,6 +54,12 @@ GiStats VctGiPass::stats() const {
   st.json["vct_updates"] = pipeline_.updates();
   st.json["vct_voxelizations"] = pipeline_.voxelizations();
   st.json["vct_reused"] = reuses_;  // frames that reused the volume: their vct-inject etc. count 0 ms in the medians
+  st.json["vct_scrolls"] = scrolls_;
+  st.json["vct_scrolled_voxels"] = scrolled_voxels_;
+  if (s_.cascades > 1)
+    st.lines.push_back(printed("vct cascade: %u levels; %zu camera moves scrolled a level, %zu level-0 voxels "
+                               "voxelized and injected again for them",
+                               s_.cascades, scrolls_, scrolled_voxels_));
   addLists(pipeline_, st);
   const std::string bounces = s_.bounces == 1 ? "one bounce" : "two bounces (the second gathered per voxel)";
   st.json["gi_transport"] = s_.shadows == "voxel"

@@ -2,79 +2,141 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 
 #include "gl/GlPassTimer.hpp"
+#include "host/util/Error.hpp"
 
 namespace ml::vct {
+namespace {
+
+bool sameParams(const gpu::VoxelGridParams& a, const gpu::VoxelGridParams& b) {
+  return std::memcmp(&a, &b, sizeof(a)) == 0;
+}
+
+// Before the first update the cascade is placed around the scene's centre.
+glm::vec3 centre(const Aabb& b) { return b.empty() ? glm::vec3(0.0f) : 0.5f * (b.min + b.max); }
+
+}  // namespace
 
 VctPipeline::VctPipeline(ClRuntime& rt, const VctPipelineOptions& options, const Aabb& scene_bounds)
     : rt_(rt),
       options_(options),
+      bounds_(scene_bounds),
       env_(rt),
-      volume_(rt, options.grid, fitVoxelGrid(scene_bounds, options.grid)),
       injector_(env_, options.compute, options.shadows),
       occupancy_(env_, options.compute),
       mips_(env_, options.compute),
       lists_(env_),
-      hashed_(hashed::HashedConfig{}) {}
+      hashed_(hashed::HashedConfig{}) {
+  checkCascades(options.cascades);
+  if (options.cascades > 1 && options.shadows)
+    throw UserError("--vct-shadows voxel: needs --vct-cascades 1 (the shadow march reads one unscrolled grid)");
+  const auto placed = placeCascade(bounds_, options.grid, options.cascades, centre(bounds_));
+  for (unsigned c = 0; c < options.cascades; ++c)
+    levels_.push_back(
+        std::make_unique<CascadeLevel>(rt, cascadeLevelSettings(options.grid, options.cascades, c), placed[c]));
+}
 
-void VctPipeline::update(const SceneGpu& scene, const std::vector<gpu::PointLight>& lights, PassTimings& timings) {
-  if (voxelizations_ == 0 || options_.revoxelize) {
-    GlPassTimer gl_timer;
-    voxelize_.run(scene, volume_.params(), volume_.accum(), &gl_timer);
-    gl_timer.collect(timings);
-    ++voxelizations_;
-    occupancy_stale_ = true;
+std::size_t VctPipeline::bytes() const { return cascadeBytes(options_.grid, cascades()); }
+
+bool VctPipeline::moves(const glm::vec3& eye) const {
+  const auto placed = placeCascade(bounds_, options_.grid, cascades(), eye);
+  for (unsigned c = 0; c < cascades(); ++c)
+    if (!levels_[c]->placed || !sameParams(levels_[c]->volume.params(), placed[c])) return true;
+  return false;
+}
+
+void VctPipeline::voxelize(const SceneGpu& scene, const glm::vec3& eye, PassTimings& timings,
+                           std::vector<bool>& touched, std::vector<VoxelRegion>& regions) {
+  const auto placed = placeCascade(bounds_, options_.grid, cascades(), eye);
+  GlPassTimer gl_timer;
+  for (unsigned c = 0; c < cascades(); ++c) {
+    CascadeLevel& l = *levels_[c];
+    const bool fresh = !l.placed || options_.revoxelize;
+    if (!fresh && sameParams(l.volume.params(), placed[c])) continue;
+    ScrollUpdate u = fresh ? ScrollUpdate{} : scrollRegion(&l.volume.params(), placed[c]);
+    l.volume.setParams(placed[c]);
+    voxelize_.run(scene, placed[c], l.volume.accum(), &gl_timer, u.full ? VoxelRegion{} : u.region);
+    touched[c] = true;
+    regions[c] = u.full ? VoxelRegion{} : u.region;
+    l.placed = true;
+    if (u.full) {
+      ++report_.full_levels;
+      ++voxelizations_;
+    } else {
+      ++report_.scrolled_levels;
+      report_.scrolled_voxels += regionVoxels(u.region, placed[c].edge);
+    }
   }
+  gl_timer.collect(timings);
+}
+
+void VctPipeline::update(const SceneGpu& scene, const std::vector<gpu::PointLight>& lights, PassTimings& timings,
+                         const VctUpdateInputs& in) {
+  report_ = {};
+  std::vector<bool> touched(cascades(), false);
+  std::vector<VoxelRegion> regions(cascades());
+  voxelize(scene, in.eye, timings, touched, regions);
+  if (touched.back() && cascades() == 1) occupancy_stale_ = true;
+  const bool relight = in.lights_changed || !lists_valid_;
   cl::CommandQueue& q = rt_.queue();
+  if (relight) uploadLights(q, lights, timings);
   ClPassTimer timer;
-  volume_.accum().acquireForCl(q, ClAccess::Read);
-  volume_.radiance().acquireForCl(q, ClAccess::ReadWrite);
-  if (volume_.anisotropic()) volume_.anisotropic()->acquireForCl(q, ClAccess::Write);
-  if (options_.shadows && occupancy_stale_) {
-    occupancy_.build(q, volume_.params().edge, volume_.accum().cl(), &timer);
-    occupancy_stale_ = false;
+  for (unsigned c = 0; c < cascades(); ++c) {
+    if (!relight && !touched[c]) continue;
+    CascadeLevel& l = *levels_[c];
+    VoxelVolume& v = l.volume;
+    v.accum().acquireForCl(q, ClAccess::Read);
+    v.radiance().acquireForCl(q, ClAccess::ReadWrite);
+    if (v.anisotropic()) v.anisotropic()->acquireForCl(q, ClAccess::Write);
+    if (options_.shadows && occupancy_stale_) {
+      occupancy_.build(q, v.params().edge, v.accum().cl(), &timer);
+      occupancy_stale_ = false;
+    }
+    lightLevel(q, l, lights.size(), relight ? VoxelRegion{} : regions[c], timer);
+    mips(q, v, timer);
+    if (v.anisotropic()) v.anisotropic()->releaseToGl(q);
+    v.radiance().releaseToGl(q);
+    v.accum().releaseToGl(q);
+    unpackTextures(l, timings);
   }
-  inject(q, lights, timings, timer);
-  mips(q, timer);
   timer.collect(timings);
-  if (volume_.anisotropic()) volume_.anisotropic()->releaseToGl(q);
-  volume_.radiance().releaseToGl(q);
-  volume_.accum().releaseToGl(q);
-  unpackTextures(timings);
   ++updates_;
 }
 
 void VctPipeline::refilter(PassTimings& timings) {
+  if (cascades() != 1) throw std::logic_error("VctPipeline::refilter: one level only");
   cl::CommandQueue& q = rt_.queue();
   ClPassTimer timer;
-  volume_.radiance().acquireForCl(q, ClAccess::ReadWrite);
-  if (volume_.anisotropic()) volume_.anisotropic()->acquireForCl(q, ClAccess::Write);
-  mips(q, timer);
+  VoxelVolume& v = volume();
+  v.radiance().acquireForCl(q, ClAccess::ReadWrite);
+  if (v.anisotropic()) v.anisotropic()->acquireForCl(q, ClAccess::Write);
+  mips(q, v, timer);
   timer.collect(timings);
-  if (volume_.anisotropic()) volume_.anisotropic()->releaseToGl(q);
-  volume_.radiance().releaseToGl(q);
-  unpackTextures(timings);
+  if (v.anisotropic()) v.anisotropic()->releaseToGl(q);
+  v.radiance().releaseToGl(q);
+  unpackTextures(*levels_.back(), timings);
 }
 
-void VctPipeline::mips(cl::CommandQueue& q, ClPassTimer& timer) {
-  mips_.isotropic(q, volume_.params(), volume_.radiance().cl(), &timer);
-  if (volume_.anisotropic())
-    mips_.anisotropic(q, volume_.params(), volume_.radiance().cl(), volume_.anisotropic()->cl(), &timer);
+void VctPipeline::mips(cl::CommandQueue& q, VoxelVolume& v, ClPassTimer& timer) {
+  mips_.isotropic(q, v.params(), v.radiance().cl(), &timer);
+  if (v.anisotropic()) mips_.anisotropic(q, v.params(), v.radiance().cl(), v.anisotropic()->cl(), &timer);
 }
 
-void VctPipeline::unpackTextures(PassTimings& timings) {
+void VctPipeline::unpackTextures(CascadeLevel& l, PassTimings& timings) {
   GlPassTimer gl_timer;
-  textures_.unpack(volume_.params(), volume_.radiance().gl(), volume_.anisotropic() ? volume_.anisotropic()->gl() : 0,
-                   &gl_timer);
+  VoxelVolume& v = l.volume;
+  l.textures.unpack(v.params(), v.radiance().gl(), v.anisotropic() ? v.anisotropic()->gl() : 0, &gl_timer);
   gl_timer.collect(timings);
 }
 
 // Lights go to a grown device buffer (never empty: an OpenCL buffer needs a
-// size); without lights the hashed structure has nothing to bound, and brute
-// force over zero lights writes the unlit volume.
-void VctPipeline::inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>& lights, PassTimings& timings,
-                         ClPassTimer& timer) {
+// size). The first update builds the hashed lists; later ones update them
+// incrementally (HashedStructure::update, which rebuilds by itself when that
+// is cheaper or the lights left the octree) and upload only what changed.
+void VctPipeline::uploadLights(cl::CommandQueue& q, const std::vector<gpu::PointLight>& lights,
+                               PassTimings& timings) {
   const std::size_t bytes = std::max<std::size_t>(lights.size(), 1) * sizeof(gpu::PointLight);
   if (bytes > lights_capacity_) {
     lights_ = cl::Buffer(env_.context(), CL_MEM_READ_ONLY, bytes);  // the runtime's CL calls throw on error
@@ -82,22 +144,28 @@ void VctPipeline::inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>
   }
   if (!lights.empty())
     q.enqueueWriteBuffer(lights_, CL_TRUE, 0, lights.size() * sizeof(gpu::PointLight), lights.data());
-  const gpu::VoxelGridParams& g = volume_.params();
-  if (options_.brute_force || lights.empty()) {
-    injector_.brute(q, g, volume_.accum().cl(), lights_, lights.size(), volume_.radiance().cl(), &timer, occupancy());
-    return;
-  }
-  // The first update builds; later ones update incrementally
-  // (HashedStructure::update, which rebuilds by itself when that is cheaper
-  // or the lights left the octree) and upload only what changed.
+  lists_valid_ = true;
+  if (options_.brute_force || lights.empty()) return;
   const auto start = std::chrono::steady_clock::now();
   const hashed::UpdateStats& st = hashed_.update(lights);
   lists_.upload(q, hashed_.linkless(), st.full_rebuild);
   ++(st.full_rebuild ? list_builds_ : list_updates_);
   if (!st.full_rebuild) list_update_bytes_ += lists_.lastUploadBytes();
   timings.add("vct-lists", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  injector_.hashed(q, g, volume_.accum().cl(), lights_, lights.size(), lists_, volume_.radiance().cl(), &timer,
-                   occupancy());
+}
+
+// Without lights the hashed structure has nothing to bound, and brute force
+// over zero lights writes the unlit volume.
+void VctPipeline::lightLevel(cl::CommandQueue& q, CascadeLevel& l, std::size_t light_count,
+                             const VoxelRegion& region, ClPassTimer& timer) {
+  VoxelVolume& v = l.volume;
+  const gpu::VoxelGridParams& g = v.params();
+  if (options_.brute_force || light_count == 0) {
+    injector_.brute(q, g, v.accum().cl(), lights_, light_count, v.radiance().cl(), &timer, occupancy(), region);
+    return;
+  }
+  injector_.hashed(q, g, v.accum().cl(), lights_, light_count, lists_, v.radiance().cl(), &timer, occupancy(),
+                   region);
 }
 
 }  // namespace ml::vct

@@ -18,7 +18,15 @@
 // updates), then unpacked into mip-mapped 3D textures for sampling
 // (gl/VoxelTextures). Passes: `vct-voxelize` (GL), `vct-inject`, `vct-mips`
 // (CL device times), `vct-textures` (GL), added to the caller's PassTimings.
+// Cascades (options.cascades = L > 1, VoxelCascade.hpp): L volumes, the
+// outermost the grid around the scene, the inner ones toroidal and centred
+// on the update's eye. A level the eye moved voxelizes and injects only the
+// slabs that scrolled in (VoxelRegion; the rest of its level 0 keeps its
+// place), then its mips and textures run again; a light change injects every
+// level. The hashed lists serve every level. Shadows and refilter() need L = 1.
 // Not thread-safe; needs the current GL context of the scene's SceneGpu.
+#include <glm/glm.hpp>
+
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -34,6 +42,7 @@
 #include "host/vct/VoxelInjector.hpp"
 #include "host/vct/VoxelMips.hpp"
 #include "host/vct/VoxelOccupancy.hpp"
+#include "host/vct/VoxelCascade.hpp"
 #include "host/vct/VoxelVolume.hpp"
 
 namespace ml::vct {
@@ -43,7 +52,30 @@ struct VctPipelineOptions {
   bool revoxelize = false;   // moving geometry: voxelize on every update
   bool brute_force = false;  // inject from every light instead of the hashed lists
   bool shadows = false;      // --vct-shadows voxel: visibility through level-0 opacity (VoxelInjector)
+  unsigned cascades = 1;     // --vct-cascades
   compute::Options compute;  // kernel shape of inject and mips
+};
+
+// What changed since the last update: where the camera is (cascades follow
+// it) and whether the lights are new (every level is injected again).
+struct VctUpdateInputs {
+  glm::vec3 eye{0.0f};
+  bool lights_changed = true;
+};
+
+// What the last update did: levels voxelized in full, levels scrolled and
+// the level-0 voxels voxelized and injected again for the scroll.
+struct VctUpdateReport {
+  unsigned full_levels = 0, scrolled_levels = 0;
+  std::size_t scrolled_voxels = 0;
+};
+
+// One level of the cascade: its volume and textures.
+struct CascadeLevel {
+  CascadeLevel(ClRuntime& rt, const VoxelGridSettings& s, const gpu::VoxelGridParams& p) : volume(rt, s, p) {}
+  VoxelVolume volume;
+  VoxelTextures textures;
+  bool placed = false;  // voxelized at volume.params()
 };
 
 class VctPipeline {
@@ -52,14 +84,23 @@ class VctPipeline {
   // settings, naming the flag).
   VctPipeline(ClRuntime& rt, const VctPipelineOptions& options, const Aabb& scene_bounds);
 
-  void update(const SceneGpu& scene, const std::vector<gpu::PointLight>& lights, PassTimings& timings);
+  void update(const SceneGpu& scene, const std::vector<gpu::PointLight>& lights, PassTimings& timings,
+              const VctUpdateInputs& in = {});
   // After a GL pass rewrote level 0 of the radiance volume (VoxelBouncePass):
   // the mips and the textures again, added to `vct-mips` and `vct-textures`.
   void refilter(PassTimings& timings);
+  // Whether a camera at `eye` would move a level (an update is due).
+  bool moves(const glm::vec3& eye) const;
+  const VctUpdateReport& lastUpdate() const { return report_; }
 
-  VoxelVolume& volume() { return volume_; }
-  const VoxelVolume& volume() const { return volume_; }
-  const VoxelTextures& textures() const { return textures_; }
+  // The outermost level (the only one without cascades) and level c (0 finest).
+  VoxelVolume& volume() { return levels_.back()->volume; }
+  const VoxelVolume& volume() const { return levels_.back()->volume; }
+  const VoxelTextures& textures() const { return levels_.back()->textures; }
+  unsigned cascades() const { return static_cast<unsigned>(levels_.size()); }
+  CascadeLevel& level(unsigned c) { return *levels_.at(c); }
+  const CascadeLevel& level(unsigned c) const { return *levels_.at(c); }
+  std::size_t bytes() const;  // every level's volume
   std::size_t voxelizations() const { return voxelizations_; }  // tests: static geometry once
   std::size_t updates() const { return updates_; }
   // The hashed lists: full builds, incremental updates, the last upload's
@@ -71,19 +112,24 @@ class VctPipeline {
   const hashed::HashedStructure& lists() const { return hashed_; }
 
  private:
-  void inject(cl::CommandQueue& q, const std::vector<gpu::PointLight>& lights, PassTimings& timings,
-              ClPassTimer& timer);
-  void mips(cl::CommandQueue& q, ClPassTimer& timer);
-  void unpackTextures(PassTimings& timings);
+  // Voxelizes what moved; returns per level whether it changed and the
+  // region to inject (empty: all).
+  void voxelize(const SceneGpu& scene, const glm::vec3& eye, PassTimings& timings, std::vector<bool>& touched,
+                std::vector<VoxelRegion>& regions);
+  void uploadLights(cl::CommandQueue& q, const std::vector<gpu::PointLight>& lights, PassTimings& timings);
+  void lightLevel(cl::CommandQueue& q, CascadeLevel& l, std::size_t light_count, const VoxelRegion& region,
+                  ClPassTimer& timer);
+  void mips(cl::CommandQueue& q, VoxelVolume& v, ClPassTimer& timer);
+  void unpackTextures(CascadeLevel& l, PassTimings& timings);
   const VoxelOccupancy* occupancy() const { return options_.shadows ? &occupancy_ : nullptr; }
   bool occupancy_stale_ = true;  // voxelized since the occupancy was built
 
   ClRuntime& rt_;
   VctPipelineOptions options_;
+  Aabb bounds_;
   compute::ComputeEnv env_;
-  VoxelVolume volume_;
+  std::vector<std::unique_ptr<CascadeLevel>> levels_;
   VoxelizePass voxelize_;
-  VoxelTextures textures_;
   VoxelInjector injector_;
   VoxelOccupancy occupancy_;  // of the last voxelization, for the shadow march
   VoxelMips mips_;
@@ -91,6 +137,8 @@ class VctPipeline {
   hashed::HashedStructure hashed_;
   cl::Buffer lights_;
   std::size_t lights_capacity_ = 0;
+  bool lists_valid_ = false;  // the hashed lists hold the current lights
+  VctUpdateReport report_;
   std::size_t voxelizations_ = 0, updates_ = 0, list_builds_ = 0, list_updates_ = 0, list_update_bytes_ = 0;
 };
 

@@ -17,7 +17,8 @@ VoxelInjector::VoxelInjector(const compute::ComputeEnv& env, const compute::Opti
       tuning_(compute::resolveTuning(env, options)),
       shadows_(shadows),
       skip_(shadows && skip_empty),
-      own_(env, options) {}
+      own_(env, options),
+      boxes_(env.context(), CL_MEM_READ_ONLY, kMaxRegionBoxes * 2 * sizeof(cl_uint4)) {}
 
 void VoxelInjector::build() {
   if (brute_()) return;
@@ -49,7 +50,7 @@ const cl::Buffer& VoxelInjector::occupancyFor(cl::CommandQueue& q, const gpu::Vo
 std::size_t VoxelInjector::prepare(cl::Kernel& k, cl::CommandQueue& q, const gpu::VoxelGridParams& g,
                                    const cl::Buffer& accum, const cl::Buffer& lights, std::size_t light_count,
                                    cl::Buffer& radiance, std::size_t& local, ClPassTimer* timer,
-                                   const VoxelOccupancy* occupancy) {
+                                   const VoxelOccupancy* occupancy, const VoxelRegion& region) {
   VoxelGridSettings s;
   s.voxels = g.edge;
   s.levels = g.levels;
@@ -59,7 +60,15 @@ std::size_t VoxelInjector::prepare(cl::Kernel& k, cl::CommandQueue& q, const gpu
   requireBuffer(radiance, n * 16, "VoxelInjector radiance volume");
   requireBuffer(lights, light_count * sizeof(gpu::PointLight), "VoxelInjector lights");
   requireCount(light_count, "VoxelInjector lights");
+  checkRegion(region, g.edge);
+  if (shadows_ && g.wrap) throw std::invalid_argument("VoxelInjector: shadows need an unscrolled grid (wrap 0)");
   build();
+  std::vector<cl_uint4> boxes;
+  for (const VoxelBox& b : region) {
+    boxes.push_back(cl_uint4{{b.lo[0], b.lo[1], b.lo[2], 0u}});
+    boxes.push_back(cl_uint4{{b.hi[0], b.hi[1], b.hi[2], 0u}});
+  }
+  if (!boxes.empty()) q.enqueueWriteBuffer(boxes_, CL_TRUE, 0, boxes.size() * sizeof(cl_uint4), boxes.data());
   std::size_t chunk = 1, global = n;
   local = tuning_.wg;
   if (!tuning_.gpu()) {
@@ -78,26 +87,31 @@ std::size_t VoxelInjector::prepare(cl::Kernel& k, cl::CommandQueue& q, const gpu
     local = 1;
   }
   const auto& o = g.origin_voxel_size;
-  setArgs(k, accum, occupancyFor(q, g, accum, timer, occupancy), radiance,
-                           cl_float4{{o.x, o.y, o.z, o.w}}, cl_uint(log2Exact(g.edge)), u32(n), u32(chunk), lights);
+  const gpu::VoxelCorner c = gpu::voxel_corner(g);
+  setArgs(k, accum, occupancyFor(q, g, accum, timer, occupancy), radiance, cl_float4{{o.x, o.y, o.z, o.w}},
+          cl_uint(log2Exact(g.edge)), cl_int4{{c.x, c.y, c.z, g.wrap ? 1 : 0}}, boxes_, u32(region.size()), u32(n),
+          u32(chunk), lights);
   return global;
 }
 
 void VoxelInjector::brute(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
                           const cl::Buffer& lights, std::size_t light_count, cl::Buffer& radiance,
-                          ClPassTimer* timer, const VoxelOccupancy* occupancy) {
+                          ClPassTimer* timer, const VoxelOccupancy* occupancy, const VoxelRegion& region) {
   std::size_t local = 1;
-  const std::size_t global = prepare(brute_, q, g, accum, lights, light_count, radiance, local, timer, occupancy);
-  brute_.setArg(8, u32(light_count));
+  const std::size_t global =
+      prepare(brute_, q, g, accum, lights, light_count, radiance, local, timer, occupancy, region);
+  brute_.setArg(kArgLights + 1, u32(light_count));
   launchTimed(q, brute_, global, local, timer, "vct-inject");
 }
 
 void VoxelInjector::hashed(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
                            const cl::Buffer& lights, std::size_t light_count, const HashedListsCl& lists,
-                           cl::Buffer& radiance, ClPassTimer* timer, const VoxelOccupancy* occupancy) {
+                           cl::Buffer& radiance, ClPassTimer* timer, const VoxelOccupancy* occupancy,
+                           const VoxelRegion& region) {
   std::size_t local = 1;
-  const std::size_t global = prepare(hashed_, q, g, accum, lights, light_count, radiance, local, timer, occupancy);
-  lists.setArgs(hashed_, 8);
+  const std::size_t global =
+      prepare(hashed_, q, g, accum, lights, light_count, radiance, local, timer, occupancy, region);
+  lists.setArgs(hashed_, kArgLights + 1);
   launchTimed(q, hashed_, global, local, timer, "vct-inject");
 }
 

@@ -10,6 +10,10 @@
 // (compute::Shape); timed as "vct-inject" when a timer is given. The C++
 // twin is InjectTwin.hpp. Buffers are checked against the grid and light
 // count (std::invalid_argument). Not thread-safe.
+// A toroidal grid (VoxelGridParams::wrap, a cascade level) is read and
+// written where voxel_shift() puts its voxels; a non-empty `region` writes
+// only the voxels in its boxes (a scrolled level's new slabs) and leaves the
+// rest of level 0 as it was. Shadows need an unscrolled grid.
 // shadows = true (--vct-shadows voxel) builds the kernels with VCT_SHADOWS:
 // each light's term times its visibility through the filled level-0 voxels
 // of `accum` (InjectTwin's voxelVisibility()); false compiles none of it.
@@ -28,6 +32,7 @@
 #include "host/shared/voxel_types.h"
 #include "host/vct/HashedListsCl.hpp"
 #include "host/vct/VoxelOccupancy.hpp"
+#include "host/vct/VoxelRegion.hpp"
 
 namespace ml::vct {
 
@@ -40,10 +45,11 @@ class VoxelInjector {
 
   void brute(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum, const cl::Buffer& lights,
              std::size_t light_count, cl::Buffer& radiance, ClPassTimer* timer = nullptr,
-             const VoxelOccupancy* occupancy = nullptr);
+             const VoxelOccupancy* occupancy = nullptr, const VoxelRegion& region = {});
   void hashed(cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum, const cl::Buffer& lights,
               std::size_t light_count, const HashedListsCl& lists, cl::Buffer& radiance,
-              ClPassTimer* timer = nullptr, const VoxelOccupancy* occupancy = nullptr);
+              ClPassTimer* timer = nullptr, const VoxelOccupancy* occupancy = nullptr,
+              const VoxelRegion& region = {});
 
   // Tests: the shadow march alone (shadows only, else std::logic_error), per
   // query from a surfel at pn[2q] with unit normal pn[2q + 1] (xyz) to the
@@ -59,11 +65,12 @@ class VoxelInjector {
   const compute::Tuning& tuning() const { return tuning_; }
 
  private:
-  // Checks the buffers, builds the kernels, sets the 6 arguments both
-  // kernels share; returns the launch's global size, local size in `local`.
+  // Checks the buffers, builds the kernels, sets the kArgLights + 1 arguments
+  // both kernels share; returns the launch's global size, local size in `local`.
   std::size_t prepare(cl::Kernel& k, cl::CommandQueue& q, const gpu::VoxelGridParams& g, const cl::Buffer& accum,
                       const cl::Buffer& lights, std::size_t light_count, cl::Buffer& radiance, std::size_t& local,
-                      ClPassTimer* timer, const VoxelOccupancy* occupancy);
+                      ClPassTimer* timer, const VoxelOccupancy* occupancy, const VoxelRegion& region);
+  static constexpr cl_uint kArgLights = 10;  // the lights; the kernels' own arguments follow
   void build();
   // The occupancy buffer the kernels read: the caller's, else own_ built
   // from `accum` now; `accum` itself (unread) when the march does not skip.
@@ -75,6 +82,7 @@ class VoxelInjector {
   bool shadows_, skip_;
   cl::Kernel brute_, hashed_, probe_;
   VoxelOccupancy own_;
+  cl::Buffer boxes_;  // the region's boxes, 2 uint4 each (kMaxRegionBoxes)
 };
 
 }  // namespace ml::vct

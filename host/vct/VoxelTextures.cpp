@@ -7,7 +7,7 @@
 namespace ml {
 namespace {
 
-GLuint makeTexture(unsigned edge, unsigned levels) {
+GLuint makeTexture(unsigned edge, unsigned levels, bool wrap) {
   GLuint t = 0;
   glCreateTextures(GL_TEXTURE_3D, 1, &t);
   glTextureStorage3D(t, static_cast<GLsizei>(levels), GL_RGBA16F, static_cast<GLsizei>(edge),
@@ -20,9 +20,11 @@ GLuint makeTexture(unsigned edge, unsigned levels) {
   // transparent border they blended it with empty space at every coarse
   // level: cones ended short of opacity (a furnace with a one-voxel shell at
   // the edge lost 37-47%; the Cornell box's energy was 0.75-0.84 of the
-  // reference's).
+  // reference's). A toroidal grid (a cascade level) repeats: its window
+  // starts at voxel_shift() and wraps around (the cones read it only inside
+  // the window, away from the seam where its far side meets its near one).
   for (GLenum w : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-    glTextureParameteri(t, w, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t, w, wrap ? GL_REPEAT : GL_CLAMP_TO_EDGE);
   glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, static_cast<GLint>(levels) - 1);
   glCheck("creating a voxel texture");
   return t;
@@ -44,17 +46,18 @@ VoxelTextures::~VoxelTextures() {
 }
 
 void VoxelTextures::allocate(const gpu::VoxelGridParams& grid, bool aniso) {
-  const bool same = grid.edge == edge_ && grid.levels == levels_;
+  const bool same = grid.edge == edge_ && grid.levels == levels_ && (grid.wrap != 0) == wrap_;
   if (!same) {
     glDeleteTextures(1, &radiance_);
     glDeleteTextures(static_cast<GLsizei>(dirs_.size()), dirs_.data());
     dirs_.fill(0);
-    radiance_ = makeTexture(grid.edge, grid.levels);
+    radiance_ = makeTexture(grid.edge, grid.levels, grid.wrap != 0);
     edge_ = grid.edge;
     levels_ = grid.levels;
+    wrap_ = grid.wrap != 0;
   }
   if (aniso && dirs_[0] == 0)
-    for (GLuint& d : dirs_) d = makeTexture(grid.edge, grid.levels);
+    for (GLuint& d : dirs_) d = makeTexture(grid.edge, grid.levels, wrap_);
 }
 
 void VoxelTextures::unpack(const gpu::VoxelGridParams& grid, GLuint radiance, GLuint aniso, GlPassTimer* timer) {

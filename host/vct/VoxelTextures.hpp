@@ -46,6 +46,7 @@ class VoxelTextures {
   GLuint radiance_ = 0;
   std::array<GLuint, ML_VOXEL_DIRECTIONS> dirs_{};
   unsigned edge_ = 0, levels_ = 0;
+  bool wrap_ = false;
 };
 
 }  // namespace ml

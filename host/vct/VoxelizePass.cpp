@@ -1,6 +1,7 @@
 #include "host/vct/VoxelizePass.hpp"
 
 #include <bit>
+#include <stdexcept>
 #include <string>
 
 #include "gl/GlCheck.hpp"
@@ -23,7 +24,9 @@ void checkVoxelGrid(const gpu::VoxelGridParams& grid) {
 }
 
 VoxelizePass::VoxelizePass(const VoxelizeOptions& options)
-    : options_(options), program_({"vct/voxelize.vert", "vct/voxelize.geom", "vct/voxelize.frag"}) {
+    : options_(options),
+      program_({"vct/voxelize.vert", "vct/voxelize.geom", "vct/voxelize.frag"}),
+      clear_({"vct/voxel_clear.comp"}) {
   glCreateFramebuffers(1, &fbo_);
   glCheck("creating the voxelization framebuffer");
 }
@@ -46,7 +49,7 @@ void VoxelizePass::bindEmptyFramebuffer(unsigned edge) {
 }
 
 void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, SharedBuffer& accum,
-                       GlPassTimer* timer) {
+                       GlPassTimer* timer, const vct::VoxelRegion& region) {
   checkVoxelGrid(grid);
   const std::size_t edge = grid.edge;
   const std::size_t bytes = edge * edge * edge * sizeof(gpu::VoxelAccum);
@@ -58,18 +61,21 @@ void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, 
     throw UserError("voxel grid edge " + std::to_string(edge) + " needs " + std::to_string(bytes >> 20) +
                     " MiB of voxel sums, more than this GL's shader storage block limit (" +
                     std::to_string(max_block >> 20) + " MiB)");
-  accum.reserve(bytes);
+  vct::checkRegion(region, grid.edge);
+  if (region.empty()) accum.reserve(bytes);
+  else if (accum.used() < bytes)
+    throw std::invalid_argument("VoxelizePass: a region needs the accumulation buffer of the whole grid");
   GlPassScope scope(timer, "vct-voxelize");
-  glClearNamedBufferSubData(accum.gl(), GL_R32UI, 0, static_cast<GLsizeiptr>(bytes), GL_RED_INTEGER,
-                            GL_UNSIGNED_INT, nullptr);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  glCheck("clearing the voxel accumulation buffer");
+  clear(grid, accum, region);
   bindEmptyFramebuffer(grid.edge);
   program_.use();
   const auto& o = grid.origin_voxel_size;
   program_.set4("u_origin_voxel_size", o.x, o.y, o.z, o.w);
   program_.set("u_edge", grid.edge);
   program_.set("u_dilate", options_.dilate ? 1 : 0);
+  const gpu::VoxelShift sh = gpu::voxel_shift(grid);
+  program_.setU3("u_shift", sh.x, sh.y, sh.z);
+  setRegion(program_, region);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_VOXELIZE_ACCUM, accum.gl());
   scene.draw(program_, true);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
@@ -77,6 +83,39 @@ void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, 
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_VOXELIZE_ACCUM, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glCheck("voxelizing the scene");
+}
+
+void VoxelizePass::clear(const gpu::VoxelGridParams& grid, SharedBuffer& accum, const vct::VoxelRegion& region) {
+  const std::size_t edge = grid.edge;
+  if (region.empty()) {
+    glClearNamedBufferSubData(accum.gl(), GL_R32UI, 0, static_cast<GLsizeiptr>(edge * edge * edge * 32),
+                              GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+  } else {
+    clear_.use();
+    clear_.set("u_edge", grid.edge);
+    const gpu::VoxelShift sh = gpu::voxel_shift(grid);
+    clear_.setU3("u_shift", sh.x, sh.y, sh.z);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_VOXELIZE_ACCUM, accum.gl());
+    for (const vct::VoxelBox& b : region) {
+      clear_.setU3("u_lo", b.lo[0], b.lo[1], b.lo[2]);
+      clear_.setU3("u_size", b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]);
+      glDispatchCompute((b.hi[0] - b.lo[0] + 3) / 4, (b.hi[1] - b.lo[1] + 3) / 4, (b.hi[2] - b.lo[2] + 3) / 4);
+    }
+  }
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glCheck("clearing the voxel accumulation buffer");
+}
+
+void VoxelizePass::setRegion(const ShaderProgram& p, const vct::VoxelRegion& region) const {
+  int lo[3 * vct::kMaxRegionBoxes] = {}, hi[3 * vct::kMaxRegionBoxes] = {};
+  for (std::size_t b = 0; b < region.size(); ++b)
+    for (int a = 0; a < 3; ++a) {
+      lo[3 * b + a] = static_cast<int>(region[b].lo[a]);
+      hi[3 * b + a] = static_cast<int>(region[b].hi[a]);
+    }
+  p.set("u_box_count", static_cast<int>(region.size()));
+  p.setI3v("u_box_lo", static_cast<int>(vct::kMaxRegionBoxes), lo);
+  p.setI3v("u_box_hi", static_cast<int>(vct::kMaxRegionBoxes), hi);
 }
 
 }  // namespace ml

@@ -6,12 +6,12 @@
 // owns (vct::VoxelVolume's accum) so that the OpenCL kernels (resolve,
 // injection, mips) read the result where it lies.
 //
-// One grid, a cube fitted around the scene's bounds (vct::fitVoxelGrid), instead of
-// 002's camera-centred cascade: the scenes here are rooms of bounded size
-// (Cornell box, the default scene), the grid is voxelized once for static
-// geometry and reused from every viewpoint, and the Embree reference it is
-// compared with sees the whole scene too; a cascade would re-voxelize as the
-// camera moves and make the error depend on the viewpoint.
+// The grid is a cube fitted around the scene's bounds (vct::fitVoxelGrid) or
+// one level of 002's camera-centred cascade (vct::VoxelCascade): a toroidal
+// grid (VoxelGridParams::wrap) whose voxels are stored where voxel_shift()
+// puts them. A region (VoxelRegion: the slabs a scrolled level gained) clears
+// and voxelizes only its boxes; the rest of the buffer keeps its sums, and
+// only triangles whose bounds reach a box are rasterised.
 //
 // Conservativeness: triangle dilation by half a voxel in the geometry shader
 // (Hasselgren et al., GPU Gems 2 ch. 42) so that every pixel whose square the
@@ -26,6 +26,7 @@
 #include "gl/SharedBuffer.hpp"
 #include "host/scene/Scene.hpp"
 #include "host/shared/voxel_types.h"
+#include "host/vct/VoxelRegion.hpp"
 
 namespace ml {
 
@@ -51,12 +52,17 @@ class VoxelizePass {
   // own it) and voxelizes `scene` into it; a GL pass named `vct-voxelize`.
   // GL owns the buffer afterwards (writes are visible to buffer reads and CL
   // acquisition).
-  void run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, SharedBuffer& accum, GlPassTimer* timer);
+  // With a non-empty `region` only its boxes are cleared and voxelized (the
+  // buffer must already hold grid.edge^3 sums).
+  void run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, SharedBuffer& accum, GlPassTimer* timer,
+           const vct::VoxelRegion& region = {});
 
  private:
   void bindEmptyFramebuffer(unsigned edge);
+  void clear(const gpu::VoxelGridParams& grid, SharedBuffer& accum, const vct::VoxelRegion& region);
+  void setRegion(const ShaderProgram& p, const vct::VoxelRegion& region) const;
   VoxelizeOptions options_;
-  ShaderProgram program_;
+  ShaderProgram program_, clear_;
   GLuint fbo_ = 0;
   unsigned fbo_edge_ = 0;
 };

@@ -24,13 +24,33 @@
 #include "shading_model.h"
 #include "hashed/hashed_lookup.cl"
 
+/* The window coordinates of stored voxel i (voxel_types.h, `wrap`: stored
+ * at (window + k) mod edge for the corner's lattice index k; the mask takes
+ * k mod edge, k = 0 for an unscrolled grid). */
+ML_INLINE uint3 window_voxel(uint i, uint edge_log2, uint4 shift) {
+  const uint mask = (1u << edge_log2) - 1u;
+  return (uint3)(((i & mask) - shift.x) & mask, (((i >> edge_log2) & mask) - shift.y) & mask,
+                 ((i >> (2u * edge_log2)) - shift.z) & mask);
+}
+/* Whether window voxel w lies in one of the n boxes (lo, hi pairs of window
+ * coordinates, hi exclusive); every voxel when n is 0. */
+ML_INLINE bool in_boxes(uint3 w, __global const uint4* boxes, uint n) {
+  if (n == 0u) return true;
+  for (uint b = 0; b < n; ++b) {
+    const uint4 lo = boxes[2u * b], hi = boxes[2u * b + 1u];
+    if (w.x >= lo.x && w.y >= lo.y && w.z >= lo.z && w.x < hi.x && w.y < hi.y && w.z < hi.z) return true;
+  }
+  return false;
+}
+
 typedef struct Surfel {
   float3 albedo, n, p;
 } Surfel;
 
 /* False for an empty voxel. Same operations as the twin's resolveVoxel(). */
 ML_INLINE bool resolve_voxel(__global const VoxelAccum* accum, uint i, float4 origin_size, uint edge_log2,
-                             Surfel* s) {
+                             int4 corner, Surfel* s) {
+  const uint4 shift = as_uint4(corner);
   const VoxelAccum a = accum[i];
   if (a.albedo_count[3] == 0u) return false;
   const float denom = (float)a.albedo_count[3] * (float)ML_VOXEL_ALBEDO_SCALE;
@@ -39,10 +59,16 @@ ML_INLINE bool resolve_voxel(__global const VoxelAccum* accum, uint i, float4 or
   const float nx = (float)a.normal_sum[0], ny = (float)a.normal_sum[1], nz = (float)a.normal_sum[2];
   const float len = sqrt(nx * nx + ny * ny + nz * nz);
   s->n = len > 0.0f ? (float3)(nx / len, ny / len, nz / len) : (float3)(0.0f);
-  const uint mask = (1u << edge_log2) - 1u;
-  const uint x = i & mask, y = (i >> edge_log2) & mask, z = i >> (2u * edge_log2);
-  s->p = (float3)(origin_size.x + ((float)x + 0.5f) * origin_size.w, origin_size.y + ((float)y + 0.5f) * origin_size.w,
-                  origin_size.z + ((float)z + 0.5f) * origin_size.w);
+  const uint3 w = window_voxel(i, edge_log2, shift);
+  if (corner.w) {
+    /* Toroidal: from the lattice index, the same bits wherever the window is. */
+    s->p = (float3)(((float)(corner.x + (int)w.x) + 0.5f) * origin_size.w,
+                    ((float)(corner.y + (int)w.y) + 0.5f) * origin_size.w,
+                    ((float)(corner.z + (int)w.z) + 0.5f) * origin_size.w);
+    return true;
+  }
+  s->p = (float3)(origin_size.x + ((float)w.x + 0.5f) * origin_size.w, origin_size.y + ((float)w.y + 0.5f) * origin_size.w,
+                  origin_size.z + ((float)w.z + 0.5f) * origin_size.w);
   return true;
 }
 
@@ -228,9 +254,10 @@ ML_INLINE float4 lit(const Surfel* s, float3 acc) {
  * force) or over the hashed list at the voxel centre, in list order. Both
  * kernels go through here so that the two sums differ only in their lights. */
 ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, __global const uchar* occ, uint i, float4 origin_size,
-                              uint edge_log2, __global const PointLight* lights, uint n_lights, const HsBuffers* hb) {
+                              uint edge_log2, int4 corner, __global const PointLight* lights, uint n_lights,
+                              const HsBuffers* hb) {
   Surfel s;
-  if (!resolve_voxel(accum, i, origin_size, edge_log2, &s)) return (float4)(0.0f);
+  if (!resolve_voxel(accum, i, origin_size, edge_log2, corner, &s)) return (float4)(0.0f);
   const ShadowGrid g = {accum, occ, origin_size, edge_log2};
   float3 acc = (float3)(0.0f);
   if (hb) {
@@ -245,25 +272,34 @@ ML_INLINE float4 inject_voxel(__global const VoxelAccum* accum, __global const u
   return lit(&s, acc);
 }
 
-/* occ: the distance volume of accum (read with VCT_SHADOW_SKIP only). */
+/* occ: the distance volume of accum (read with VCT_SHADOW_SKIP only).
+ * corner: a toroidal grid's lattice corner k (xyz) and 1 (w), else 0
+ * (voxel_corner(); window voxel v is stored at (v + k) mod edge); boxes, n_boxes:
+ * only the voxels in these window boxes are written (a scrolled cascade
+ * level's new slabs), every voxel when n_boxes is 0. */
 __kernel VCT_ATTR void inject_brute(__global const VoxelAccum* accum, __global const uchar* occ, __global float4* out,
-                                    float4 origin_size, uint edge_log2, uint n, uint chunk,
-                                    __global const PointLight* lights, uint n_lights) {
+                                    float4 origin_size, uint edge_log2, int4 corner, __global const uint4* boxes,
+                                    uint n_boxes, uint n, uint chunk, __global const PointLight* lights,
+                                    uint n_lights) {
   uint b, e;
   item_range(n, chunk, &b, &e);
-  for (uint i = b; i < e; ++i) out[i] = inject_voxel(accum, occ, i, origin_size, edge_log2, lights, n_lights, 0);
+  for (uint i = b; i < e; ++i)
+    if (in_boxes(window_voxel(i, edge_log2, as_uint4(corner)), boxes, n_boxes))
+      out[i] = inject_voxel(accum, occ, i, origin_size, edge_log2, corner, lights, n_lights, 0);
 }
 
 __kernel VCT_ATTR void inject_hashed(__global const VoxelAccum* accum, __global const uchar* occ, __global float4* out,
-                                     float4 origin_size, uint edge_log2, uint n, uint chunk,
-                                     __global const PointLight* lights,
+                                     float4 origin_size, uint edge_log2, int4 corner, __global const uint4* boxes,
+                                     uint n_boxes, uint n, uint chunk, __global const PointLight* lights,
                                      __global const uint* header, __global const uint* offsets,
                                      __global const uint2* desc, __global const uint4* data,
                                      __global const uint* list) {
   const HsBuffers hb = {header, offsets, desc, data, list};
   uint b, e;
   item_range(n, chunk, &b, &e);
-  for (uint i = b; i < e; ++i) out[i] = inject_voxel(accum, occ, i, origin_size, edge_log2, lights, 0u, &hb);
+  for (uint i = b; i < e; ++i)
+    if (in_boxes(window_voxel(i, edge_log2, as_uint4(corner)), boxes, n_boxes))
+      out[i] = inject_voxel(accum, occ, i, origin_size, edge_log2, corner, lights, 0u, &hb);
 }
 
 /* Tests: the lookup's range (offset, count) and octant for each point. */

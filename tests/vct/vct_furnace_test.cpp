@@ -156,7 +156,7 @@ TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
       for (float aperture : {30.0f, 45.0f, 60.0f}) {
         SCOPED_TRACE("anisotropic " + std::to_string(aniso) + " cones " + std::to_string(cones) + " aperture " +
                      std::to_string(aperture));
-        ConeTraceSetup s{f.grid, &f.textures, aniso, diffuseCones(cones), aperture, ConeBreak::None};
+        ConeTraceSetup s{f.grid, &f.textures, aniso, diffuseCones(cones), aperture, ConeBreak::None, {}};
         const auto [err, ao] = traceWorst(f, s, points, normals, "");
         EXPECT_LE(err, kTolerance);
         EXPECT_LE(ao, kTolerance);
@@ -196,7 +196,7 @@ TEST(VctFurnace, AOneVoxelShellAtTheGridsEdgeHoldsAtEveryLevel) {
   SCOPED_TRACE("seed=" + std::to_string(seed));
   for (bool aniso : {false, true}) {
     Furnace f(aniso, kShell, kEdge - kShell);
-    ConeTraceSetup s{f.grid, &f.textures, aniso, diffuseCones(9), 45.0f, ConeBreak::None};
+    ConeTraceSetup s{f.grid, &f.textures, aniso, diffuseCones(9), 45.0f, ConeBreak::None, {}};
     const auto r = f.trace(s, points, normals);
     std::vector<float> e = pointErrors(r);
     std::sort(e.begin(), e.end());

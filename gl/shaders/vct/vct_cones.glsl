@@ -12,17 +12,29 @@
 // a_step = 1 - exp(-density * step / edge), before
 //   c += (1 - A) c_step,  A += (1 - A) a_step.
 // It stops at opacity 0.99 or where it leaves the grid (outside is empty).
+// Cascades (u_levels > 1, host/vct/VoxelCascade.hpp): the lod counts from the
+// finest level's voxel; a sample reads the level whose voxel matches its lod
+// (inner levels hold 2 mip levels, the next level takes over from there) or,
+// where that level's window does not hold it, the finest level that does,
+// and within kBlendVoxels of an inner window's face it fades into the next
+// level, so a cone crosses from level to level without a seam. Toroidal
+// levels are sampled through their shift (GL_REPEAT textures).
 // Cornell box with its camera, 320x320, anisotropic, 9 cones of 45 degrees,
 // --levels auto, against a 4096-sample reference (relative RMSE, energy):
 // 32^3 0.164 (0.93), 64^3 0.159 (0.91), 128^3 0.142 (0.94); before the
 // density, the bias, this offset and the faces' colour mix: 0.197, 0.227,
 // 0.185 at 4 levels (docs/vct.md, "Accuracy").
 #include "vct_bindings.h"
-layout(binding = ML_UNIT_VCT_VOXELS) uniform sampler3D u_voxels;
-layout(binding = ML_UNIT_VCT_VOXEL_DIRS) uniform sampler3D u_voxel_dirs[6];  // +X -X +Y -Y +Z -Z (direction of travel)
-uniform vec4 u_grid_origin_size;  // corner xyz, level-0 voxel edge w
-uniform float u_grid_edge;        // level-0 voxels per axis
-uniform float u_grid_max_lod;     // levels - 1
+// Level c's textures: radiance at unit ML_UNIT_VCT_VOXELS + c, its 6
+// directions (+X -X +Y -Y +Z -Z, direction of travel) from
+// ML_UNIT_VCT_VOXEL_DIRS + 6 c.
+layout(binding = ML_UNIT_VCT_VOXELS) uniform sampler3D u_level_voxels[ML_VCT_MAX_LEVELS];
+layout(binding = ML_UNIT_VCT_VOXEL_DIRS) uniform sampler3D u_level_dirs[6 * ML_VCT_MAX_LEVELS];
+uniform vec4 u_grid_origin_size;  // the outermost level: corner xyz, level-0 voxel edge w
+uniform float u_grid_edge;        // level-0 voxels per axis (every level)
+uniform int u_levels;             // cascade levels, 1..ML_VCT_MAX_LEVELS (0 finest)
+uniform vec4 u_level_origin_size[ML_VCT_MAX_LEVELS];  // window corner xyz, level-0 voxel edge w
+uniform vec4 u_level_shift_lod[ML_VCT_MAX_LEVELS];    // voxel_shift / edge xyz (toroidal), levels - 1 w
 uniform int u_anisotropic;
 uniform float u_cone_tan;         // tan(aperture / 2) of the diffuse cones
 uniform int u_cone_count;
@@ -48,38 +60,15 @@ const float kLodBias = 1.0;
 // 0.171 / 0.155.
 const float kLevelOffset = 0.25;
 const float kConeOpaque = 0.99;
+// A sample reads a cascade level only this many of its level-0 voxels inside
+// the window (trilinear footprint of its level 1 and the seam of a toroidal
+// level), and fades into the next level over kBlendVoxels more.
+const float kLevelMargin = 3.0;
+const float kBlendVoxels = 4.0;
 const float kPi = 3.14159265358979;
 
 // A face's colour, its premultiplied radiance over its opacity (black when empty).
 vec3 faceColour(vec4 f) { return f.a > 1e-6 ? f.rgb / f.a : vec3(0.0); }
-
-vec4 sampleVoxels(vec3 uvw, float lod, vec3 d) {
-  if (u_anisotropic == 0) return textureLod(u_voxels, uvw, lod);
-  // Crassin's anisotropic voxels: the three faces the cone travels through,
-  // weighted by the squared direction components (which sum to 1).
-  // The faces' optical depths are mixed, not their opacities: a wall the cone
-  // crosses at a slant is opaque through the face it faces, and half covers
-  // a coarse voxel's pairs along the other two axes; mixing opacities let
-  // such cones through (a one-voxel shell at the grid's edge lost 28-31%).
-  // The colours are mixed with the same weights as the medium they belong
-  // to, each face's colour (rgb / a) by its share of the optical depth. The
-  // mean premultiplied colour over the mean opacity gave the faces along a
-  // wall as much say as the face across it: a 0.1 m slab inside one coarse
-  // voxel mixes its lit face with its dark back along the wall, and every
-  // slanted crossing came out darker (Cornell box, its camera, 320x320,
-  // 32^3 / 64^3 / 128^3: 0.173 / 0.178 / 0.158 -> 0.164 / 0.159 / 0.142).
-  vec3 w = d * d;
-  vec4 x = d.x >= 0.0 ? textureLod(u_voxel_dirs[0], uvw, lod) : textureLod(u_voxel_dirs[1], uvw, lod);
-  vec4 y = d.y >= 0.0 ? textureLod(u_voxel_dirs[2], uvw, lod) : textureLod(u_voxel_dirs[3], uvw, lod);
-  vec4 z = d.z >= 0.0 ? textureLod(u_voxel_dirs[4], uvw, lod) : textureLod(u_voxel_dirs[5], uvw, lod);
-  vec3 alpha = clamp(vec3(x.a, y.a, z.a), 0.0, 1.0);
-  vec3 share = w * -log(max(vec3(1.0) - alpha, vec3(1e-4)));
-  float depth = share.x + share.y + share.z;
-  if (depth <= 1e-6) return vec4(0.0);
-  vec3 rgb = share.x * faceColour(x) + share.y * faceColour(y) + share.z * faceColour(z);
-  float a = 1.0 - exp(-depth);
-  return vec4(rgb * (a / depth), a);
-}
 
 // Optical depth per voxel edge of a sample whose interpolated opacity is a.
 // Trilinear interpolation spreads a voxel of opacity a over a hat two voxels
@@ -97,21 +86,130 @@ float opticalDensity(float a) {
   return 0.5 * (-log(1.0 - a) + a / (1.0 - a));
 }
 
+// One level's sample at texture coordinates uvw (its radiance texture r and
+// direction textures px..nz).
+vec4 sampleFaces(sampler3D r, sampler3D px, sampler3D nx, sampler3D py, sampler3D ny, sampler3D pz, sampler3D nz,
+                 vec3 uvw, float lod, vec3 d) {
+  if (u_anisotropic == 0) return textureLod(r, uvw, lod);
+  // Crassin's anisotropic voxels: the three faces the cone travels through,
+  // weighted by the squared direction components (which sum to 1).
+  // The faces' optical depths are mixed, not their opacities: a wall the cone
+  // crosses at a slant is opaque through the face it faces, and half covers
+  // a coarse voxel's pairs along the other two axes; mixing opacities let
+  // such cones through (a one-voxel shell at the grid's edge lost 28-31%).
+  // The colours are mixed with the same weights as the medium they belong
+  // to, each face's colour (rgb / a) by its share of the optical depth. The
+  // mean premultiplied colour over the mean opacity gave the faces along a
+  // wall as much say as the face across it: a 0.1 m slab inside one coarse
+  // voxel mixes its lit face with its dark back along the wall, and every
+  // slanted crossing came out darker (Cornell box, its camera, 320x320,
+  // 32^3 / 64^3 / 128^3: 0.173 / 0.178 / 0.158 -> 0.164 / 0.159 / 0.142).
+  vec3 w = d * d;
+  vec4 x = d.x >= 0.0 ? textureLod(px, uvw, lod) : textureLod(nx, uvw, lod);
+  vec4 y = d.y >= 0.0 ? textureLod(py, uvw, lod) : textureLod(ny, uvw, lod);
+  vec4 z = d.z >= 0.0 ? textureLod(pz, uvw, lod) : textureLod(nz, uvw, lod);
+  vec3 alpha = clamp(vec3(x.a, y.a, z.a), 0.0, 1.0);
+  vec3 share = w * -log(max(vec3(1.0) - alpha, vec3(1e-4)));
+  float depth = share.x + share.y + share.z;
+  if (depth <= 1e-6) return vec4(0.0);
+  vec3 rgb = share.x * faceColour(x) + share.y * faceColour(y) + share.z * faceColour(z);
+  float a = 1.0 - exp(-depth);
+  return vec4(rgb * (a / depth), a);
+}
+
+// Sampler arrays are indexed by constants only (the level differs between
+// neighbouring invocations: not dynamically uniform).
+vec4 sampleLevelTextures(int c, vec3 uvw, float lod, vec3 d) {
+#define ML_LEVEL_FACES(C)                                                                                     \
+  sampleFaces(u_level_voxels[C], u_level_dirs[6 * C], u_level_dirs[6 * C + 1], u_level_dirs[6 * C + 2],       \
+              u_level_dirs[6 * C + 3], u_level_dirs[6 * C + 4], u_level_dirs[6 * C + 5], uvw, lod, d)
+  if (c == 0) return ML_LEVEL_FACES(0);
+#if ML_VCT_MAX_LEVELS > 1
+  if (c == 1) return ML_LEVEL_FACES(1);
+#endif
+#if ML_VCT_MAX_LEVELS > 2
+  if (c == 2) return ML_LEVEL_FACES(2);
+#endif
+#if ML_VCT_MAX_LEVELS > 3
+  if (c == 3) return ML_LEVEL_FACES(3);
+#endif
+#undef ML_LEVEL_FACES
+  return vec4(0.0);
+}
+
+// Voxel coordinates of x in level c's window (level 0 of that level).
+vec3 levelVoxel(int c, vec3 x) { return (x - u_level_origin_size[c].xyz) / u_level_origin_size[c].w; }
+
+// How far x lies inside level c's window, in its level-0 voxels (< 0: outside).
+float insideVoxels(int c, vec3 x) {
+  vec3 g = levelVoxel(c, x);
+  vec3 m = min(g, vec3(u_grid_edge) - g);
+  return min(m.x, min(m.y, m.z));
+}
+
+// The finest level whose window holds x with kLevelMargin voxels to spare
+// (the outermost when none does).
+int levelAt(vec3 x) {
+  for (int c = 0; c < u_levels - 1; ++c)
+    if (insideVoxels(c, x) >= kLevelMargin) return c;
+  return u_levels - 1;
+}
+
+// Level c at x, at lod `lod` counted from its own level-0 voxel (clamped to its levels).
+vec4 sampleLevel(int c, vec3 x, float lod, vec3 d) {
+  vec3 uvw = levelVoxel(c, x) / u_grid_edge + u_level_shift_lod[c].xyz;
+  return sampleLevelTextures(c, uvw, clamp(lod, 0.0, u_level_shift_lod[c].w), d);
+}
+
+// The cascade's medium at x for a footprint of lod `lod` (counted from the
+// finest level's voxel): colour (rgb, radiance over opacity) and density per
+// unit length (a, opticalDensity over the voxel edge it was read at), from
+// the level that holds that footprint, or the finest one whose window holds
+// x; near an inner window's face the densities of this level and the next
+// are mixed (and the colours by their share of it): mixing opacities read
+// at two voxel sizes counted the coarse one's twice over a fine step (a
+// band too bright where the levels meet). `edge` returns the voxel edge of
+// the level the footprint asked for.
+vec4 levelMedium(int c, vec3 x, float lod, vec3 d, out float edge) {
+  float local = clamp(lod - float(c), 0.0, u_level_shift_lod[c].w);
+  edge = u_level_origin_size[c].w * exp2(local);
+  vec4 s = sampleLevel(c, x, local, d);
+  vec3 colour = s.a > 1e-6 ? s.rgb / s.a : vec3(0.0);
+  return vec4(colour, opticalDensity(s.a) / edge);
+}
+
+vec4 sampleMedium(vec3 x, float lod, vec3 d, out float edge) {
+  int c = max(levelAt(x), min(int(floor(lod)), u_levels - 1));
+  vec4 m = levelMedium(c, x, lod, d, edge);
+  if (c == u_levels - 1) return m;
+  float f = clamp((insideVoxels(c, x) - kLevelMargin) / kBlendVoxels, 0.0, 1.0);
+  if (f >= 1.0) return m;
+  float unused;
+  vec4 n = levelMedium(c + 1, x, lod, d, unused);
+  float sigma = mix(n.a, m.a, f);
+  if (sigma <= 0.0) return vec4(0.0);
+  return vec4((mix(n.a * n.rgb, m.a * m.rgb, f)) / sigma, sigma);
+}
+
+
 // Premultiplied radiance along the cone (rgb) and its opacity (a), from the
 // surface point P with normal N (the samples' offset: kLevelOffset).
 vec4 traceCone(vec3 P, vec3 N, vec3 d, float tan_half) {
-  float vs = u_grid_origin_size.w;
-  float extent = vs * u_grid_edge;
+  float vs0 = u_level_origin_size[0].w;  // the finest level's voxel: lod 0
+  float vs = u_level_origin_size[levelAt(P)].w;  // the voxel where the cone starts
+  int outer = u_levels - 1;
+  float max_lod = float(outer) + u_level_shift_lod[outer].w;
   vec3 acc = vec3(0.0);
   float a = 0.0;
   float t = vs;
   for (int i = 0; i < 512 && a < kConeOpaque; ++i) {
     float diam = max(vs, 2.0 * t * tan_half);
-    float lod = clamp(log2(diam / vs) - kLodBias, 0.0, u_grid_max_lod);
-    float edge = vs * exp2(lod);  // the sampled level's voxel
-    vec3 uvw = (P + N * max(vs, kLevelOffset * edge) + t * d - u_grid_origin_size.xyz) / extent;
-    if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
-    vec4 s = sampleVoxels(uvw, lod, d);
+    float lod = clamp(log2(diam / vs0) - kLodBias, 0.0, max_lod);
+    float want = vs0 * exp2(lod);  // the footprint's level voxel, for the lift
+    vec3 x = P + N * max(vs, kLevelOffset * want) + t * d;
+    if (insideVoxels(outer, x) < 0.0) break;
+    float edge;
+    vec4 m = sampleMedium(x, lod, d, edge);
     // Half the sampled level's voxel (the cone's diameter while the lod
     // follows it; steps of half the cone's width once the lod was clamped at
     // the coarsest level skipped voxels: streaks on the Cornell box's ceiling
@@ -119,9 +217,8 @@ vec4 traceCone(vec3 P, vec3 N, vec3 d, float tan_half) {
     // growth along the normal (2 kLevelOffset tan_half per unit of t), so the
     // sample itself moves at most half a voxel per step.
     float step = kConeStep * edge / (1.0 + 2.0 * kLevelOffset * tan_half);
-    float a_step = 1.0 - exp(-opticalDensity(s.a) * step / edge);
-    vec3 c_step = s.a > 1e-6 ? s.rgb * (a_step / s.a) : vec3(0.0);
-    acc += (1.0 - a) * c_step;
+    float a_step = 1.0 - exp(-m.a * step);
+    acc += (1.0 - a) * m.rgb * a_step;
     a += (1.0 - a) * a_step;
     t += step;
   }

@@ -20,6 +20,21 @@ struct VoxelAccum {
 };
 layout(std430, binding = ML_BINDING_VOXELIZE_ACCUM) buffer VoxelAccumBuffer { VoxelAccum voxels[]; };
 uniform uint u_edge;
+// Toroidal grids (voxel_types.h, wrap): window voxel v is stored at
+// (v + u_shift) mod edge (0 otherwise). With u_box_count > 0 only the voxels
+// in these window boxes (hi exclusive) are written: a scrolled cascade
+// level's new slabs (host/vct/VoxelRegion.hpp).
+uniform uvec3 u_shift;
+uniform int u_box_count;
+uniform ivec3 u_box_lo[3];
+uniform ivec3 u_box_hi[3];
+
+bool inRegion(ivec3 v) {
+  if (u_box_count == 0) return true;
+  for (int b = 0; b < u_box_count; ++b)
+    if (all(greaterThanEqual(v, u_box_lo[b])) && all(lessThan(v, u_box_hi[b]))) return true;
+  return false;
+}
 
 // (plane x, plane y, depth) voxel -> grid (x, y, z): the inverse of swizzleFor.
 uvec3 unswizzle(uint axis, uvec3 v) {
@@ -74,6 +89,8 @@ void main() {
   uvec2 column = uvec2(c);
   for (int z = z0; z <= z1; ++z) {
     uvec3 v = unswizzle(gs_axis, uvec3(column, uint(z)));
+    if (!inRegion(ivec3(v))) continue;
+    v = (v + u_shift) & uvec3(u_edge - 1u);
     uint i = v.x + u_edge * (v.y + u_edge * v.z);
     atomicAdd(voxels[i].albedo_count.x, a.x);
     atomicAdd(voxels[i].albedo_count.y, a.y);

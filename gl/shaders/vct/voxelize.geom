@@ -24,6 +24,19 @@ flat out vec3 gs_edges[3];       // undilated edges: inside where dot(.xy, px) <
 uniform vec4 u_origin_voxel_size;
 uniform uint u_edge;            // level-0 voxels per axis = viewport edge, pixels
 uniform bool u_dilate;           // false only in tests that show dilation matters
+uniform int u_box_count;         // > 0: only these window boxes are written (voxelize.frag)
+uniform ivec3 u_box_lo[3];
+uniform ivec3 u_box_hi[3];
+
+// Whether the triangle's bounds (grid space, one voxel wider for the
+// dilation) reach a box of the region: a scrolled slab rasterises only the
+// triangles that can write to it.
+bool reachesRegion(vec3 lo, vec3 hi) {
+  if (u_box_count == 0) return true;
+  for (int b = 0; b < u_box_count; ++b)
+    if (all(lessThan(lo - 1.0, vec3(u_box_hi[b]))) && all(greaterThan(hi + 1.0, vec3(u_box_lo[b])))) return true;
+  return false;
+}
 
 // Rasterisers snap vertices to a sub-pixel grid (8 bits on llvmpipe and most
 // GPUs: 1/256 pixel), which can move a dilated edge inward past the centre of a
@@ -48,6 +61,7 @@ vec2 meet(vec2 n0, float c0, vec2 n1, float c1) {
 void main() {
   vec3 g[3];
   for (int i = 0; i < 3; ++i) g[i] = (vs_world[i] - u_origin_voxel_size.xyz) / u_origin_voxel_size.w;
+  if (!reachesRegion(min(g[0], min(g[1], g[2])), max(g[0], max(g[1], g[2])))) return;
   vec3 face = cross(g[1] - g[0], g[2] - g[0]);
   vec3 a = abs(face);
   uint axis = (a.x >= a.y && a.x >= a.z) ? 0u : (a.y >= a.z ? 1u : 2u);

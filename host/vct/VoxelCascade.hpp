@@ -1,0 +1,56 @@
+#pragma once
+// Where the levels of seed 002's camera-centred cascade lie (--vct-cascades
+// L), and what a level must voxelize again when the camera moves.
+// Contract:
+//  - Level L - 1, the outermost, is the grid fitted around the scene
+//    (fitVoxelGrid, unscrolled, the settings' levels): it holds the whole
+//    scene from any viewpoint, so a cone never leaves the volume before it
+//    would leave the scene (the reference sees the whole scene too). With
+//    L = 1 it is the only level: the single grid.
+//  - Level c < L - 1 is a v^3 toroidal grid (VoxelGridParams::wrap) of
+//    voxel size s / 2^(L - 1 - c), s the outermost's, so each level spans
+//    twice the extent of the one inside it; its corner lies on the lattice
+//    of its voxel size, kInnerStep-aligned, at the lattice point nearest to
+//    the eye minus half the window: the eye sits within one voxel of its
+//    centre. Inner levels keep kInnerLevels mip levels: coarser footprints
+//    are the next level's (vct_cones.glsl).
+//  - scrollRegion(before, after): the slabs of `after`'s window that were
+//    not in `before`'s (window coordinates, up to one box per axis), or
+//    `full` when the two are not the same toroidal grid moved by less than
+//    its edge (first placement, other size, a jump).
+//  - checkCascades(): UserError naming --vct-cascades outside 1..kMaxCascades.
+#include <glm/glm.hpp>
+
+#include <cstddef>
+#include <vector>
+
+#include "host/scene/Scene.hpp"
+#include "host/shared/voxel_types.h"
+#include "host/vct/VoxelGrid.hpp"
+#include "host/vct/VoxelRegion.hpp"
+
+namespace ml::vct {
+
+// Seven textures a level (isotropic + 6 directions), and GL promises 32
+// compute texture units on the GPUs this targets: 4 levels and the G-buffer.
+inline constexpr unsigned kMaxCascades = 4;
+inline constexpr unsigned kInnerLevels = 2;
+inline constexpr unsigned kInnerStep = 1u << (kInnerLevels - 1);  // corner alignment, voxels
+
+void checkCascades(unsigned cascades);
+
+// The settings of level c of `cascades` (voxels, anisotropic as `s`).
+VoxelGridSettings cascadeLevelSettings(const VoxelGridSettings& s, unsigned cascades, unsigned c);
+// Device memory of every level (voxelBytes of each).
+std::size_t cascadeBytes(const VoxelGridSettings& s, unsigned cascades);
+
+std::vector<gpu::VoxelGridParams> placeCascade(const Aabb& scene_bounds, const VoxelGridSettings& s,
+                                               unsigned cascades, const glm::vec3& eye);
+
+struct ScrollUpdate {
+  bool full = true;
+  VoxelRegion region;  // empty when nothing moved (and not full)
+};
+ScrollUpdate scrollRegion(const gpu::VoxelGridParams* before, const gpu::VoxelGridParams& after);
+
+}  // namespace ml::vct
