@@ -124,6 +124,16 @@ inline VoxelShift voxel_shift(const VoxelGridParams& g) {
   return VoxelShift{static_cast<ml_uint>(k.x) & mask, static_cast<ml_uint>(k.y) & mask,
                     static_cast<ml_uint>(k.z) & mask};
 }
+/* The window coordinates of stored voxel i (kernels/vct/vct_inject.cl's
+ * window_voxel()): its storage coordinates minus the shift, mod edge. */
+struct VoxelWindow {
+  ml_uint x, y, z;
+};
+inline VoxelWindow voxel_window(const VoxelGridParams& g, ml_uint i) {
+  const VoxelShift s = voxel_shift(g);
+  const ml_uint e = g.edge, mask = e - 1u;
+  return VoxelWindow{(i % e - s.x) & mask, (i / e % e - s.y) & mask, (i / e / e - s.z) & mask};
+}
 }  // namespace ml::gpu
 #endif
 #endif

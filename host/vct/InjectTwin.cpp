@@ -15,10 +15,8 @@ bool resolveVoxel(const gpu::VoxelAccum& a, unsigned i, const gpu::VoxelGridPara
   const float len = std::sqrt(nx * nx + ny * ny + nz * nz);
   const float n[3] = {nx, ny, nz};
   for (int c = 0; c < 3; ++c) s.n[c] = len > 0.0f ? n[c] / len : 0.0f;
-  const unsigned e = g.edge;
-  const gpu::VoxelShift sh = gpu::voxel_shift(g);
-  // Window coordinates of stored voxel i (the kernel's window_voxel()).
-  const unsigned xyz[3] = {(i % e + e - sh.x) % e, (i / e % e + e - sh.y) % e, (i / e / e + e - sh.z) % e};
+  const gpu::VoxelWindow w = gpu::voxel_window(g, i);
+  const unsigned xyz[3] = {w.x, w.y, w.z};
   const float o[3] = {g.origin_voxel_size.x, g.origin_voxel_size.y, g.origin_voxel_size.z};
   const gpu::VoxelCorner k = gpu::voxel_corner(g);
   const int corner[3] = {k.x, k.y, k.z};

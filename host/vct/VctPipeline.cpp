@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <stdexcept>
 
 #include "gl/GlPassTimer.hpp"
-#include "host/util/Error.hpp"
 
 namespace ml::vct {
 namespace {
@@ -30,8 +30,8 @@ VctPipeline::VctPipeline(ClRuntime& rt, const VctPipelineOptions& options, const
       lists_(env_),
       hashed_(hashed::HashedConfig{}) {
   checkCascades(options.cascades);
-  if (options.cascades > 1 && options.shadows)
-    throw UserError("--vct-shadows voxel: needs --vct-cascades 1 (the shadow march reads one unscrolled grid)");
+  if (options.cascades > 1 && options.shadows)  // users get checkVctGiSettings' line first
+    throw std::invalid_argument("VctPipeline: shadows need one level (the march reads one unscrolled grid)");
   const auto placed = placeCascade(bounds_, options.grid, options.cascades, centre(bounds_));
   for (unsigned c = 0; c < options.cascades; ++c)
     levels_.push_back(

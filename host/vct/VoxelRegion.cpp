@@ -1,24 +1,42 @@
 #include "host/vct/VoxelRegion.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 namespace ml::vct {
 
-// By counting: regions are at most three slabs of a grid of at most 512^3,
-// and this runs in tests and reports, not per frame on the device.
+namespace {
+
+VoxelBox intersect(const VoxelBox& a, const VoxelBox& b) {
+  VoxelBox r;
+  for (int k = 0; k < 3; ++k) {
+    r.lo[k] = std::max(a.lo[k], b.lo[k]);
+    r.hi[k] = std::min(a.hi[k], b.hi[k]);
+  }
+  return r;
+}
+
+}  // namespace
+
+// Inclusion-exclusion over the at most kMaxRegionBoxes boxes (their
+// intersections are boxes too): every subset, signed by its size.
 std::size_t regionVoxels(const VoxelRegion& r, unsigned edge) {
   if (r.empty()) return std::size_t(edge) * edge * edge;
-  std::size_t n = 0;
-  for (unsigned z = 0; z < edge; ++z)
-    for (unsigned y = 0; y < edge; ++y)
-      for (unsigned x = 0; x < edge; ++x)
-        for (const VoxelBox& b : r)
-          if (b.contains(x, y, z)) {
-            ++n;
-            break;
-          }
-  return n;
+  checkRegion(r, edge);
+  long long n = 0;
+  const unsigned subsets = 1u << r.size();
+  for (unsigned m = 1; m < subsets; ++m) {
+    VoxelBox b{{0, 0, 0}, {edge, edge, edge}};
+    int count = 0;
+    for (std::size_t i = 0; i < r.size(); ++i)
+      if (m & (1u << i)) {
+        b = intersect(b, r[i]);
+        ++count;
+      }
+    n += (count % 2 ? 1 : -1) * static_cast<long long>(b.voxels());
+  }
+  return static_cast<std::size_t>(n);
 }
 
 void checkRegion(const VoxelRegion& r, unsigned edge) {

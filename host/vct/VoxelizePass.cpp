@@ -88,7 +88,7 @@ void VoxelizePass::run(const SceneGpu& scene, const gpu::VoxelGridParams& grid, 
 void VoxelizePass::clear(const gpu::VoxelGridParams& grid, SharedBuffer& accum, const vct::VoxelRegion& region) {
   const std::size_t edge = grid.edge;
   if (region.empty()) {
-    glClearNamedBufferSubData(accum.gl(), GL_R32UI, 0, static_cast<GLsizeiptr>(edge * edge * edge * 32),
+    glClearNamedBufferSubData(accum.gl(), GL_R32UI, 0, static_cast<GLsizeiptr>(edge * edge * edge * sizeof(gpu::VoxelAccum)),
                               GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
   } else {
     clear_.use();

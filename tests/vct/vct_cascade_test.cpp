@@ -28,6 +28,7 @@
 #include "host/vct/VoxelMipsReference.hpp"
 #include "support/FpTolerance.hpp"
 #include "support/RandomSoup.hpp"
+#include "support/SharedBufferIo.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 #include "support/shape_support.hpp"
@@ -36,19 +37,8 @@ namespace ml::vct {
 namespace {
 
 using F4 = gpu::ml_float4;
-
-template <class T>
-std::vector<T> downloadAll(const SharedBuffer& b, std::size_t count) {
-  std::vector<T> out(count);
-  b.download(out.data(), count * sizeof(T));
-  return out;
-}
-
-void poison(SharedBuffer* b) {
-  if (!b) return;
-  const std::vector<unsigned char> nan(b->size(), 0xFF);
-  b->upload(nan.data(), nan.size());
-}
+using test::downloadAll;
+using test::poison;
 
 struct LevelData {
   std::vector<gpu::VoxelAccum> accum;
@@ -63,13 +53,6 @@ LevelData read(const CascadeLevel& l) {
               {}};
   if (l.volume.anisotropic()) d.aniso = downloadAll<F4>(*l.volume.anisotropic(), anisotropicBytes(s) / sizeof(F4));
   return d;
-}
-
-template <class T>
-std::size_t firstDifference(const std::vector<T>& a, const std::vector<T>& b) {
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::memcmp(&a[i], &b[i], sizeof(T)) != 0) return i;
-  return a.size();
 }
 
 TEST(VoxelCascadePlacement, LevelsNestAroundTheEye) {
@@ -129,6 +112,31 @@ TEST(VoxelCascadePlacement, ScrollRegionIsTheSlabsMovedIn) {
   EXPECT_TRUE(scrollRegion(&a, far).full) << "a jump of a whole window";
 }
 
+// The union's size by inclusion-exclusion against counting voxel by voxel.
+TEST(VoxelCascadePlacement, RegionVoxelsCountsTheUnion) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  for (int trial = 0; trial < 200; ++trial) {
+    const unsigned edge = 1u << (rng() % 5);
+    VoxelRegion r(rng() % (kMaxRegionBoxes + 1));
+    for (VoxelBox& b : r)
+      for (int a = 0; a < 3; ++a) {
+        b.lo[a] = static_cast<unsigned>(rng() % (edge + 1));
+        b.hi[a] = b.lo[a] + static_cast<unsigned>(rng() % (edge + 1 - b.lo[a]));
+      }
+    std::size_t counted = 0;
+    for (unsigned z = 0; z < edge; ++z)
+      for (unsigned y = 0; y < edge; ++y)
+        for (unsigned x = 0; x < edge; ++x) {
+          bool in = r.empty();
+          for (const VoxelBox& b : r) in |= b.contains(x, y, z);
+          counted += in;
+        }
+    ASSERT_EQ(regionVoxels(r, edge), counted) << "trial " << trial << ", edge " << edge << ", " << r.size() << " boxes";
+  }
+}
+
 struct Param {
   KernelShape shape;
   bool brute;
@@ -170,10 +178,10 @@ void expectTwins(const VctPipeline& p, const std::vector<gpu::PointLight>& light
     std::vector<F4> want(d.radiance.begin(), d.radiance.begin() + std::ptrdiff_t(n0));
     want.resize(d.radiance.size());
     mipIsotropicTwin(want, s.voxels, s.levels);
-    EXPECT_EQ(firstDifference(d.radiance, want), want.size()) << "isotropic mips";
+    EXPECT_EQ(test::firstBitDifference(d.radiance, want), want.size()) << "isotropic mips";
     std::vector<F4> want_aniso;
     mipAnisotropicTwin(want, want_aniso, s.voxels, s.levels);
-    EXPECT_EQ(firstDifference(d.aniso, want_aniso), want_aniso.size()) << "anisotropic mips";
+    EXPECT_EQ(test::firstBitDifference(d.aniso, want_aniso), want_aniso.size()) << "anisotropic mips";
   }
 }
 
@@ -232,8 +240,8 @@ void checkMove(VctPipeline& p, const VctPipelineOptions& o, const Scene& scene, 
     }
     EXPECT_LE(grazed, 2u) << "voxels whose sums differ from a fresh build";
     if (grazed == 0) {
-      EXPECT_EQ(firstDifference(now.radiance, want.radiance), want.radiance.size()) << "radiance and mips";
-      EXPECT_EQ(firstDifference(now.aniso, want.aniso), want.aniso.size()) << "anisotropic mips";
+      EXPECT_EQ(test::firstBitDifference(now.radiance, want.radiance), want.radiance.size()) << "radiance and mips";
+      EXPECT_EQ(test::firstBitDifference(now.aniso, want.aniso), want.aniso.size()) << "anisotropic mips";
     }
     const ScrollUpdate u = scrollRegion(&placed[c], g);
     if (c + 1 == p.cascades()) {
@@ -243,13 +251,10 @@ void checkMove(VctPipeline& p, const VctPipelineOptions& o, const Scene& scene, 
     if (!u.region.empty()) expected_voxels += regionVoxels(u.region, g.edge);
     // Every voxel outside the scrolled slabs kept its bytes: the same world
     // voxel stays in the same place of a toroidal grid.
-    const gpu::VoxelShift sh = gpu::voxel_shift(g);
-    const unsigned e = g.edge;
     for (std::size_t i = 0; i < now.accum.size(); ++i) {
-      const unsigned w[3] = {(unsigned(i % e) + e - sh.x) % e, (unsigned(i / e % e) + e - sh.y) % e,
-                             (unsigned(i / e / e) + e - sh.z) % e};
+      const gpu::VoxelWindow w = gpu::voxel_window(g, static_cast<unsigned>(i));
       bool scrolled = false;
-      for (const VoxelBox& b : u.region) scrolled |= b.contains(w[0], w[1], w[2]);
+      for (const VoxelBox& b : u.region) scrolled |= b.contains(w.x, w.y, w.z);
       if (scrolled) continue;
       ASSERT_EQ(std::memcmp(&now.accum[i], &before[c].accum[i], sizeof(gpu::VoxelAccum)), 0) << "voxel " << i;
       ASSERT_EQ(std::memcmp(&now.radiance[i], &before[c].radiance[i], sizeof(F4)), 0) << "voxel " << i;

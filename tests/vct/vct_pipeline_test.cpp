@@ -30,6 +30,7 @@
 #include "support/shape_support.hpp"
 #include "support/FpTolerance.hpp"
 #include "support/RandomSoup.hpp"
+#include "support/SharedBufferIo.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
@@ -37,19 +38,9 @@ namespace ml::vct {
 namespace {
 
 using F4 = gpu::ml_float4;
-
-template <class T>
-std::vector<T> downloadAll(SharedBuffer& b, std::size_t count) {
-  std::vector<T> out(count);
-  b.download(out.data(), count * sizeof(T));
-  return out;
-}
-
-void poison(SharedBuffer* b) {
-  if (!b) return;
-  const std::vector<unsigned char> nan(b->size(), 0xFF);
-  b->upload(nan.data(), nan.size());
-}
+using test::downloadAll;
+using test::firstBitDifference;
+using test::poison;
 
 // "" when equal, else the first mismatch.
 std::string compareLevel0(const std::vector<F4>& got, const std::vector<F4>& want, bool exact) {
@@ -64,12 +55,6 @@ std::string compareLevel0(const std::vector<F4>& got, const std::vector<F4>& wan
     }
   }
   return "";
-}
-
-std::size_t firstBitDifference(const std::vector<F4>& a, const std::vector<F4>& b) {
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::memcmp(&a[i], &b[i], sizeof(F4)) != 0) return i;
-  return a.size();
 }
 
 struct Param {

@@ -38,6 +38,7 @@
 #include "support/RandomSoup.hpp"
 #include "support/RunCommand.hpp"
 #include "support/TempDir.hpp"
+#include "support/SharedBufferIo.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
 
@@ -45,16 +46,10 @@ namespace ml::vct {
 namespace {
 
 using F4 = gpu::ml_float4;
+using test::downloadAll;
 using test::uniformIn;
 
 const std::string kCornellDir = std::string(MANYLIGHTS_TEST_DATA_DIR) + "/cornell/";
-
-template <class T>
-std::vector<T> downloadAll(const SharedBuffer& b, std::size_t count) {
-  std::vector<T> out(count);
-  b.download(out.data(), count * sizeof(T));
-  return out;
-}
 
 // The volume read back to the host, as the twins take it.
 struct ReadBack {
