@@ -1,9 +1,12 @@
 #include "BenchSupport.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
 #include <cstdio>
 
 #include "BenchCommon.hpp"
+#include "ml_build_paths.h"  // MANYLIGHTS_SOURCE_DIR (generated)
 #include "gl/FrameRenderer.hpp"
 #include "host/run/InputChecks.hpp"
 #include "host/run/ImageSize.hpp"
@@ -143,6 +146,12 @@ void runFrameSweep(BenchSetup& b, const FrameSweep& s, nlohmann::ordered_json& r
       }
     }
   }
+}
+
+std::string thesisSuiteScene(const std::string& name) {
+  std::filesystem::path root = std::filesystem::path(MANYLIGHTS_SOURCE_DIR) / ".." / "shared" / "data" / "thesis-suite";
+  if (const char* env = std::getenv("MANYLIGHTS_THESIS_SUITE"); env && *env) root = env;
+  return (root / "scenes" / name).lexically_normal().string();
 }
 
 }  // namespace ml::benchutil

@@ -91,4 +91,9 @@ struct FrameSweep {
 // one row each (per-pass medians, frame host time), one record each in `records`.
 void runFrameSweep(BenchSetup& b, const FrameSweep& s, nlohmann::ordered_json& records);
 
+// A scene folder of the thesis's suite where the tests look for it:
+// $MANYLIGHTS_THESIS_SUITE/scenes/<name>, else the shared data folder next to
+// the checkout (../shared/data/thesis-suite/scenes/<name>). No machine's path.
+std::string thesisSuiteScene(const std::string& name);
+
 }  // namespace ml::benchutil

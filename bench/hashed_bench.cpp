@@ -32,14 +32,8 @@ using benchutil::median;
 using json = nlohmann::ordered_json;
 using LightSets = std::vector<std::pair<std::string, std::vector<gpu::PointLight>>>;
 
-// The thesis suite's Spaceship Indoor scene where the tests look for the suite
-// (tests/suite/suite_thesis_test.cpp): $MANYLIGHTS_THESIS_SUITE, else the shared
-// data folder next to the checkout. No machine's absolute path.
-std::string defaultSuiteScene() {
-  std::filesystem::path root = std::filesystem::path(MANYLIGHTS_SOURCE_DIR) / ".." / "shared" / "data" / "thesis-suite";
-  if (const char* env = std::getenv("MANYLIGHTS_THESIS_SUITE"); env && *env) root = env;
-  return (root / "scenes" / "spaceship-indoor").lexically_normal().string();
-}
+// The thesis suite's Spaceship Indoor scene (benchutil::thesisSuiteScene).
+std::string defaultSuiteScene() { return benchutil::thesisSuiteScene("spaceship-indoor"); }
 
 struct Args {
   benchutil::BenchArgs common;

@@ -16,6 +16,9 @@
 //    against the Embree reference, on the Cornell box and the default scene,
 //    with their own lights or --frame-lights counts of generated ones, in
 //    --frame-technique frames.
+//  - With --flight, instead: the camera-centred cascade along each scene's
+//    camera path against single grids, error and camera-move cost
+//    (VctFlight.hpp).
 // Prints tables and, with --json, one record per case.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -36,12 +39,14 @@
 #include "host/techniques/Registry.hpp"
 #include "host/util/ThesisSeed.hpp"
 #include "host/vct/ConeTracing.hpp"
+#include "host/vct/VoxelCascade.hpp"
 #include "host/vct/VoxelGrid.hpp"
 #include "host/vct/VoxelInjector.hpp"
 #include "host/vct/VoxelMips.hpp"
 #include "host/vct/VoxelOccupancy.hpp"
 #include "BenchCommon.hpp"
 #include "BenchSupport.hpp"
+#include "VctFlight.hpp"
 #include "VctFrameSweep.hpp"
 
 namespace {
@@ -230,6 +235,9 @@ struct Args {
   double radius = 0.1;
   bool frame = false;
   std::string cones = "5,9,16", frame_lights, frame_technique = "deferred";
+  bool flight = false;
+  std::string flight_scenes = "default,spaceship-indoor";
+  unsigned flight_voxels = 64, flight_cascades = 2, flight_frames = 24, flight_samples = 6;
 };
 
 void parseArgs(CLI::App& app, Args& a) {
@@ -238,6 +246,16 @@ void parseArgs(CLI::App& app, Args& a) {
   app.add_option("--frame-lights", a.frame_lights,
                  "--frame: generated light counts (as render --lights N), e.g. 1000,10000; default: each scene's own");
   app.add_option("--frame-technique", a.frame_technique, "--frame: the technique of the direct light")
+      ->capture_default_str();
+  app.add_flag("--flight", a.flight,
+               "fly each scene's camera path instead: the cascade against single grids (error, camera-move cost)");
+  app.add_option("--flight-scenes", a.flight_scenes, "--flight: default and/or thesis-suite scene names")
+      ->capture_default_str();
+  app.add_option("--flight-voxels", a.flight_voxels, "--flight: voxels per level")->capture_default_str();
+  app.add_option("--flight-cascades", a.flight_cascades, "--flight: cascade levels")->capture_default_str();
+  app.add_option("--flight-frames", a.flight_frames, "--flight: the path resampled to this many cameras")
+      ->capture_default_str();
+  app.add_option("--flight-samples", a.flight_samples, "--flight: cameras compared with the reference")
       ->capture_default_str();
   app.add_option("--json", a.common.json_path, "write records as JSON");
   app.add_option("--edges", a.edges, "mip grid edges (powers of two)")->capture_default_str();
@@ -254,6 +272,10 @@ void parseArgs(CLI::App& app, Args& a) {
 void checkArgs(const Args& a) {
   if (a.common.reps < 1) throw UserError("--reps: must be at least 1");
   if (!(a.radius > 0)) throw UserError("--radius: must be positive");
+  if (a.flight_frames < 2) throw UserError("--flight-frames: must be at least 2 (a flight moves the camera)");
+  if (a.flight_samples < 1) throw UserError("--flight-samples: must be at least 1");
+  if (a.flight_cascades < 1 || a.flight_cascades > vct::kMaxCascades)
+    throw UserError("--flight-cascades: must be 1.." + std::to_string(vct::kMaxCascades));
 }
 
 int run(int argc, char** argv) {
@@ -275,6 +297,18 @@ int run(int argc, char** argv) {
     o.reps = a.common.reps;
     o.device = a.common.device;
     benchutil::writeJson(a.common.json_path, benchvct::frameSweep(o));
+    return 0;
+  }
+  if (a.flight) {
+    benchvct::FlightOptions o;
+    o.scenes = splitList(a.flight_scenes);
+    checkGrid(a.flight_voxels, 1, "--flight-voxels");
+    o.voxels = a.flight_voxels;
+    o.cascades = a.flight_cascades;
+    o.frames = a.flight_frames;
+    o.samples = a.flight_samples;
+    o.device = a.common.device;
+    benchutil::writeJson(a.common.json_path, benchvct::flight(o));
     return 0;
   }
   checkGrid(a.inject_edge, 1, "--inject-edge");

@@ -5,7 +5,7 @@
 //    lattice (a multiple of kInnerStep) with the eye within kInnerStep voxels
 //    of its centre; scrollRegion gives the slabs a move brings in, nothing
 //    for no move, everything for a jump or the first placement;
-//  - a camera moved one voxel of level 0 at a time: each update voxelizes
+//  - a camera moved one voxel of level 0 at a time (10 moves): each update voxelizes
 //    and injects only the scrolled slabs (the report counts their voxels;
 //    every other voxel keeps its bytes), and every level then equals a fresh
 //    build at the new position bit for bit (sums, radiance, mips), but for at
@@ -277,17 +277,17 @@ TEST_P(VctCascadeTest, CameraMovesUpdateOnlyTheScrolledSlabsAndEqualAFreshBuild)
   glm::vec3 eye = 0.5f * (scene.bounds.min + scene.bounds.max);
   PassTimings t;
   p.update(gpu_scene, lights, t, {eye, true});
-  // One direction per axis: of four moves, two go the same way along one
-  // axis, two voxels, which moves level 0's corner (kInnerStep) at least once.
+  // One direction per axis: of 3 (kInnerStep - 1) + 1 moves, kInnerStep go
+  // the same way along one axis, which moves level 0's corner at least once.
   const float sign[3] = {rng() % 2 ? 1.0f : -1.0f, rng() % 2 ? 1.0f : -1.0f, rng() % 2 ? 1.0f : -1.0f};
   std::size_t scrolled = 0;
-  for (int move = 0; move < 4; ++move) {
+  for (unsigned move = 0; move < 3 * (kInnerStep - 1) + 1; ++move) {
     SCOPED_TRACE("move " + std::to_string(move));
     const int axis = static_cast<int>(rng() % 3);
     checkMove(p, o, scene, gpu_scene, lights, eye, axis, sign[axis]);
     scrolled += p.lastUpdate().scrolled_voxels;
   }
-  EXPECT_GT(scrolled, 0u) << "four one-voxel moves scrolled nothing: the test proved nothing";
+  EXPECT_GT(scrolled, 0u) << "the one-voxel moves scrolled nothing: the test proved nothing";
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, VctCascadeTest,

@@ -13,9 +13,9 @@
 //   c += (1 - A) c_step,  A += (1 - A) a_step.
 // It stops at opacity 0.99 or where it leaves the grid (outside is empty).
 // Cascades (u_levels > 1, host/vct/VoxelCascade.hpp): the lod counts from the
-// finest level's voxel; a sample reads the level whose voxel matches its lod
-// (inner levels hold 2 mip levels, the next level takes over from there) or,
-// where that level's window does not hold it, the finest level that does,
+// finest level's voxel; a sample reads the finest level whose mips reach its
+// lod (inner levels hold kInnerLevels mip levels, the next level takes over
+// from there) or, where no such level's window holds it, the finest one that does,
 // and within kBlendVoxels of an inner window's face it fades into the next
 // level, so a cone crosses from level to level without a seam. Toroidal
 // levels are sampled through their shift (GL_REPEAT textures).
@@ -60,9 +60,9 @@ const float kLodBias = 1.0;
 // 0.171 / 0.155.
 const float kLevelOffset = 0.25;
 const float kConeOpaque = 0.99;
-// A sample reads a cascade level only this many of its level-0 voxels inside
-// the window (trilinear footprint of its level 1 and the seam of a toroidal
-// level), and fades into the next level over kBlendVoxels more.
+// A sample reads a cascade level only this many voxels of the mip level it
+// reads inside the window (its trilinear footprint, kept off the seam of a
+// toroidal level), and fades into the next level over kBlendVoxels more.
 const float kLevelMargin = 3.0;
 const float kBlendVoxels = 4.0;
 const float kPi = 3.14159265358979;
@@ -147,11 +147,17 @@ float insideVoxels(int c, vec3 x) {
   return min(m.x, min(m.y, m.z));
 }
 
-// The finest level whose window holds x with kLevelMargin voxels to spare
-// (the outermost when none does).
-int levelAt(vec3 x) {
+// The lod level c is read at for a footprint of lod `lod` (counted from the
+// finest level's voxel), and its margin: kLevelMargin of those voxels, in
+// level-0 voxels of c.
+float localLod(int c, float lod) { return clamp(lod - float(c), 0.0, u_level_shift_lod[c].w); }
+float levelMargin(int c, float lod) { return kLevelMargin * exp2(localLod(c, lod)); }
+
+// The finest level whose mips reach the footprint and whose window holds x
+// with its margin to spare (the outermost when none does).
+int levelFor(vec3 x, float lod) {
   for (int c = 0; c < u_levels - 1; ++c)
-    if (insideVoxels(c, x) >= kLevelMargin) return c;
+    if (lod - float(c) <= u_level_shift_lod[c].w && insideVoxels(c, x) >= levelMargin(c, lod)) return c;
   return u_levels - 1;
 }
 
@@ -164,14 +170,14 @@ vec4 sampleLevel(int c, vec3 x, float lod, vec3 d) {
 // The cascade's medium at x for a footprint of lod `lod` (counted from the
 // finest level's voxel): colour (rgb, radiance over opacity) and density per
 // unit length (a, opticalDensity over the voxel edge it was read at), from
-// the level that holds that footprint, or the finest one whose window holds
-// x; near an inner window's face the densities of this level and the next
+// the finest level whose mips reach that footprint, or the finest one whose
+// window holds x; near an inner window's face the densities of this level and the next
 // are mixed (and the colours by their share of it): mixing opacities read
 // at two voxel sizes counted the coarse one's twice over a fine step (a
 // band too bright where the levels meet). `edge` returns the voxel edge of
 // the level the footprint asked for.
 vec4 levelMedium(int c, vec3 x, float lod, vec3 d, out float edge) {
-  float local = clamp(lod - float(c), 0.0, u_level_shift_lod[c].w);
+  float local = localLod(c, lod);
   edge = u_level_origin_size[c].w * exp2(local);
   vec4 s = sampleLevel(c, x, local, d);
   vec3 colour = s.a > 1e-6 ? s.rgb / s.a : vec3(0.0);
@@ -179,10 +185,11 @@ vec4 levelMedium(int c, vec3 x, float lod, vec3 d, out float edge) {
 }
 
 vec4 sampleMedium(vec3 x, float lod, vec3 d, out float edge) {
-  int c = max(levelAt(x), min(int(floor(lod)), u_levels - 1));
+  int c = levelFor(x, lod);
   vec4 m = levelMedium(c, x, lod, d, edge);
   if (c == u_levels - 1) return m;
-  float f = clamp((insideVoxels(c, x) - kLevelMargin) / kBlendVoxels, 0.0, 1.0);
+  float margin = levelMargin(c, lod);
+  float f = clamp((insideVoxels(c, x) - margin) / (kBlendVoxels / kLevelMargin * margin), 0.0, 1.0);
   if (f >= 1.0) return m;
   float unused;
   vec4 n = levelMedium(c + 1, x, lod, d, unused);
@@ -196,7 +203,7 @@ vec4 sampleMedium(vec3 x, float lod, vec3 d, out float edge) {
 // surface point P with normal N (the samples' offset: kLevelOffset).
 vec4 traceCone(vec3 P, vec3 N, vec3 d, float tan_half) {
   float vs0 = u_level_origin_size[0].w;  // the finest level's voxel: lod 0
-  float vs = u_level_origin_size[levelAt(P)].w;  // the voxel where the cone starts
+  float vs = u_level_origin_size[levelFor(P, 0.0)].w;  // the voxel where the cone starts
   int outer = u_levels - 1;
   float max_lod = float(outer) + u_level_shift_lod[outer].w;
   vec3 acc = vec3(0.0);
