@@ -82,6 +82,11 @@ TEST(Cli, BadVctFlags) {
       {"--voxel-view albedo --voxel-slice v", "--voxel-slice"},
       {"--voxel-view albedo --voxel-slice y:-1", "--voxel-slice"},
       {"--voxel-slice x:0.5", "--voxel-slice"},
+      {"--vct-cascades 0", "--vct-cascades"},
+      {"--vct-cascades 5", "--vct-cascades"},
+      // What one grid alone models refuses cascades, naming itself.
+      {"--vct-cascades 2 --gi-bounces 2", "--gi-bounces"},
+      {"--vct-cascades 2 --vct-shadows voxel", "--vct-shadows"},
   };
   for (const auto& [flags, named] : refused) {
     SCOPED_TRACE(flags);
