@@ -26,11 +26,13 @@
 #include "host/vct/VoxelMipsReference.hpp"
 #include "support/TestDevice.hpp"
 #include "support/TestGl.hpp"
+#include "vct/cone_furnace.hpp"
 
 namespace ml::vct {
 namespace {
 
 using F4 = gpu::ml_float4;
+using furnace::upload;
 // Interior voxels [lo, hi)^3: walls 20 voxels thick (kLo, kHi), so that every
 // cone, at its widest sample (level 3, 8 voxels), meets opaque voxels before it
 // leaves the grid; and a shell one voxel thick at the grid's edge (kShell),
@@ -40,15 +42,6 @@ using F4 = gpu::ml_float4;
 constexpr unsigned kEdge = 64, kLevels = 4, kLo = 20, kHi = 44, kShell = 1;
 constexpr float kTolerance = 0.02f;
 const F4 kL{0.3f, 0.5f, 0.7f, 1.0f};
-
-GLuint buffer(const std::vector<F4>& v) {
-  GLuint b = 0;
-  glCreateBuffers(1, &b);
-  glNamedBufferData(b, static_cast<GLsizeiptr>(std::max<std::size_t>(v.size(), 1) * sizeof(F4)), v.data(),
-                    GL_STATIC_DRAW);
-  glCheck("uploading a test buffer");
-  return b;
-}
 
 struct Furnace {
   gpu::VoxelGridParams grid{{-1.0f, -1.0f, -1.0f, 2.0f / kEdge}, kEdge, kLevels, 0, 0};
@@ -66,7 +59,7 @@ struct Furnace {
     mipIsotropicTwin(radiance, kEdge, kLevels);
     std::vector<F4> dirs;
     if (aniso) mipAnisotropicTwin(radiance, dirs, kEdge, kLevels);
-    const GLuint r = buffer(radiance), d = aniso ? buffer(dirs) : 0;
+    const GLuint r = upload(radiance), d = aniso ? upload(dirs) : 0;
     textures.unpack(grid, r, d, nullptr);
     glMemoryBarrier(GL_ALL_BARRIER_BITS);
     glDeleteBuffers(1, &r);
@@ -75,56 +68,18 @@ struct Furnace {
 
   // traceDiffuse at each point (world space) with its normal.
   std::vector<F4> trace(const ConeTraceSetup& s, const std::vector<F4>& points, const std::vector<F4>& normals) {
-    program.use();
-    bindConeTracing(program, s);
-    const GLuint p = buffer(points), n = buffer(normals);
-    std::vector<F4> out(points.size(), F4{-1, -1, -1, -1});
-    const GLuint o = buffer(out);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_CONES_POINTS, p);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_CONES_NORMALS, n);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, ML_BINDING_TEST_CONES_RESULTS, o);
-    program.set("u_count", static_cast<unsigned>(points.size()));
-    glDispatchCompute(static_cast<GLuint>((points.size() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(o, 0, static_cast<GLsizeiptr>(out.size() * sizeof(F4)), out.data());
-    const GLuint all[] = {p, n, o};
-    glDeleteBuffers(3, all);
-    glCheck("tracing test cones");
-    return out;
+    return furnace::trace(program, s, points, normals);
   }
 };
 
-// Largest relative error of the irradiance / pi against L, and largest ambient occlusion.
-std::pair<float, float> worst(const std::vector<F4>& r) {
-  float err = 0, ao = 0;
-  for (const F4& v : r) {
-    err = std::max({err, std::fabs(v.x - kL.x) / kL.x, std::fabs(v.y - kL.y) / kL.y, std::fabs(v.z - kL.z) / kL.z});
-    ao = std::max(ao, std::fabs(v.w));
-  }
-  return {err, ao};
-}
-
-// Per point, the largest relative error of the irradiance / pi against L over the channels.
-std::vector<float> pointErrors(const std::vector<F4>& r) {
-  std::vector<float> e;
-  e.reserve(r.size());
-  for (const F4& v : r)
-    e.push_back(std::max({std::fabs(v.x - kL.x) / kL.x, std::fabs(v.y - kL.y) / kL.y, std::fabs(v.z - kL.z) / kL.z}));
-  return e;
-}
+std::pair<float, float> worst(const std::vector<F4>& r) { return furnace::worst(r, kL); }
+std::vector<float> pointErrors(const std::vector<F4>& r) { return furnace::pointErrors(r, kL); }
 
 // Random points at least 3 voxels inside [lo, hi)^3 and random unit normals.
 void furnacePoints(std::mt19937_64& rng, unsigned lo, unsigned hi, std::vector<F4>& points, std::vector<F4>& normals,
                    int count = 200) {
   const float vs = 2.0f / kEdge;
-  std::uniform_real_distribution<float> in(-1.0f + vs * float(lo + 3), -1.0f + vs * float(hi - 3));
-  std::normal_distribution<float> g;
-  for (int i = 0; i < count; ++i) {
-    points.push_back({in(rng), in(rng), in(rng), 1});
-    float x = g(rng), y = g(rng), z = g(rng);
-    const float len = std::sqrt(x * x + y * y + z * z) + 1e-20f;
-    normals.push_back({x / len, y / len, z / len, 0});
-  }
+  furnace::randomPoints(rng, -1.0f + vs * float(lo + 3), -1.0f + vs * float(hi - 3), points, normals, count);
 }
 
 // The GL context and the furnace's points inside [lo, hi)^3 from a fresh seed, which it returns.
