@@ -238,6 +238,7 @@ struct Args {
   bool flight = false;
   std::string flight_scenes = "default,spaceship-indoor";
   unsigned flight_voxels = 64, flight_cascades = 2, flight_frames = 24, flight_samples = 6;
+  bool flight_fold = false;
 };
 
 void parseArgs(CLI::App& app, Args& a) {
@@ -253,6 +254,7 @@ void parseArgs(CLI::App& app, Args& a) {
       ->capture_default_str();
   app.add_option("--flight-voxels", a.flight_voxels, "--flight: voxels per level")->capture_default_str();
   app.add_option("--flight-cascades", a.flight_cascades, "--flight: cascade levels")->capture_default_str();
+  app.add_flag("--flight-fold", a.flight_fold, "--flight: also the cascade with mips across its levels (--vct-fold)");
   app.add_option("--flight-frames", a.flight_frames, "--flight: the path resampled to this many cameras")
       ->capture_default_str();
   app.add_option("--flight-samples", a.flight_samples, "--flight: cameras compared with the reference")
@@ -276,6 +278,7 @@ void checkArgs(const Args& a) {
   if (a.flight_samples < 1) throw UserError("--flight-samples: must be at least 1");
   if (a.flight_cascades < 1 || a.flight_cascades > vct::kMaxCascades)
     throw UserError("--flight-cascades: must be 1.." + std::to_string(vct::kMaxCascades));
+  if (a.flight_fold && a.flight_cascades < 2) throw UserError("--flight-fold: needs --flight-cascades 2 or more");
 }
 
 int run(int argc, char** argv) {
@@ -305,6 +308,7 @@ int run(int argc, char** argv) {
     checkGrid(a.flight_voxels, 1, "--flight-voxels");
     o.voxels = a.flight_voxels;
     o.cascades = a.flight_cascades;
+    o.fold = a.flight_fold;
     o.frames = a.flight_frames;
     o.samples = a.flight_samples;
     o.device = a.common.device;

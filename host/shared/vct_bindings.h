@@ -14,6 +14,12 @@
 /* Voxelization: the accumulation buffer (VoxelAccum[], voxel_types.h). */
 #define ML_BINDING_VOXELIZE_ACCUM 0
 
+/* A region of a voxel grid (host/vct/VoxelRegion.hpp) has at most this many
+ * boxes: a scrolled cascade level's slab per axis, and the box a finer
+ * level's window left (CascadeFold.hpp). voxelize.geom and .frag size their
+ * box uniforms with it. */
+#define ML_VOXEL_REGION_BOXES 4
+
 /* Second bounce (vct_bounce.comp): level 0's sums and the radiance volume;
  * the cones' textures take the trace's units (ML_UNIT_VCT_VOXELS ..). */
 #define ML_BINDING_BOUNCE_ACCUM 0

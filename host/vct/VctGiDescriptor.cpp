@@ -60,6 +60,9 @@ std::vector<ParamSpec> vctParams() {
       countParam("vct-cascades", "1", 1, kMaxCascades,
                  "levels of the camera-centred cascade (1: one grid around the scene; L: the scene's grid and L - 1 "
                  "finer grids of --voxels around the camera, each half the extent of the one outside it)"),
+      switchParam("vct-fold", false,
+                  "mips across the cascade's levels: where a finer level's window lies, the coarser level takes its "
+                  "voxels' opacity (needs --vct-cascades 2 or more)"),
   };
 }
 
@@ -138,6 +141,7 @@ VctGiSettings vctSettingsOf(const ParamValues& p) {
   s.shadows = p.text("vct-shadows");
   s.revoxelize = p.on("revoxelize");
   s.cascades = p.count("vct-cascades");
+  s.fold = p.on("vct-fold");
   return s;
 }
 

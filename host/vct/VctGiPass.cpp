@@ -22,6 +22,7 @@ VctPipelineOptions pipelineOptions(const VctGiSettings& s) {
   o.shadows = s.shadows == "voxel";
   o.revoxelize = s.revoxelize;
   o.cascades = s.cascades;
+  o.fold = s.fold;
   return o;
 }
 
@@ -49,6 +50,8 @@ void checkVctGiSettings(const VctGiSettings& s) {
   if (s.cascades > 1 && s.bounces > 1)
     throw UserError("--gi-bounces " + std::to_string(s.bounces) + ": needs --vct-cascades 1 (the second bounce "
                     "gathers within one grid)");
+  if (s.fold && s.cascades < 2)
+    throw UserError("--vct-fold: needs --vct-cascades 2 or more (it folds a finer level into a coarser one)");
   if (s.cascades > 1 && s.shadows != "none")
     throw UserError("--vct-shadows " + s.shadows + ": needs --vct-cascades 1 (the shadow march reads one grid)");
 }

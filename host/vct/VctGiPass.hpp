@@ -60,6 +60,7 @@ struct VctGiSettings {
   bool revoxelize = false;       // --revoxelize: voxelize every frame (moving geometry), not only the first
   unsigned bounces = 1;          // --gi-bounces: 1, or 2 (each voxel gathers once more: VoxelBouncePass)
   unsigned cascades = 1;         // --vct-cascades: levels of the camera-centred cascade (VoxelCascade.hpp)
+  bool fold = false;             // --vct-fold: mips across the cascade's levels (CascadeFold.hpp)
   bool brute_inject = false;     // inject from every light instead of the hashed lists
   ConeBreak broken = ConeBreak::None;  // tests only
 };

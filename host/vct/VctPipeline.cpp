@@ -17,7 +17,40 @@ bool sameParams(const gpu::VoxelGridParams& a, const gpu::VoxelGridParams& b) {
 // Before the first update the cascade is placed around the scene's centre.
 glm::vec3 centre(const Aabb& b) { return b.empty() ? glm::vec3(0.0f) : 0.5f * (b.min + b.max); }
 
+// The lattice cells of `coarse` that foldBox(fine, coarse) fills.
+LatticeBox foldCells(const gpu::VoxelGridParams& fine, const gpu::VoxelGridParams& coarse) {
+  const VoxelBox b = foldBox(fine, coarse);
+  const LatticeCorner k = latticeCorner(coarse);
+  const long long c[3] = {k.x, k.y, k.z};
+  LatticeBox cells;
+  for (int a = 0; a < 3; ++a) {
+    cells.lo[a] = c[a] + b.lo[a];
+    cells.hi[a] = c[a] + b.hi[a];
+  }
+  return cells;
+}
+
+// The window box of `g` that holds the cells of a and b (the smallest box
+// around both, clipped to the window; empty when it misses).
+VoxelBox windowBoxAround(const LatticeBox& a, const LatticeBox& b, const gpu::VoxelGridParams& g) {
+  const LatticeCorner k = latticeCorner(g);
+  const long long c[3] = {k.x, k.y, k.z};
+  VoxelBox w;
+  for (int i = 0; i < 3; ++i) {
+    const long long lo = std::max(std::min(a.lo[i], b.lo[i]) - c[i], 0LL);
+    const long long hi = std::min(std::max(a.hi[i], b.hi[i]) - c[i], static_cast<long long>(g.edge));
+    if (hi <= lo) return VoxelBox{};
+    w.lo[i] = static_cast<unsigned>(lo);
+    w.hi[i] = static_cast<unsigned>(hi);
+  }
+  return w;
+}
+
 }  // namespace
+
+bool LatticeBox::operator==(const LatticeBox& o) const {
+  return std::equal(lo, lo + 3, o.lo) && std::equal(hi, hi + 3, o.hi);
+}
 
 VctPipeline::VctPipeline(ClRuntime& rt, const VctPipelineOptions& options, const Aabb& scene_bounds)
     : rt_(rt),
@@ -27,12 +60,13 @@ VctPipeline::VctPipeline(ClRuntime& rt, const VctPipelineOptions& options, const
       injector_(env_, options.compute, options.shadows),
       occupancy_(env_, options.compute),
       mips_(env_, options.compute),
+      fold_(env_, options.compute),
       lists_(env_),
       hashed_(hashed::HashedConfig{}) {
   checkCascades(options.cascades);
   if (options.cascades > 1 && options.shadows)  // users get checkVctGiSettings' line first
     throw std::invalid_argument("VctPipeline: shadows need one level (the march reads one unscrolled grid)");
-  const auto placed = placeCascade(bounds_, options.grid, options.cascades, centre(bounds_));
+  const auto placed = placeCascade(bounds_, options.grid, options.cascades, centre(bounds_), options.fold);
   for (unsigned c = 0; c < options.cascades; ++c)
     levels_.push_back(
         std::make_unique<CascadeLevel>(rt, cascadeLevelSettings(options.grid, options.cascades, c), placed[c]));
@@ -41,7 +75,7 @@ VctPipeline::VctPipeline(ClRuntime& rt, const VctPipelineOptions& options, const
 std::size_t VctPipeline::bytes() const { return cascadeBytes(options_.grid, cascades()); }
 
 bool VctPipeline::moves(const glm::vec3& eye) const {
-  const auto placed = placeCascade(bounds_, options_.grid, cascades(), eye);
+  const auto placed = placeCascade(bounds_, options_.grid, cascades(), eye, options_.fold);
   for (unsigned c = 0; c < cascades(); ++c)
     if (!levels_[c]->placed || !sameParams(levels_[c]->volume.params(), placed[c])) return true;
   return false;
@@ -49,7 +83,7 @@ bool VctPipeline::moves(const glm::vec3& eye) const {
 
 void VctPipeline::voxelize(const SceneGpu& scene, const glm::vec3& eye, PassTimings& timings,
                            std::vector<bool>& touched, std::vector<VoxelRegion>& regions) {
-  const auto placed = placeCascade(bounds_, options_.grid, cascades(), eye);
+  const auto placed = placeCascade(bounds_, options_.grid, cascades(), eye, options_.fold);
   GlPassTimer gl_timer;
   for (unsigned c = 0; c < cascades(); ++c) {
     CascadeLevel& l = *levels_[c];
@@ -83,8 +117,10 @@ void VctPipeline::update(const SceneGpu& scene, const std::vector<gpu::PointLigh
   cl::CommandQueue& q = rt_.queue();
   if (relight) uploadLights(q, lights, timings);
   ClPassTimer timer;
+  std::vector<bool> changed(cascades(), false);
   for (unsigned c = 0; c < cascades(); ++c) {
-    if (!relight && !touched[c]) continue;
+    const LevelWork w = levelWork(c, relight, touched[c], regions[c], c > 0 && changed[c - 1]);
+    if (!w.run) continue;
     CascadeLevel& l = *levels_[c];
     VoxelVolume& v = l.volume;
     v.accum().acquireForCl(q, ClAccess::Read);
@@ -94,12 +130,14 @@ void VctPipeline::update(const SceneGpu& scene, const std::vector<gpu::PointLigh
       occupancy_.build(q, v.params().edge, v.accum().cl(), &timer);
       occupancy_stale_ = false;
     }
-    lightLevel(q, l, lights.size(), relight ? VoxelRegion{} : regions[c], timer);
+    if (w.inject) lightLevel(q, l, lights.size(), w.region, timer);
+    if (c > 0 && options_.fold) fold(q, c, timer);
     mips(q, v, timer);
     if (v.anisotropic()) v.anisotropic()->releaseToGl(q);
     v.radiance().releaseToGl(q);
     v.accum().releaseToGl(q);
     unpackTextures(l, timings);
+    changed[c] = true;
   }
   timer.collect(timings);
   ++updates_;
@@ -117,6 +155,45 @@ void VctPipeline::refilter(PassTimings& timings) {
   if (v.anisotropic()) v.anisotropic()->releaseToGl(q);
   v.radiance().releaseToGl(q);
   unpackTextures(*levels_.back(), timings);
+}
+
+// A light change or a full voxelization injects the whole level; a scroll
+// its slabs. With the fold, a coarser level that runs injects again the
+// cells the finer window covered and covers (one box around both): the fold
+// reads the level's own injection there, and cells the window left need it
+// back; and it runs whenever the finer level changed.
+VctPipeline::LevelWork VctPipeline::levelWork(unsigned c, bool relight, bool touched, const VoxelRegion& scrolled,
+                                              bool finer_changed) {
+  LevelWork w;
+  if (relight || (touched && scrolled.empty())) {
+    w.run = w.inject = true;
+    return w;
+  }
+  if (touched) w.region = scrolled;
+  w.run = touched || (options_.fold && finer_changed);
+  if (c > 0 && w.run && options_.fold) {
+    const CascadeLevel& l = *levels_[c];
+    const gpu::VoxelGridParams& g = l.volume.params();
+    const LatticeBox now = foldCells(levels_[c - 1]->volume.params(), g);
+    const VoxelBox box = windowBoxAround(l.folded.empty() ? now : l.folded, now, g);
+    if (box.voxels() > 0) {
+      w.region.push_back(box);
+      report_.refolded_voxels += box.voxels();
+    }
+  }
+  w.inject = !w.region.empty();
+  return w;
+}
+
+// Level c's level 0 takes the opacity of level c - 1's mip 1 where that window lies.
+void VctPipeline::fold(cl::CommandQueue& q, unsigned c, ClPassTimer& timer) {
+  CascadeLevel& fine = *levels_[c - 1];
+  CascadeLevel& l = *levels_[c];
+  fine.volume.radiance().acquireForCl(q, ClAccess::Read);
+  fold_.run(q, fine.volume.params(), fine.volume.radiance().cl(), l.volume.params(), l.volume.radiance().cl(), &timer);
+  fine.volume.radiance().releaseToGl(q);
+  l.folded = foldCells(fine.volume.params(), l.volume.params());
+  report_.folded_voxels += foldBox(fine.volume.params(), l.volume.params()).voxels();
 }
 
 void VctPipeline::mips(cl::CommandQueue& q, VoxelVolume& v, ClPassTimer& timer) {

@@ -16,14 +16,20 @@
 // Hand-overs: the volume's SharedBuffers are acquired for CL after the GL
 // voxelization and released to GL after the mips (GL owns them between
 // updates), then unpacked into mip-mapped 3D textures for sampling
-// (gl/VoxelTextures). Passes: `vct-voxelize` (GL), `vct-inject`, `vct-mips`
-// (CL device times), `vct-textures` (GL), added to the caller's PassTimings.
+// (gl/VoxelTextures). Passes: `vct-voxelize` (GL), `vct-inject`, `vct-fold`
+// (--vct-fold), `vct-mips` (CL device times), `vct-textures` (GL), added to
+// the caller's PassTimings.
 // Cascades (options.cascades = L > 1, VoxelCascade.hpp): L volumes, the
 // outermost the grid around the scene, the inner ones toroidal and centred
 // on the update's eye. A level the eye moved voxelizes and injects only the
 // slabs that scrolled in (VoxelRegion; the rest of its level 0 keeps its
 // place), then its mips and textures run again; a light change injects every
-// level. The hashed lists serve every level. Shadows and refilter() need L = 1.
+// level. With options.fold (--vct-fold) mips run across levels too
+// (CascadeFold): finest first, each coarser level's level 0 takes the finer
+// level's opacity where the finer window lies, before its own mips; where
+// the finer window moved away, the coarser level is injected again from its
+// own voxelization. The hashed lists serve every level. Shadows and
+// refilter() need L = 1.
 // Not thread-safe; needs the current GL context of the scene's SceneGpu.
 #include <glm/glm.hpp>
 
@@ -32,6 +38,7 @@
 #include <vector>
 
 #include "gl/SceneGpu.hpp"
+#include "host/vct/CascadeFold.hpp"
 #include "host/vct/VoxelTextures.hpp"
 #include "host/vct/VoxelizePass.hpp"
 #include "host/compute/ComputeEnv.hpp"
@@ -53,6 +60,7 @@ struct VctPipelineOptions {
   bool brute_force = false;  // inject from every light instead of the hashed lists
   bool shadows = false;      // --vct-shadows voxel: visibility through level-0 opacity (VoxelInjector)
   unsigned cascades = 1;     // --vct-cascades
+  bool fold = false;         // --vct-fold: mips across cascade levels (CascadeFold)
   compute::Options compute;  // kernel shape of inject and mips
 };
 
@@ -64,10 +72,20 @@ struct VctUpdateInputs {
 };
 
 // What the last update did: levels voxelized in full, levels scrolled and
-// the level-0 voxels voxelized and injected again for the scroll.
+// the level-0 voxels voxelized and injected again for the scroll; level-0
+// voxels injected again for the fold (the box around the cells a finer
+// window covered and covers; not counted above) and those folded from finer
+// levels (CascadeFold).
 struct VctUpdateReport {
   unsigned full_levels = 0, scrolled_levels = 0;
-  std::size_t scrolled_voxels = 0;
+  std::size_t scrolled_voxels = 0, refolded_voxels = 0, folded_voxels = 0;
+};
+
+// A box of lattice cells of a level's voxel size (hi exclusive; empty when any hi <= lo).
+struct LatticeBox {
+  long long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  bool empty() const { return hi[0] <= lo[0] || hi[1] <= lo[1] || hi[2] <= lo[2]; }
+  bool operator==(const LatticeBox& o) const;
 };
 
 // One level of the cascade: its volume and textures.
@@ -76,6 +94,7 @@ struct CascadeLevel {
   VoxelVolume volume;
   VoxelTextures textures;
   bool placed = false;  // voxelized at volume.params()
+  LatticeBox folded;    // the cells of level 0 that hold the finer level's mip (CascadeFold)
 };
 
 class VctPipeline {
@@ -98,6 +117,7 @@ class VctPipeline {
   const VoxelVolume& volume() const { return levels_.back()->volume; }
   const VoxelTextures& textures() const { return levels_.back()->textures; }
   unsigned cascades() const { return static_cast<unsigned>(levels_.size()); }
+  bool folds() const { return options_.fold && cascades() > 1; }
   CascadeLevel& level(unsigned c) { return *levels_.at(c); }
   const CascadeLevel& level(unsigned c) const { return *levels_.at(c); }
   std::size_t bytes() const;  // every level's volume
@@ -120,6 +140,14 @@ class VctPipeline {
   void lightLevel(cl::CommandQueue& q, CascadeLevel& l, std::size_t light_count, const VoxelRegion& region,
                   ClPassTimer& timer);
   void mips(cl::CommandQueue& q, VoxelVolume& v, ClPassTimer& timer);
+  // What level c must do this update: whether it runs at all, whether it is
+  // injected and where (an empty region: all of it).
+  struct LevelWork {
+    bool run = false, inject = false;
+    VoxelRegion region;
+  };
+  LevelWork levelWork(unsigned c, bool relight, bool touched, const VoxelRegion& scrolled, bool finer_changed);
+  void fold(cl::CommandQueue& q, unsigned c, ClPassTimer& timer);
   void unpackTextures(CascadeLevel& l, PassTimings& timings);
   const VoxelOccupancy* occupancy() const { return options_.shadows ? &occupancy_ : nullptr; }
   bool occupancy_stale_ = true;  // voxelized since the occupancy was built
@@ -133,6 +161,7 @@ class VctPipeline {
   VoxelInjector injector_;
   VoxelOccupancy occupancy_;  // of the last voxelization, for the shadow march
   VoxelMips mips_;
+  CascadeFold fold_;
   HashedListsCl lists_;
   hashed::HashedStructure hashed_;
   cl::Buffer lights_;

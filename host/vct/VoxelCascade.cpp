@@ -38,9 +38,15 @@ std::size_t cascadeBytes(const VoxelGridSettings& s, unsigned cascades) {
 }
 
 std::vector<gpu::VoxelGridParams> placeCascade(const Aabb& scene_bounds, const VoxelGridSettings& s,
-                                               unsigned cascades, const glm::vec3& eye) {
+                                               unsigned cascades, const glm::vec3& eye, bool nested) {
   checkCascades(cascades);
-  const gpu::VoxelGridParams outer = fitVoxelGrid(scene_bounds, s);
+  gpu::VoxelGridParams outer = fitVoxelGrid(scene_bounds, s);
+  if (cascades > 1 && nested) {  // on its lattice, so the inner levels' voxels nest in its voxels (CascadeFold)
+    auto& o = outer.origin_voxel_size;
+    o.x = float(latticeIndex(o.x, o.w)) * o.w;
+    o.y = float(latticeIndex(o.y, o.w)) * o.w;
+    o.z = float(latticeIndex(o.z, o.w)) * o.w;
+  }
   std::vector<gpu::VoxelGridParams> levels(cascades, outer);
   for (unsigned c = 0; c + 1 < cascades; ++c) {
     const float voxel = outer.origin_voxel_size.w / float(1u << (cascades - 1 - c));

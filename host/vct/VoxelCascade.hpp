@@ -6,7 +6,12 @@
 //    (fitVoxelGrid, unscrolled, the settings' levels): it holds the whole
 //    scene from any viewpoint, so a cone never leaves the volume before it
 //    would leave the scene (the reference sees the whole scene too). With
-//    L = 1 it is the only level: the single grid.
+//    L = 1 it is the only level: the single grid. With L > 1 and `nested`
+//    (--vct-fold) its corner is moved to the nearest point of its voxel
+//    lattice (less than half a voxel; fitVoxelGrid leaves one voxel around
+//    the scene), so every level's voxels nest in the next level's
+//    (CascadeFold.hpp); without, the inner levels' lattices need not meet
+//    its voxels' faces.
 //  - Level c < L - 1 is a v^3 toroidal grid (VoxelGridParams::wrap) of
 //    voxel size s / 2^(L - 1 - c), s the outermost's, so each level spans
 //    twice the extent of the one inside it; its corner lies on the lattice
@@ -51,8 +56,9 @@ VoxelGridSettings cascadeLevelSettings(const VoxelGridSettings& s, unsigned casc
 // Device memory of every level (voxelBytes of each).
 std::size_t cascadeBytes(const VoxelGridSettings& s, unsigned cascades);
 
+// nested (--vct-fold): the outermost level's corner on its lattice, see above.
 std::vector<gpu::VoxelGridParams> placeCascade(const Aabb& scene_bounds, const VoxelGridSettings& s,
-                                               unsigned cascades, const glm::vec3& eye);
+                                               unsigned cascades, const glm::vec3& eye, bool nested = false);
 
 struct ScrollUpdate {
   bool full = true;

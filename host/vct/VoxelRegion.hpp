@@ -3,14 +3,17 @@
 // indices 0..edge-1 per axis, voxel_types.h; `hi` exclusive): the slabs a
 // scrolled cascade level must voxelize and inject again
 // (host/vct/VoxelCascade.hpp). Boxes may overlap; an empty region is the
-// whole grid. At most kMaxRegionBoxes boxes (one slab per axis).
+// whole grid. At most kMaxRegionBoxes boxes (one slab per axis, and the box
+// a finer cascade level's window left: VctPipeline).
 #include <array>
 #include <cstddef>
 #include <vector>
 
+#include "host/shared/vct_bindings.h"
+
 namespace ml::vct {
 
-inline constexpr std::size_t kMaxRegionBoxes = 3;
+inline constexpr std::size_t kMaxRegionBoxes = ML_VOXEL_REGION_BOXES;
 
 struct VoxelBox {
   std::array<unsigned, 3> lo{}, hi{};

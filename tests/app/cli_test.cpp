@@ -87,6 +87,8 @@ TEST(Cli, BadVctFlags) {
       // What one grid alone models refuses cascades, naming itself.
       {"--vct-cascades 2 --gi-bounces 2", "--gi-bounces"},
       {"--vct-cascades 2 --vct-shadows voxel", "--vct-shadows"},
+      {"--vct-fold", "--vct-fold"},
+      {"--vct-cascades 2 --vct-fold=maybe", "--vct-fold"},
   };
   for (const auto& [flags, named] : refused) {
     SCOPED_TRACE(flags);

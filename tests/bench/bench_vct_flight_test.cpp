@@ -37,7 +37,8 @@ CommandResult runFlight(const std::string& args) {
 TEST(BenchVctFlight, RecordsPerCameraAndTheCascadesMoveCost) {
   const std::string json = test::tempDir() + "/vct-flight.json";
   const CommandResult r =
-      runFlight("--flight-voxels 16 --flight-cascades 2 --flight-frames 4 --flight-samples 2 --json " + json);
+      runFlight("--flight-voxels 16 --flight-cascades 2 --flight-fold --flight-frames 4 --flight-samples 2 --json " +
+                json);
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   const auto j = test::readJson(json);
   ASSERT_TRUE(j.is_array());
@@ -49,6 +50,8 @@ TEST(BenchVctFlight, RecordsPerCameraAndTheCascadesMoveCost) {
       const double e = j[i].at(c).get<double>();
       EXPECT_TRUE(std::isfinite(e) && e > 0.0 && e < 2.0) << c;
     }
+    const double fold = j[i].at("cascade 2x16 fold").get<double>();  // --flight-fold's column
+    EXPECT_TRUE(std::isfinite(fold) && fold > 0.0 && fold < 2.0);
   }
   const auto& s = j[2];
   SCOPED_TRACE(s.dump());
@@ -59,6 +62,8 @@ TEST(BenchVctFlight, RecordsPerCameraAndTheCascadesMoveCost) {
   ASSERT_GE(m.at("moves").get<unsigned>(), 1u) << "a 31 m flight past 2 m voxels scrolled no level";
   EXPECT_GT(m.at("move_over_full_median").get<double>(), 0.0);
   EXPECT_GT(m.at("scrolled_voxels_mean").get<double>(), 0.0);
+  EXPECT_LE(s.at("fold_lower_at").get<unsigned>(), 2u);
+  EXPECT_GE(s.at("fold_moves").at("moves").get<unsigned>(), 1u);
 }
 
 TEST(BenchVctFlight, BadFlightFlagsAreOneLineAndExit2) {
@@ -67,6 +72,7 @@ TEST(BenchVctFlight, BadFlightFlagsAreOneLineAndExit2) {
   } cases[] = {
       {"--flight-frames", "1"},   {"--flight-samples", "0"}, {"--flight-cascades", "5"},
       {"--flight-cascades", "0"}, {"--flight-voxels", "33"}, {"--flight-scenes", "no-such-scene"},
+      {"--flight-fold", "--flight-cascades 1"},
   };
   for (const auto& c : cases) {
     const std::string args = c.flag + " " + c.value;

@@ -1,6 +1,7 @@
 // The camera-centred cascade (--vct-cascades, host/vct/VoxelCascade.hpp and
 // VctPipeline), fresh random scenes, lights and camera moves (seeds printed):
-//  - placement: the outermost level is the scene's grid; each inner level is
+//  - placement: the outermost level is the scene's grid (with --vct-fold
+//    moved onto its lattice, less than half a voxel); each inner level is
 //    toroidal, half the voxel of the one outside it, its corner on its
 //    lattice (a multiple of kInnerStep) with the eye within kInnerStep voxels
 //    of its centre; scrollRegion gives the slabs a move brings in, nothing
@@ -10,9 +11,13 @@
 //    every other voxel keeps its bytes), and every level then equals a fresh
 //    build at the new position bit for bit (sums, radiance, mips), but for at
 //    most 2 voxels a triangle grazes, whose float rounding at a voxel face
-//    depends on the window's position (seen: 1 voxel in 1 of 40 runs);
+//    depends on the window's position (seen: 1 voxel in 1 of 40 runs); with
+//    --vct-fold a coarser level's cells a finer window covered or covers
+//    are rewritten too;
 //  - injection holds on every level: level 0 of each (toroidal or not)
-//    equals injectTwin on its own sums, the mips the mip twins.
+//    equals injectTwin on its own sums (with --vct-fold: then folded by
+//    CascadeFoldTwin from the finer level's volume, the fold's surfaces where
+//    the level's own voxelization has them), the mips the mip twins.
 // Volumes are poisoned (NaN) before the updates.
 #include <gtest/gtest.h>
 
@@ -22,6 +27,8 @@
 #include <vector>
 
 #include "gl/SceneGpu.hpp"
+#include "host/vct/CascadeFold.hpp"
+#include "host/vct/CascadeFoldTwin.hpp"
 #include "host/vct/InjectTwin.hpp"
 #include "host/vct/VctPipeline.hpp"
 #include "host/vct/VoxelCascade.hpp"
@@ -65,10 +72,27 @@ TEST(VoxelCascadePlacement, LevelsNestAroundTheEye) {
     const VoxelGridSettings s{16u << (rng() % 3), 3, rng() % 2 == 0};
     const unsigned cascades = 1 + static_cast<unsigned>(rng() % kMaxCascades);
     const glm::vec3 eye(u(rng), u(rng), u(rng));
-    const auto levels = placeCascade(bounds, s, cascades, eye);
+    const bool nested = rng() % 2 == 0;
+    const auto levels = placeCascade(bounds, s, cascades, eye, nested);
     ASSERT_EQ(levels.size(), cascades);
     const gpu::VoxelGridParams outer = fitVoxelGrid(bounds, s);
-    EXPECT_EQ(std::memcmp(&levels.back(), &outer, sizeof(outer)), 0) << "the outermost level is the scene's grid";
+    if (cascades == 1 || !nested) {
+      EXPECT_EQ(std::memcmp(&levels.back(), &outer, sizeof(outer)), 0) << "the outermost level is the scene's grid";
+    } else {  // the scene's grid moved onto its lattice, by less than half a voxel
+      const gpu::VoxelGridParams& b = levels.back();
+      EXPECT_EQ(b.edge, outer.edge);
+      EXPECT_EQ(b.levels, outer.levels);
+      EXPECT_EQ(b.wrap, 0u);
+      EXPECT_EQ(b.origin_voxel_size.w, outer.origin_voxel_size.w);
+      const float m[3] = {b.origin_voxel_size.x, b.origin_voxel_size.y, b.origin_voxel_size.z};
+      const float f[3] = {outer.origin_voxel_size.x, outer.origin_voxel_size.y, outer.origin_voxel_size.z};
+      for (int a = 0; a < 3; ++a) {
+        const double k = double(m[a]) / b.origin_voxel_size.w;
+        EXPECT_NEAR(k, std::round(k), 1e-3) << "outer corner on its lattice";
+        EXPECT_LE(std::fabs(m[a] - f[a]), 0.5f * b.origin_voxel_size.w * (1 + 1e-5f));
+      }
+      for (unsigned c = 0; c + 1 < cascades; ++c) EXPECT_TRUE(foldable(levels[c], levels[c + 1])) << "level " << c;
+    }
     for (unsigned c = 0; c + 1 < cascades; ++c) {
       const gpu::VoxelGridParams& p = levels[c];
       EXPECT_EQ(p.wrap, 1u);
@@ -140,6 +164,7 @@ TEST(VoxelCascadePlacement, RegionVoxelsCountsTheUnion) {
 struct Param {
   KernelShape shape;
   bool brute;
+  bool fold;  // --vct-fold
 };
 
 class VctCascadeTest : public ::testing::TestWithParam<Param> {
@@ -148,6 +173,7 @@ class VctCascadeTest : public ::testing::TestWithParam<Param> {
     VctPipelineOptions o;
     o.grid = {16, 3, true};
     o.cascades = 3;
+    o.fold = GetParam().fold;
     o.brute_force = GetParam().brute;
     o.compute.shape = GetParam().shape;
     return o;
@@ -168,7 +194,29 @@ void expectTwins(const VctPipeline& p, const std::vector<gpu::PointLight>& light
     const VoxelGridSettings& s = l.volume.settings();
     const LevelData d = read(l);
     const std::size_t n0 = d.accum.size();
-    const auto want0 = injectTwin(d.accum, l.volume.params(), lights);
+    auto want0 = injectTwin(d.accum, l.volume.params(), lights);
+    if (c > 0 && p.folds()) {  // the finer level's opacity where its window lies (CascadeFold)
+      const CascadeLevel& fine = p.level(c - 1);
+      const std::vector<F4> fine_radiance = read(fine).radiance;
+      cascadeFoldTwin(fine_radiance, fine.volume.params(), want0, l.volume.params());
+      const VoxelBox box = foldBox(fine.volume.params(), l.volume.params());
+      EXPECT_GT(box.voxels(), 0u) << "the finer window lies inside";
+      // The fold lands in the right place: a voxel a surface touches has a
+      // child a surface touches, and the other way round (the children
+      // partition it), so where the finer level filled the cell the coarser
+      // level's own voxelization did too, but for voxels a triangle grazes
+      // (float rounding at a face, as below).
+      std::size_t filled = 0, disagree = 0;
+      for (std::size_t i = 0; i < n0; ++i) {
+        const gpu::VoxelWindow w = gpu::voxel_window(l.volume.params(), static_cast<unsigned>(i));
+        if (!box.contains(w.x, w.y, w.z)) continue;
+        const bool own = d.accum[i].albedo_count[3] > 0, folded = want0[i].w > 0;
+        filled += own;
+        disagree += own != folded;
+      }
+      EXPECT_GT(filled, 0u) << "the fold box holds no surface: the check proved nothing";
+      EXPECT_LE(disagree, 2 + filled / 100) << "of " << filled << " filled voxels";
+    }
     for (std::size_t i = 0; i < n0; ++i) {
       const float g[4] = {d.radiance[i].x, d.radiance[i].y, d.radiance[i].z, d.radiance[i].w};
       const float w[4] = {want0[i].x, want0[i].y, want0[i].z, want0[i].w};
@@ -202,8 +250,21 @@ TEST_P(VctCascadeTest, InjectionAndMipsHoldOnEveryLevel) {
   expectTwins(p, lights);
 }
 
+// Whether window voxel w of `coarse` lies in the lattice cells that
+// foldBox(fine, at) covered (`at`: the same level, perhaps placed elsewhere).
+bool foldedCell(const gpu::VoxelGridParams& fine, const gpu::VoxelGridParams& at, const gpu::VoxelGridParams& coarse,
+                const gpu::VoxelWindow& w) {
+  const LatticeCorner now = latticeCorner(coarse), then = latticeCorner(at);
+  const long long j[3] = {now.x + w.x - then.x, now.y + w.y - then.y, now.z + w.z - then.z};
+  const VoxelBox b = foldBox(fine, at);
+  for (int a = 0; a < 3; ++a)
+    if (j[a] < b.lo[a] || j[a] >= static_cast<long long>(b.hi[a])) return false;
+  return true;
+}
+
 // One move of the eye along `axis` by `voxels` of level 0; every level then
-// equals a fresh build, and only the scrolled voxels changed.
+// equals a fresh build, and only the scrolled voxels changed (and, in a
+// coarser level, the cells a finer window covered before or covers now).
 void checkMove(VctPipeline& p, const VctPipelineOptions& o, const Scene& scene, const SceneGpu& gpu_scene,
                const std::vector<gpu::PointLight>& lights, glm::vec3& eye, int axis, float voxels) {
   std::vector<LevelData> before;
@@ -257,6 +318,10 @@ void checkMove(VctPipeline& p, const VctPipelineOptions& o, const Scene& scene, 
       for (const VoxelBox& b : u.region) scrolled |= b.contains(w.x, w.y, w.z);
       if (scrolled) continue;
       ASSERT_EQ(std::memcmp(&now.accum[i], &before[c].accum[i], sizeof(gpu::VoxelAccum)), 0) << "voxel " << i;
+      const bool refolded = c > 0 && p.folds() &&
+                            (foldedCell(p.level(c - 1).volume.params(), g, g, w) ||
+                             foldedCell(placed[c - 1], placed[c], g, w));
+      if (refolded) continue;
       ASSERT_EQ(std::memcmp(&now.radiance[i], &before[c].radiance[i], sizeof(F4)), 0) << "voxel " << i;
     }
   }
@@ -291,9 +356,12 @@ TEST_P(VctCascadeTest, CameraMovesUpdateOnlyTheScrolledSlabsAndEqualAFreshBuild)
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, VctCascadeTest,
-                         ::testing::Values(Param{KernelShape::CpuChunked, false}, Param{KernelShape::GpuWorkGroup, true}),
+                         ::testing::Values(Param{KernelShape::CpuChunked, false, false},
+                                           Param{KernelShape::CpuChunked, false, true},
+                                           Param{KernelShape::GpuWorkGroup, true, true}),
                          [](const auto& info) {
-                           return test::shapeLabel(info.param.shape) + (info.param.brute ? "_brute" : "_hashed");
+                           return test::shapeLabel(info.param.shape) + (info.param.brute ? "_brute" : "_hashed") +
+                                  (info.param.fold ? "_fold" : "");
                          });
 
 }  // namespace

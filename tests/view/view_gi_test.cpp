@@ -84,7 +84,8 @@ TEST(ViewerGi, TheDescriptorDefaultsAreTheSettingsDefaults) {
   EXPECT_EQ(got.shadows, want.shadows);
   EXPECT_EQ(got.revoxelize, want.revoxelize);
   EXPECT_EQ(got.cascades, want.cascades);
-  EXPECT_EQ(vct::giDescriptor().params.size(), 10u) << "a VCT setting was added: map it in vctSettingsOf";
+  EXPECT_EQ(got.fold, want.fold);
+  EXPECT_EQ(vct::giDescriptor().params.size(), 11u) << "a VCT setting was added: map it in vctSettingsOf";
 }
 
 // gi_param revoxelize (the panel's checkbox) reaches the pipeline: with it

@@ -26,8 +26,8 @@ uniform uint u_edge;
 // level's new slabs (host/vct/VoxelRegion.hpp).
 uniform uvec3 u_shift;
 uniform int u_box_count;
-uniform ivec3 u_box_lo[3];
-uniform ivec3 u_box_hi[3];
+uniform ivec3 u_box_lo[ML_VOXEL_REGION_BOXES];
+uniform ivec3 u_box_hi[ML_VOXEL_REGION_BOXES];
 
 bool inRegion(ivec3 v) {
   if (u_box_count == 0) return true;

@@ -9,6 +9,7 @@
 // the overshoot at sharp corners (2D bounds test, then the exact clip of the
 // pixel's square against the triangle's own edges).
 // All positions here are in voxel units of the grid ("grid space").
+#include "vct_bindings.h"
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 in vec3 vs_world[];
@@ -25,8 +26,8 @@ uniform vec4 u_origin_voxel_size;
 uniform uint u_edge;            // level-0 voxels per axis = viewport edge, pixels
 uniform bool u_dilate;           // false only in tests that show dilation matters
 uniform int u_box_count;         // > 0: only these window boxes are written (voxelize.frag)
-uniform ivec3 u_box_lo[3];
-uniform ivec3 u_box_hi[3];
+uniform ivec3 u_box_lo[ML_VOXEL_REGION_BOXES];
+uniform ivec3 u_box_hi[ML_VOXEL_REGION_BOXES];
 
 // Whether the triangle's bounds (grid space, one voxel wider for the
 // dilation) reach a box of the region: a scrolled slab rasterises only the
