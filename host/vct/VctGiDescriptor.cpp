@@ -48,7 +48,7 @@ std::vector<ParamSpec> vctParams() {
                  {"auto"}),
       switchParam("anisotropic", true,
                   "anisotropic voxels (6 directions per voxel; off: one, 0.79x the memory, and on the Cornell box "
-                  "twice the error: isotropic voxels average a thin wall's lit face with its dark back)"),
+                  "1.1-1.5x the error: an isotropic voxel shows one colour from every side)"),
       countParam("cones", "9", 1, kMaxCones, "diffuse cones per pixel (1..32)"),
       textParam("cone-aperture", "45", "diffuse cone aperture in degrees (0..180)", numberProblem),
       textParam("gi-scale", "0.5", "trace resolution as a fraction of the frame's, (0, 1]", numberProblem),

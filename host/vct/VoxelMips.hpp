@@ -1,7 +1,8 @@
 #pragma once
 // Voxel mip propagation on the device (kernels/vct/vct_mips.cl): levels 1 ..
 // levels - 1 of the radiance/opacity volume from its level 0 (isotropic:
-// child pairs composited along each axis, the most opaque axis kept) and of
+// child pairs composited along each axis in the brighter of the two orders,
+// the most opaque axis kept) and of
 // the 6-direction volume (anisotropic, Crassin 2011; its level 1 from
 // isotropic level 0). One launch per kTreeDepth levels, each top parent's
 // subtree in one work-item (CPU shape) or work-group (GPU shape), launches in

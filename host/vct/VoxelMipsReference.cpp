@@ -28,16 +28,20 @@ Children childrenOf(const F4* level, unsigned ep, std::size_t p) {
   return {level + 2 * x + ec * (2 * y + ec * 2 * z), ec, ec * ec};
 }
 
-// As the kernel's AXIS_OVERLAP, AXIS_CROSS and iso_parent(): pairs
+// As the kernel's AXIS_OVERLAP, AXIS_MAX and iso_parent(): pairs
 // (f[i], b[i]) of one axis.
 using Quad = std::array<F4, 4>;
 float axisOverlap(const Quad& f, const Quad& b) {
   return (f[0].w * b[0].w + f[1].w * b[1].w) + (f[2].w * b[2].w + f[3].w * b[3].w);
 }
 
-F4 axisCross(const Quad& f, const Quad& b) {
+// The kernel's PAIR_MAX: over(f, b) where b.a S(f) >= f.a S(b) (S: (r + g) + b), else over(b, f).
+float rgbSum(F4 a) { return (a.x + a.y) + a.z; }
+F4 brighterOrder(F4 f, F4 b) { return b.w * rgbSum(f) >= f.w * rgbSum(b) ? over(f, b) : over(b, f); }
+
+F4 axisMax(const Quad& f, const Quad& b) {
   F4 q[4];
-  for (int i = 0; i < 4; ++i) q[i] = add(scale(f[i], b[i].w), scale(b[i], f[i].w));
+  for (int i = 0; i < 4; ++i) q[i] = brighterOrder(f[i], b[i]);
   return add(add(q[0], q[1]), add(q[2], q[3]));
 }
 
@@ -49,9 +53,8 @@ F4 isoParent(const Children& c) {
   const Quad yf{k[0], k[1], k[4], k[5]}, yb{k[2], k[3], k[6], k[7]};
   const Quad zf{k[0], k[1], k[2], k[3]}, zb{k[4], k[5], k[6], k[7]};
   const float dx = axisOverlap(xf, xb), dy = axisOverlap(yf, yb), dz = axisOverlap(zf, zb);
-  const F4 sum = add(add(add(k[0], k[1]), add(k[2], k[3])), add(add(k[4], k[5]), add(k[6], k[7])));
-  const F4 cross = dz < std::min(dx, dy) ? axisCross(zf, zb) : (dy < dx ? axisCross(yf, yb) : axisCross(xf, xb));
-  return scale(add(sum, scale(cross, -0.5f)), 0.25f);
+  const F4 axis = dz < std::min(dx, dy) ? axisMax(zf, zb) : (dy < dx ? axisMax(yf, yb) : axisMax(xf, xb));
+  return scale(axis, 0.25f);
 }
 
 F4 anisoDir(const Children& k, unsigned d) {

@@ -2,9 +2,9 @@
  * edge ep = 1 << ep_log2 has children 2x..2x+1, 2y..2y+1, 2z..2z+1 at the
  * finer level (edge 2ep). Layout of both volumes: host/shared/voxel_types.h.
  *   mip_iso:   per axis, each of the 4 child pairs along it composited front
- *              to back (front + (1 - front.a) * back, premultiplied) in both
- *              orders and averaged, the 4 columns averaged; the parent is the
- *              axis with the largest opacity. A wall filling one of the two
+ *              to back (front + (1 - front.a) * back, premultiplied) in the
+ *              brighter of the two orders, the 4 columns averaged; the parent
+ *              is the axis with the largest opacity. A wall filling one of the two
  *              child layers stays opaque across it (the mean of the 8
  *              children, 002's filter, halves its opacity per level and cones
  *              leak through one-voxel walls). Opacity stays separate from
@@ -67,23 +67,35 @@ ML_INLINE float8 cat8(float4 a, float4 b) { return (float8)(a.x, a.y, a.z, a.w, 
   (((ANISO_PAIR(kp, kn, 0u, s) + ANISO_PAIR(kp, kn, u, s)) + (ANISO_PAIR(kp, kn, v, s) + ANISO_PAIR(kp, kn, u + v, s))) * 0.25f)
 
 /* Isotropic filter. Along an axis, each of the 4 child pairs (f, b) is
- * composited front to back in both orders and averaged (an isotropic voxel
- * has no direction of travel):
- *   (over(f, b) + over(b, f)) / 2 = f + b - (b.a f + f.a b) / 2,
- * opacity f.a + b.a - f.a b.a, and the axis is the mean of its 4 pairs:
- *   (S - C / 2) / 4,  S = the sum of the 8 children (the same for every
- *   axis), C = the sum over pairs of b.a f + f.a b (AXIS_CROSS).
+ * composited front to back in both orders, over(f, b) = f + (1 - f.a) b and
+ * over(b, f), and the brighter of the two kept (brighter(); their opacity
+ * is the same, f.a + b.a - f.a b.a); the axis is the mean of its 4 pairs
+ * (AXIS_MAX / 4). An isotropic voxel has no direction of travel, and the
+ * mean of the two orders, as before, gave a wall's lit face and its dark
+ * back (a slab two children thick) half the light from every side: the
+ * lit face is what the open space around a surface sees, the back faces
+ * into the wall. Cornell box, its camera, 320x320, 9 cones, isotropic,
+ * against a 1024-sample reference without its noise, 32^3 / 64^3 / 128^3:
+ * 0.181 / 0.185 / 0.215 (the mean: 0.231 / 0.265 / 0.236; a channel-wise
+ * max 0.181 / 0.186 / 0.217; anisotropic 0.165 / 0.160 / 0.143).
  * The parent is the most opaque axis: the one whose pairs overlap least,
- * sum f.a b.a (AXIS_OVERLAP), the first on ties (x, y, z). So only the
- * chosen axis pays for C: the filter is bound by instructions, not memory,
- * wherever the grid fits in cache. Pairs as child indices (f0, b0, ..), in
- * the twin's order. */
+ * sum f.a b.a (AXIS_OVERLAP), the first on ties (x, y, z). Pairs as child
+ * indices (f0, b0, ..), in the twin's order. */
 #define PAIR_OVERLAP(A, i, j) (A(i) * A(j))
 #define AXIS_OVERLAP(A, f0, b0, f1, b1, f2, b2, f3, b3) \
   ((PAIR_OVERLAP(A, f0, b0) + PAIR_OVERLAP(A, f1, b1)) + (PAIR_OVERLAP(A, f2, b2) + PAIR_OVERLAP(A, f3, b3)))
-#define PAIR_CROSS(A, i, j) (A(j) * k[i] + A(i) * k[j])
-#define AXIS_CROSS(A, f0, b0, f1, b1, f2, b2, f3, b3) \
-  ((PAIR_CROSS(A, f0, b0) + PAIR_CROSS(A, f1, b1)) + (PAIR_CROSS(A, f2, b2) + PAIR_CROSS(A, f3, b3)))
+/* The brighter of the pair's two orders, whole (a channel-wise max would
+ * make an opaque red and green pair yellow): over(i, j) - over(j, i) =
+ * A(j) k[i] - A(i) k[j], so over(i, j) is at least as bright (rgb summed,
+ * S(i) = (r + g) + b of child i) when A(j) S(i) >= A(i) S(j); ties, over(i, j).
+ * PICK(l, r, x, y): x where l >= r, else y (a scalar ?:, or select() per lane). */
+#define OVER_PAIR(A, i, j) (k[i] + (1.0f - A(i)) * k[j])
+#define PAIR_MAX(A, S, PICK, i, j) PICK(A(j) * S(i), A(i) * S(j), OVER_PAIR(A, i, j), OVER_PAIR(A, j, i))
+#define AXIS_MAX(A, S, PICK, f0, b0, f1, b1, f2, b2, f3, b3)                                                  \
+  ((PAIR_MAX(A, S, PICK, f0, b0) + PAIR_MAX(A, S, PICK, f1, b1)) +                                           \
+   (PAIR_MAX(A, S, PICK, f2, b2) + PAIR_MAX(A, S, PICK, f3, b3)))
+#define PICK1(l, r, x, y) ((l) >= (r) ? (x) : (y))
+#define RGB_SUM(i) s[i]
 /* The pairs (f0, b0, ..) of each axis, as child indices in the twin's order;
  * OVERLAP(A, X_PAIRS) etc. expand the list before AXIS_OVERLAP sees it. A(i):
  * child i's opacity, a scalar (k[i].w) or broadcast over its lanes. */
@@ -91,7 +103,7 @@ ML_INLINE float8 cat8(float4 a, float4 b) { return (float8)(a.x, a.y, a.z, a.w, 
 #define Y_PAIRS 0, 2, 1, 3, 4, 6, 5, 7
 #define Z_PAIRS 0, 4, 1, 5, 2, 6, 3, 7
 #define OVERLAP(...) AXIS_OVERLAP(__VA_ARGS__)
-#define CROSS(...) AXIS_CROSS(__VA_ARGS__)
+#define BRIGHTER(...) AXIS_MAX(__VA_ARGS__)
 #define ALPHA(i) k[i].w
 
 /* Keeping the most opaque axis, not the mean of the three, holds a one-voxel
@@ -100,16 +112,12 @@ ML_INLINE float8 cat8(float4 a, float4 b) { return (float8)(a.x, a.y, a.z, a.w, 
 ML_INLINE float4 iso_parent(__global const float4* c, uint sy, uint sz) {
   float4 k[8];
   load8(c, sy, sz, k);
+  float s[8];
+  for (uint i = 0u; i < 8u; ++i) s[i] = (k[i].x + k[i].y) + k[i].z;
   const float dx = OVERLAP(ALPHA, X_PAIRS), dy = OVERLAP(ALPHA, Y_PAIRS), dz = OVERLAP(ALPHA, Z_PAIRS);
-  const float4 sum = ((k[0] + k[1]) + (k[2] + k[3])) + ((k[4] + k[5]) + (k[6] + k[7]));
-  float4 cross;
-  if (dz < min(dx, dy))
-    cross = CROSS(ALPHA, Z_PAIRS);
-  else if (dy < dx)
-    cross = CROSS(ALPHA, Y_PAIRS);
-  else
-    cross = CROSS(ALPHA, X_PAIRS);
-  return (sum - 0.5f * cross) * 0.25f;
+  if (dz < min(dx, dy)) return BRIGHTER(ALPHA, RGB_SUM, PICK1, Z_PAIRS) * 0.25f;
+  if (dy < dx) return BRIGHTER(ALPHA, RGB_SUM, PICK1, Y_PAIRS) * 0.25f;
+  return BRIGHTER(ALPHA, RGB_SUM, PICK1, X_PAIRS) * 0.25f;
 }
 
 #if !ML_GPU
@@ -119,8 +127,8 @@ ML_INLINE float4 iso_parent(__global const float4* c, uint sy, uint sz) {
  * row loads, and the 4 results are one contiguous store. Every float16
  * operation does the work of 4 float4 ones (the filter is bound by
  * instructions: 002's box filter ran at the copy kernel's speed). The axis
- * choice is per lane group: select() over the three cross terms, and only the
- * x one when no parent picks another (ties go to x: every empty or uniform
+ * choice is per lane group: select() over the three axes' pairs, and only the
+ * x ones when no parent picks another (ties go to x: every empty or uniform
  * block), where a branch per parent mispredicts on mixed volumes. Each lane
  * group rounds exactly as iso_parent(). */
 #define W16(v)                                                                                                  \
@@ -147,17 +155,27 @@ ML_INLINE void load_quad(__global const float4* c, uint sy, uint sz, float16* k)
     k[2u * r + 1u] = ODD_CHILDREN(a, b);
   }
 }
+/* Each lane group's (r + g) + b, broadcast over its lanes (as W16 does the opacity). */
+#define RGB16(v)                                                                                    \
+  ((float16)(RGB16_GROUP(v, s0, s1, s2), RGB16_GROUP(v, s4, s5, s6), RGB16_GROUP(v, s8, s9, sa), \
+             RGB16_GROUP(v, sc, sd, se)))
+#define RGB16_GROUP(v, r, g, b) ((v).r + (v).g) + (v).b, ((v).r + (v).g) + (v).b, ((v).r + (v).g) + (v).b, \
+                                ((v).r + (v).g) + (v).b
+#define PICK16(l, r, x, y) select((y), (x), isgreaterequal((l), (r)))
 ML_INLINE void iso_parent_quad(__global const float4* c, uint sy, uint sz, __global float4* dst) {
-  float16 k[8], w[8];
+  float16 k[8], w[8], s[8];
   load_quad(c, sy, sz, k);
-  for (uint i = 0u; i < 8u; ++i) w[i] = W16(k[i]);
+  for (uint i = 0u; i < 8u; ++i) {
+    w[i] = W16(k[i]);
+    s[i] = RGB16(k[i]);
+  }
   const float16 dx = OVERLAP(ALPHA16, X_PAIRS), dy = OVERLAP(ALPHA16, Y_PAIRS), dz = OVERLAP(ALPHA16, Z_PAIRS);
-  const float16 sum = ((k[0] + k[1]) + (k[2] + k[3])) + ((k[4] + k[5]) + (k[6] + k[7]));
   const int16 use_y = isless(dy, dx), use_z = isless(dz, fmin(dx, dy));
-  float16 cross = CROSS(ALPHA16, X_PAIRS);
+  float16 axis = BRIGHTER(ALPHA16, RGB_SUM, PICK16, X_PAIRS);
   if ((ANY_PARENT(use_y) | ANY_PARENT(use_z)) != 0)
-    cross = select(select(cross, CROSS(ALPHA16, Y_PAIRS), use_y), CROSS(ALPHA16, Z_PAIRS), use_z);
-  vstore16((sum - 0.5f * cross) * 0.25f, 0u, (__global float*)dst);
+    axis = select(select(axis, BRIGHTER(ALPHA16, RGB_SUM, PICK16, Y_PAIRS), use_y),
+                  BRIGHTER(ALPHA16, RGB_SUM, PICK16, Z_PAIRS), use_z);
+  vstore16(axis * 0.25f, 0u, (__global float*)dst);
 }
 
 /* Level l's parents in z-slices z0 .. z1 - 1, row by row: level offsets once
