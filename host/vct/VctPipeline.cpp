@@ -17,9 +17,8 @@ bool sameParams(const gpu::VoxelGridParams& a, const gpu::VoxelGridParams& b) {
 // Before the first update the cascade is placed around the scene's centre.
 glm::vec3 centre(const Aabb& b) { return b.empty() ? glm::vec3(0.0f) : 0.5f * (b.min + b.max); }
 
-// The lattice cells of `coarse` that foldBox(fine, coarse) fills.
-LatticeBox foldCells(const gpu::VoxelGridParams& fine, const gpu::VoxelGridParams& coarse) {
-  const VoxelBox b = foldBox(fine, coarse);
+// The lattice cells of `coarse` that its window box `b` (foldBox) holds.
+LatticeBox latticeCells(const VoxelBox& b, const gpu::VoxelGridParams& coarse) {
   const LatticeCorner k = latticeCorner(coarse);
   const long long c[3] = {k.x, k.y, k.z};
   LatticeBox cells;
@@ -174,7 +173,7 @@ VctPipeline::LevelWork VctPipeline::levelWork(unsigned c, bool relight, bool tou
   if (c > 0 && w.run && options_.fold) {
     const CascadeLevel& l = *levels_[c];
     const gpu::VoxelGridParams& g = l.volume.params();
-    const LatticeBox now = foldCells(levels_[c - 1]->volume.params(), g);
+    const LatticeBox now = latticeCells(foldBox(levels_[c - 1]->volume.params(), g), g);
     const VoxelBox box = windowBoxAround(l.folded.empty() ? now : l.folded, now, g);
     if (box.voxels() > 0) {
       w.region.push_back(box);
@@ -192,8 +191,9 @@ void VctPipeline::fold(cl::CommandQueue& q, unsigned c, ClPassTimer& timer) {
   fine.volume.radiance().acquireForCl(q, ClAccess::Read);
   fold_.run(q, fine.volume.params(), fine.volume.radiance().cl(), l.volume.params(), l.volume.radiance().cl(), &timer);
   fine.volume.radiance().releaseToGl(q);
-  l.folded = foldCells(fine.volume.params(), l.volume.params());
-  report_.folded_voxels += foldBox(fine.volume.params(), l.volume.params()).voxels();
+  const VoxelBox box = foldBox(fine.volume.params(), l.volume.params());
+  l.folded = latticeCells(box, l.volume.params());
+  report_.folded_voxels += box.voxels();
 }
 
 void VctPipeline::mips(cl::CommandQueue& q, VoxelVolume& v, ClPassTimer& timer) {
