@@ -2,6 +2,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -12,7 +13,6 @@
 namespace ml::vct {
 namespace {
 constexpr float kPi = 3.14159265358979f;
-constexpr float kGoldenAngle = 2.39996322972865f;  // pi (3 - sqrt 5)
 }  // namespace
 
 void checkConeSettings(unsigned count, float aperture_deg) {
@@ -22,15 +22,40 @@ void checkConeSettings(unsigned count, float aperture_deg) {
     throw UserError("--cone-aperture: expected degrees in (0, 180), got " + std::to_string(aperture_deg));
 }
 
+// Ring counts: the centre cone, then round(sqrt(count) / 2) rings sharing the
+// rest evenly (the larger rings outside); 2 and 3 cones are one ring.
+std::vector<unsigned> coneRings(unsigned count) {
+  if (count <= 3) return {count};
+  const auto rings = std::max(1u, static_cast<unsigned>(std::lround(std::sqrt(double(count)) / 2.0)));
+  std::vector<unsigned> out{1u};
+  const unsigned rest = count - 1;
+  for (unsigned j = 0; j < rings; ++j) out.push_back(rest / rings + (j >= rings - rest % rings ? 1u : 0u));
+  return out;
+}
+
 std::vector<Cone> diffuseCones(unsigned count) {
   checkConeSettings(count, 45.0f);
+  const std::vector<unsigned> rings = coneRings(count);
+  // Each ring at the middle of its equal-area band in r^2 (the disk's area
+  // coordinate); a lone centre cone sits at r = 0, so the rings' r^2 are
+  // scaled to keep the cosine lobe's E[r^2] = 1/2 (the second moments; one
+  // cone is the normal).
+  std::vector<float> r2(rings.size());
+  float area = 0.0f, moment = 0.0f;
+  for (std::size_t j = 0; j < rings.size(); ++j) {
+    const float band = float(rings[j]) / float(count);
+    r2[j] = (rings[j] == 1 && j == 0) ? 0.0f : area + 0.5f * band;
+    moment += band * r2[j];
+    area += band;
+  }
   std::vector<Cone> cones;
-  for (unsigned i = 0; i < count; ++i) {
-    // Point i of the disk: the centre, then the middle of ring i (areas i/n .. (i+1)/n).
-    const float r = i == 0 ? 0.0f : std::sqrt((float(i) + 0.5f) / float(count));
-    const float phi = float(i) * kGoldenAngle;
-    const glm::vec3 d(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - r * r)));
-    cones.push_back({d, kPi / float(count)});
+  for (std::size_t j = 0; j < rings.size(); ++j) {
+    const float r = moment > 0.0f ? std::sqrt(std::min(1.0f, r2[j] * 0.5f / moment)) : 0.0f;
+    for (unsigned i = 0; i < rings[j]; ++i) {
+      const float phi = 2.0f * kPi * (float(i) + 0.5f * float(j % 2)) / float(rings[j]);
+      const glm::vec3 d(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - r * r)));
+      cones.push_back({d, kPi / float(count)});
+    }
   }
   return cones;
 }

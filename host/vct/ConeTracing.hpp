@@ -3,10 +3,16 @@
 // by the frame's trace pass (VctGiPass) and the tests that trace given points.
 // Contract of diffuseCones(count):
 //  - count directions on the hemisphere around +z (the normal, tangent frame),
-//    distributed by cosine: the points of an equal-area partition of the unit
-//    disk (the first at its centre, the rest on a sunflower spiral at the
-//    centres of equal-area rings) lifted onto the hemisphere (Malley's
-//    method), so each cone stands for the same projected solid angle;
+//    distributed by cosine: an equal-area partition of the unit disk lifted
+//    onto the hemisphere (Malley's method), so each cone stands for the same
+//    projected solid angle. The disk is cut into rings (coneRings: a centre
+//    cone, then round(sqrt(count) / 2) rings; 2 and 3 cones one ring), each
+//    ring's cones evenly spaced at the middle of its equal-area band, odd
+//    rings turned by half a step: from 4 cones on, the set's mean direction
+//    across the normal is 0 and its second moments are the cosine lobe's;
+//    the sunflower spiral it replaced (one cone per ring) had neither
+//    (Cornell box, 9 cones: 0.165 / 0.160 / 0.143 -> 0.161 / 0.151 / 0.143
+//    at 32^3 / 64^3 / 128^3, docs/vct.md);
 //  - every weight is pi / count: sum_i w_i L_i is the irradiance
 //    integral of L cos over the hemisphere, pi * L for uniform radiance L;
 //  - count 1 is the normal alone. UserError outside 1..kMaxCones (--cones).
@@ -29,6 +35,7 @@ struct Cone {
 };
 
 void checkConeSettings(unsigned count, float aperture_deg);
+std::vector<unsigned> coneRings(unsigned count);
 std::vector<Cone> diffuseCones(unsigned count);
 
 // A test-only switch that breaks the trace on purpose (the accuracy tests must

@@ -20,10 +20,11 @@
 // level, so a cone crosses from level to level without a seam. Toroidal
 // levels are sampled through their shift (GL_REPEAT textures).
 // Cornell box with its camera, 320x320, anisotropic, 9 cones of 45 degrees,
-// --levels auto, against a 4096-sample reference (relative RMSE, energy):
-// 32^3 0.164 (0.93), 64^3 0.159 (0.91), 128^3 0.142 (0.94); before the
-// density, the bias, this offset and the faces' colour mix: 0.197, 0.227,
-// 0.185 at 4 levels (docs/vct.md, "Accuracy").
+// --levels auto, against a 4096-sample reference without its noise
+// (relative RMSE, energy): 32^3 0.156 (0.93), 64^3 0.147 (0.92), 128^3
+// 0.138 (0.94); before the density, the bias, this offset, the faces'
+// colour mix and the ring cone set: 0.197, 0.227, 0.185 at 4 levels
+// (docs/vct.md, "Accuracy").
 #include "vct_bindings.h"
 // Level c's textures: radiance at unit ML_UNIT_VCT_VOXELS + c, its 6
 // directions (+X -X +Y -Y +Z -Z, direction of travel) from
@@ -46,12 +47,17 @@ const float kConeStep = 0.5;        // step, in voxels of the sampled level
 // footprint whose standard deviation is half the level's voxel per axis; a
 // disk of diameter D has D / 4. So the level whose voxel is half the cone's
 // diameter (bias 1) matches the cone's cross-section, where bias 0 blurred
-// it twice as wide: the finer the grid, the worse (Cornell box as above,
-// 32^3 / 64^3 / 128^3: bias 0.5 0.165 / 0.176 / 0.173; 1 0.164 / 0.159 /
-// 0.142; 1.5 0.173 / 0.166 / 0.150; bias 0, from the glTF's default view
-// before the colour mix: 0.166 / 0.234 / 0.264 against 0.160 / 0.148 / 0.141
-// at bias 1).
-const float kLodBias = 1.0;
+// it twice as wide: the finer the grid, the worse. A quarter level finer
+// measures better still (the sample also spreads along the cone's axis,
+// where a step already averages): Cornell box as above with the ring cone
+// set (ConeTracing.hpp), 32^3 / 64^3 / 128^3, bias 0.75 0.164 / 0.158 /
+// 0.158; 1 0.161 / 0.151 / 0.143; 1.25 0.156 / 0.147 / 0.138; 1.5 0.154 /
+// 0.148 / 0.139; the default scene's flight lower at 4 of 6 cameras (2 x
+// 64^3) and 6 of 6 (128^3); 11% more trace time (more, shorter steps).
+// Bias 0, from the glTF's default view, with the former sunflower cones and
+// before the colour mix: 0.166 / 0.234 / 0.264 against 0.160 / 0.148 /
+// 0.141 at bias 1.
+const float kLodBias = 1.25;
 // Each sample sits off the surface along the normal by the larger of one
 // level-0 voxel and kLevelOffset voxels of the level it reads, so a coarse
 // sample's trilinear footprint does not take in the surface's own voxel
