@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 #include "gl/GlCheck.hpp"
@@ -31,6 +32,15 @@ std::vector<unsigned> coneRings(unsigned count) {
   const unsigned rest = count - 1;
   for (unsigned j = 0; j < rings; ++j) out.push_back(rest / rings + (j >= rings - rest % rings ? 1u : 0u));
   return out;
+}
+
+float coneSetTurn(unsigned count) {
+  checkConeSettings(count, 45.0f);
+  if (count == 1) return 0.0f;  // the normal alone
+  unsigned period = 0;          // the gcd of the rings' counts, the centre cone aside
+  for (const unsigned k : coneRings(count))
+    if (count <= 3 || k > 1 || period > 0) period = std::gcd(period, k);
+  return period == 0 ? 0.0f : 2.0f * kPi / float(period) / 4.0f;
 }
 
 std::vector<Cone> diffuseCones(unsigned count) {

@@ -16,6 +16,9 @@
 //  - every weight is pi / count: sum_i w_i L_i is the irradiance
 //    integral of L cos over the hemisphere, pi * L for uniform radiance L;
 //  - count 1 is the normal alone. UserError outside 1..kMaxCones (--cones).
+// coneSetTurn(count): a quarter of the set's rotational period about the
+// normal (2 pi / the gcd of its rings' counts; 0 for the normal alone), the
+// step of vct_trace.comp's four interleaved turns.
 // checkConeSettings(): --cones in 1..32, --cone-aperture in (0, 180) degrees.
 #include <glm/glm.hpp>
 
@@ -36,6 +39,7 @@ struct Cone {
 
 void checkConeSettings(unsigned count, float aperture_deg);
 std::vector<unsigned> coneRings(unsigned count);
+float coneSetTurn(unsigned count);
 std::vector<Cone> diffuseCones(unsigned count);
 
 // A test-only switch that breaks the trace on purpose (the accuracy tests must

@@ -140,6 +140,7 @@ void VctGiPass::trace(const GiFrameInputs& in) {
   bindConeTracing(trace_, coneSetup());
   trace_.setU2("u_lo_size", lo_w_, lo_h_);
   trace_.set("u_specular_tan", std::tan(kSpecularApertureDeg * 3.14159265f / 360.0f));
+  trace_.set("u_cone_turn", coneSetTurn(s_.cones));
   glBindTextureUnit(ML_UNIT_VCT_GBUFFER_NORMAL, in.normal);
   glBindTextureUnit(ML_UNIT_VCT_GBUFFER_DEPTH, in.depth);
   glBindImageTexture(ML_IMAGE_VCT_TRACE_IRRADIANCE, lo_irradiance_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);

@@ -33,9 +33,9 @@ namespace ml::vct {
 namespace {
 
 constexpr unsigned kW = 160, kH = 90;
-constexpr double kCornellBound = 0.24;  // measured 0.167 (64^3 x 5, anisotropic, 9 x 45 deg, scale 0.5)
-constexpr double kCornellIsotropicBound = 0.25;  // measured 0.181 (64^3 x 5, isotropic, 9 x 45 deg, scale 0.5)
-constexpr double kCornellShadowBound = 0.25;  // measured 0.172 (64^3 x 5, anisotropic, --vct-shadows voxel)
+constexpr double kCornellBound = 0.24;  // measured 0.154 (64^3 x 5, anisotropic, 9 x 45 deg, scale 0.5)
+constexpr double kCornellIsotropicBound = 0.25;  // measured 0.167 (64^3 x 5, isotropic, 9 x 45 deg, scale 0.5)
+constexpr double kCornellShadowBound = 0.25;  // measured 0.161 (64^3 x 5, anisotropic, --vct-shadows voxel)
 
 struct Cornell {
   Scene scene;
@@ -117,8 +117,8 @@ TEST(VctCornell, IndirectImageIsNearTheReferenceAndBrokenTracesAreNot) {
 // Isotropic voxels (one RGBA per voxel): the mip filter composites child
 // pairs along each axis in both orders, keeps the brighter order and the most
 // opaque axis, so the box's one-voxel walls stay opaque at coarse levels.
-// Measured 0.181 (image sum 0.91 of the reference's; 0.194 and 0.96 with
-// the former sunflower cone set and lod bias 1); with the mean of both
+// Measured 0.167 (image sum 0.91 of the reference's; 0.194 and 0.96 with
+// the former sunflower cone set, lod bias 1 and no interleaved turns); with the mean of both
 // orders 0.272 (0.80: once a 0.1 m slab's lit face and dark back share a
 // voxel, the mean gave every side half the lit face's light; 0.339 and 0.74
 // at 4 levels before the cones' changes of vct_cones.glsl); the former filter (the mean
@@ -138,8 +138,9 @@ TEST(VctCornell, IsotropicIndirectImageIsNearTheReference) {
 // box's camera) the error without the reference's own noise
 // (compareWithReference, 256 samples, a fresh seed) falls from 32^3 to 64^3 to 128^3
 // (--levels auto, anisotropic, 9 cones of 45 degrees), each step by at least
-// kFinerGain. Measured 0.156, 0.147, 0.138 with the ring cone set and lod
-// bias 1.25 (0.164, 0.159, 0.141 with the sunflower set at bias 1; against
+// kFinerGain. Measured 0.139, 0.132, 0.121 with the ring cone set, lod bias
+// 1.25 and interleaved turns (0.156, 0.147, 0.138 without the turns; 0.164,
+// 0.159, 0.141 with the sunflower set at bias 1; against
 // 4096 samples 0.164, 0.159, 0.142); before the cones read the level half their width, the
 // coarsest level kept its world size, the trilinear opacity stopped leaking
 // and the faces' colours were mixed by optical depth: 0.197, 0.227, 0.185
@@ -171,8 +172,8 @@ TEST(VctCornell, NoiseCorrectedErrorFallsAsTheVoxelsGetFiner) {
 // --gi-bounces 2: each voxel gathers the first bounce's light through the
 // cones and the frame traces the sum; against the two-bounce reference it
 // stays under kCornellBound, where the one-bounce image (what the second
-// bounce adds is 32% of the two-bounce light) does not. Measured 0.161 (mean
-// ratio 0.90) against 0.401.
+// bounce adds is 32% of the two-bounce light) does not. Measured 0.151 (mean
+// ratio 0.89) against 0.402.
 TEST(VctCornell, TwoBouncesAreNearTheTwoBounceReference) {
   VctGiSettings s;
   s.bounces = 2;

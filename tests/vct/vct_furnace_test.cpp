@@ -222,6 +222,33 @@ TEST(VctFurnace, ConeSetMatchesTheCosineLobesMomentsAcrossTheNormal) {
   }
 }
 
+// vct_trace.comp turns the set by 0..3 quarters of coneSetTurn: four
+// quarters are a symmetry of the set (every turned cone lands on a cone),
+// one quarter is not, so the four interleaved pixels trace four different
+// sets; the normal alone has nothing to turn.
+TEST(VctFurnace, ConeSetTurnIsAQuarterOfTheSetsPeriod) {
+  const auto turned = [](const std::vector<Cone>& set, float angle) {
+    std::vector<glm::vec3> out;
+    for (const Cone& c : set)
+      out.emplace_back(std::cos(angle) * c.dir.x - std::sin(angle) * c.dir.y,
+                       std::sin(angle) * c.dir.x + std::cos(angle) * c.dir.y, c.dir.z);
+    return out;
+  };
+  const auto landsOnTheSet = [](const std::vector<glm::vec3>& dirs, const std::vector<Cone>& set) {
+    return std::all_of(dirs.begin(), dirs.end(), [&](const glm::vec3& d) {
+      return std::any_of(set.begin(), set.end(), [&](const Cone& c) { return glm::length(d - c.dir) < 1e-4f; });
+    });
+  };
+  EXPECT_EQ(coneSetTurn(1), 0.0f);
+  for (unsigned n = 2; n <= kMaxCones; ++n) {
+    const std::vector<Cone> set = diffuseCones(n);
+    const float quarter = coneSetTurn(n);
+    ASSERT_GT(quarter, 0.0f) << n;
+    EXPECT_TRUE(landsOnTheSet(turned(set, 4.0f * quarter), set)) << n << " cones: four quarters";
+    EXPECT_FALSE(landsOnTheSet(turned(set, quarter), set)) << n << " cones: one quarter";
+  }
+}
+
 // scripts/cone_set_quadrature.py measures the cone set without voxels
 // (docs/vct.md, "Accuracy") on its own copy of diffuseCones(): it must be
 // the same set, direction for direction.

@@ -21,10 +21,11 @@
 // levels are sampled through their shift (GL_REPEAT textures).
 // Cornell box with its camera, 320x320, anisotropic, 9 cones of 45 degrees,
 // --levels auto, against a 4096-sample reference without its noise
-// (relative RMSE, energy): 32^3 0.156 (0.93), 64^3 0.147 (0.92), 128^3
-// 0.138 (0.94); before the density, the bias, this offset, the faces'
-// colour mix and the ring cone set: 0.197, 0.227, 0.185 at 4 levels
-// (docs/vct.md, "Accuracy").
+// (relative RMSE, energy): 32^3 0.139 (0.92), 64^3 0.132 (0.91), 128^3
+// 0.121 (0.93) with vct_trace.comp's interleaved turns (0.156, 0.147, 0.138
+// with one set); before the density, the bias, this offset, the faces'
+// colour mix, the ring cone set and the turns: 0.197, 0.227, 0.185 at 4
+// levels (docs/vct.md, "Accuracy").
 #include "vct_bindings.h"
 // Level c's textures: radiance at unit ML_UNIT_VCT_VOXELS + c, its 6
 // directions (+X -X +Y -Y +Z -Z, direction of travel) from
@@ -245,9 +246,11 @@ mat3 tangentFrame(vec3 n) {
 
 // rgb: irradiance / pi (the mean incoming radiance, cosine-weighted) at P
 // with normal N; a: ambient occlusion, 1 - the cones' weighted opacity / pi
-// (1: nothing in the way).
-vec4 traceDiffuse(vec3 P, vec3 N) {
-  mat3 frame = tangentFrame(N);
+// (1: nothing in the way). The cone set turned by `turn` radians about the
+// normal (vct_trace.comp interleaves four turns over 2x2 pixels).
+vec4 traceDiffuse(vec3 P, vec3 N, float turn) {
+  float c = cos(turn), s = sin(turn);
+  mat3 frame = tangentFrame(N) * mat3(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
   vec3 e = vec3(0.0);
   float occlusion = 0.0;
   for (int i = 0; i < u_cone_count; ++i) {
@@ -257,3 +260,5 @@ vec4 traceDiffuse(vec3 P, vec3 N) {
   }
   return vec4(e / kPi, 1.0 - occlusion / kPi);
 }
+
+vec4 traceDiffuse(vec3 P, vec3 N) { return traceDiffuse(P, N, 0.0); }
