@@ -27,11 +27,6 @@ cl_int4 corner4(long long x, long long y, long long z, bool wrap) {
 
 }  // namespace
 
-LatticeCorner latticeCorner(const gpu::VoxelGridParams& g) {
-  const auto& o = g.origin_voxel_size;
-  return {std::llround(double(o.x) / o.w), std::llround(double(o.y) / o.w), std::llround(double(o.z) / o.w)};
-}
-
 bool foldable(const gpu::VoxelGridParams& fine, const gpu::VoxelGridParams& coarse) {
   if (fine.levels < 2 || fine.origin_voxel_size.w * 2.0f != coarse.origin_voxel_size.w) return false;
   if (!cornerOnLattice(fine) || !cornerOnLattice(coarse)) return false;

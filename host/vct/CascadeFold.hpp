@@ -27,15 +27,10 @@
 #include "host/cl/ClPassTimer.hpp"
 #include "host/compute/ComputeEnv.hpp"
 #include "host/shared/voxel_types.h"
+#include "host/vct/VoxelCascade.hpp"  // LatticeCorner
 #include "host/vct/VoxelRegion.hpp"
 
 namespace ml::vct {
-
-// A level's corner as lattice indices of its voxel size (corner / voxel, rounded).
-struct LatticeCorner {
-  long long x, y, z;
-};
-LatticeCorner latticeCorner(const gpu::VoxelGridParams& g);
 
 bool foldable(const gpu::VoxelGridParams& fine, const gpu::VoxelGridParams& coarse);
 VoxelBox foldBox(const gpu::VoxelGridParams& fine, const gpu::VoxelGridParams& coarse);

@@ -16,9 +16,12 @@ long long cornerIndex(float eye, float voxel, unsigned edge) {
   return static_cast<long long>(std::llround(k / kInnerStep)) * kInnerStep;
 }
 
-long long latticeIndex(float corner, float voxel) { return std::llround(double(corner) / voxel); }
-
 }  // namespace
+
+LatticeCorner latticeCorner(const gpu::VoxelGridParams& g) {
+  const auto& o = g.origin_voxel_size;
+  return {std::llround(double(o.x) / o.w), std::llround(double(o.y) / o.w), std::llround(double(o.z) / o.w)};
+}
 
 void checkCascades(unsigned cascades) {
   if (cascades < 1 || cascades > kMaxCascades)
@@ -43,9 +46,10 @@ std::vector<gpu::VoxelGridParams> placeCascade(const Aabb& scene_bounds, const V
   gpu::VoxelGridParams outer = fitVoxelGrid(scene_bounds, s);
   if (cascades > 1 && nested) {  // on its lattice, so the inner levels' voxels nest in its voxels (CascadeFold)
     auto& o = outer.origin_voxel_size;
-    o.x = float(latticeIndex(o.x, o.w)) * o.w;
-    o.y = float(latticeIndex(o.y, o.w)) * o.w;
-    o.z = float(latticeIndex(o.z, o.w)) * o.w;
+    const LatticeCorner k = latticeCorner(outer);
+    o.x = float(k.x) * o.w;
+    o.y = float(k.y) * o.w;
+    o.z = float(k.z) * o.w;
   }
   std::vector<gpu::VoxelGridParams> levels(cascades, outer);
   for (unsigned c = 0; c + 1 < cascades; ++c) {
@@ -68,13 +72,12 @@ ScrollUpdate scrollRegion(const gpu::VoxelGridParams* before, const gpu::VoxelGr
   if (!before || !after.wrap || !before->wrap || before->edge != after.edge || before->levels != after.levels ||
       before->origin_voxel_size.w != after.origin_voxel_size.w)
     return u;
-  const float b[3] = {before->origin_voxel_size.x, before->origin_voxel_size.y, before->origin_voxel_size.z};
-  const float a[3] = {after.origin_voxel_size.x, after.origin_voxel_size.y, after.origin_voxel_size.z};
-  const float voxel = after.origin_voxel_size.w;
+  const LatticeCorner kb = latticeCorner(*before), ka = latticeCorner(after);
+  const long long moved[3] = {ka.x - kb.x, ka.y - kb.y, ka.z - kb.z};  // same voxel size (checked above)
   const auto edge = static_cast<long long>(after.edge);
   u.full = false;
   for (int axis = 0; axis < 3; ++axis) {
-    const long long d = latticeIndex(a[axis], voxel) - latticeIndex(b[axis], voxel);
+    const long long d = moved[axis];
     if (d == 0) continue;
     if (d >= edge || -d >= edge) return ScrollUpdate{};
     VoxelBox box;

@@ -51,6 +51,13 @@ inline constexpr unsigned kInnerStep = 1u << (kInnerLevels - 1);  // corner alig
 
 void checkCascades(unsigned cascades);
 
+// A level's corner as lattice indices of its voxel size (corner / voxel,
+// rounded): what placement snaps to, scrolls count and CascadeFold nests.
+struct LatticeCorner {
+  long long x, y, z;
+};
+LatticeCorner latticeCorner(const gpu::VoxelGridParams& g);
+
 // The settings of level c of `cascades` (voxels, anisotropic as `s`).
 VoxelGridSettings cascadeLevelSettings(const VoxelGridSettings& s, unsigned cascades, unsigned c);
 // Device memory of every level (voxelBytes of each).
