@@ -37,10 +37,10 @@ std::vector<unsigned> coneRings(unsigned count) {
 float coneSetTurn(unsigned count) {
   checkConeSettings(count, 45.0f);
   if (count == 1) return 0.0f;  // the normal alone
-  unsigned period = 0;          // the gcd of the rings' counts, the centre cone aside
+  unsigned period = 0;          // the gcd of the rings' counts, the centre cone (a ring of 1) aside
   for (const unsigned k : coneRings(count))
-    if (count <= 3 || k > 1 || period > 0) period = std::gcd(period, k);
-  return period == 0 ? 0.0f : 2.0f * kPi / float(period) / 4.0f;
+    if (k > 1) period = std::gcd(period, k);
+  return 2.0f * kPi / float(period) / 4.0f;
 }
 
 std::vector<Cone> diffuseCones(unsigned count) {

@@ -60,6 +60,7 @@ VctGiPass::VctGiPass(ClRuntime& rt, const VctGiSettings& s, const Aabb& scene_bo
     : s_((checkVctGiSettings(s), s)),
       pipeline_(rt, pipelineOptions(s), scene_bounds),
       cones_(diffuseCones(s.cones)),
+      cone_turn_(coneSetTurn(s.cones)),
       trace_({"vct/vct_trace.comp"}, traceDefines(s)),
       upsample_({"vct/vct_upsample.comp"}),
       bounce_(s.bounces > 1 ? std::make_unique<VoxelBouncePass>() : nullptr) {}
@@ -140,7 +141,7 @@ void VctGiPass::trace(const GiFrameInputs& in) {
   bindConeTracing(trace_, coneSetup());
   trace_.setU2("u_lo_size", lo_w_, lo_h_);
   trace_.set("u_specular_tan", std::tan(kSpecularApertureDeg * 3.14159265f / 360.0f));
-  trace_.set("u_cone_turn", coneSetTurn(s_.cones));
+  trace_.set("u_cone_turn", cone_turn_);
   glBindTextureUnit(ML_UNIT_VCT_GBUFFER_NORMAL, in.normal);
   glBindTextureUnit(ML_UNIT_VCT_GBUFFER_DEPTH, in.depth);
   glBindImageTexture(ML_IMAGE_VCT_TRACE_IRRADIANCE, lo_irradiance_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);

@@ -101,6 +101,7 @@ class VctGiPass final : public GiPass {
   VctGiSettings s_;
   VctPipeline pipeline_;
   std::vector<Cone> cones_;
+  float cone_turn_;  // coneSetTurn of cones_, vct_trace.comp's u_cone_turn
   ShaderProgram trace_, upsample_;
   unsigned width_ = 0, height_ = 0, lo_w_ = 0, lo_h_ = 0;
   std::uint64_t volume_lights_ = 0;  // lights_version of the last update; 0: none yet
