@@ -6,15 +6,23 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <limits>
 
 namespace ml::hashed {
 namespace {
 
-constexpr unsigned kDenseMaxDepth = 8;  // 8^8 bits = 2 MiB
+// 8^9 bits = 16 MiB (and 8 MiB of ranks): the deepest level of a 0.5r
+// octree at 1M lights is 9, and its bitset answers rowCells()/indexOf() by
+// counting bits instead of two binary searches per row (a tenth of that
+// build's time went to them).
+constexpr unsigned kDenseMaxDepth = 9;
 constexpr unsigned kDenseIndexMaxDepth = 7;  // 8^7 entries = 8 MiB
 constexpr unsigned kRowIndexMaxDepth = 11;   // 4^11 rows = 16 MiB
+// Cells: a clipped part this far beyond a face misses it whatever the
+// rounding (coordinates are below 2^16 cells, rounding errors below 1e-11).
+constexpr double kClearlyOutside = 1e-9;
 // A builder thread merges its (cell, box) pairs by cell whenever its buffer
 // reaches twice what it held after the last merge, and at least this many.
 constexpr std::size_t kMergeBatch = std::size_t(1) << 16;
@@ -103,6 +111,15 @@ struct Polygon {
 // bound when `upper`.
 void clipPlane(Polygon& poly, int a, bool upper, double bound) {
   auto inside = [&](const glm::dvec3& p) { return upper ? p[a] <= bound : p[a] >= bound; };
+  // Most cuts keep or drop the whole polygon (an octant's part of a floor):
+  // what the loop below would also give, without copying.
+  int kept = 0;
+  for (int i = 0; i < poly.n; ++i) kept += inside(poly.p[i]);
+  if (kept == poly.n) return;
+  if (kept == 0) {
+    poly.n = 0;
+    return;
+  }
   glm::dvec3 next[12];
   int m = 0;
   for (int i = 0; i < poly.n; ++i) {
@@ -194,6 +211,12 @@ bool GeometryMask::indexOf(const glm::uvec3& c, std::size_t& at) const {
     at = i - 1;
     return true;
   }
+  if (!dense_rank_.empty()) {
+    const std::uint64_t i = c.x + side * (c.y + side * c.z);
+    if (!((dense_[depth_][i >> 6] >> (i & 63)) & 1u)) return false;
+    at = rank(i);
+    return true;
+  }
   const auto it = std::lower_bound(cell_keys_.begin(), cell_keys_.end(), packCoord(c));
   if (it == cell_keys_.end() || *it != packCoord(c)) return false;
   at = std::size_t(it - cell_keys_.begin());
@@ -212,6 +235,12 @@ std::pair<std::size_t, std::size_t> GeometryMask::rowCells(unsigned y, unsigned 
   const std::uint64_t side = std::uint64_t(1) << depth_;
   if (y >= side || z >= side || x_lo > x_hi) return {0, 0};
   // Keys order by z, then y, then x: a row's cells are consecutive.
+  if (!dense_rank_.empty()) {  // their positions: the cells before them
+    const std::uint64_t row = y + side * z, base = side * row;
+    if (row_start_[row] == row_start_[row + 1]) return {row_start_[row], row_start_[row]};  // most rows
+    const std::uint64_t x_end = std::min<std::uint64_t>(x_hi, side - 1) + 1;
+    return {rank(base + std::min<std::uint64_t>(x_lo, side)), rank(base + x_end)};
+  }
   const std::uint64_t lo = packCoord({x_lo, y, z}), hi = packCoord({std::min<std::uint64_t>(x_hi, side - 1), y, z});
   auto begin = cell_keys_.begin(), end = cell_keys_.end();
   if (!row_start_.empty()) {
@@ -282,9 +311,18 @@ Polygon cellPart(const TriangleInCells& tri, const glm::dvec3& centre, double h)
 // half size h) from its part in the widened cell: the octant's box lies
 // inside the cell's, so only its 3 inner faces cut (3 planes per octant
 // instead of 6, and the separating-axis test only where nothing is left).
-bool octantPart(const TriangleInCells& tri, const Polygon& in_cell, const glm::dvec3& oc, double h, unsigned k,
-                GeometryMask::Box& out) {
+// `cell_bounds`: in_cell's bounds (when it is not empty). A part clearly
+// beyond an inner face (by more than rounding) misses the octant: no
+// clipping, and no separating-axis test either (half of a floor cell's
+// octants; that test was most of the mask's time).
+bool octantPart(const TriangleInCells& tri, const Polygon& in_cell, const GeometryMask::Box& cell_bounds,
+                const glm::dvec3& oc, double h, unsigned k, GeometryMask::Box& out) {
   if (in_cell.n > 0) {
+    for (int a = 0; a < 3; ++a) {
+      const bool high = (k >> a) & 1u;
+      if (high ? cell_bounds.hi[a] < oc[a] - h - kClearlyOutside : cell_bounds.lo[a] > oc[a] + h + kClearlyOutside)
+        return false;
+    }
     Polygon q = in_cell;
     for (int a = 0; a < 3 && q.n > 0; ++a) {
       const bool high = (k >> a) & 1u;  // the octant's upper half on axis a: its low face cuts
@@ -304,12 +342,13 @@ bool cellGeometry(const TriangleInCells& tri, const glm::dvec3& centre, double m
   if (!tri.touches(centre, hc)) return false;
   const Polygon in_cell = cellPart(tri, centre, hc);
   if (!polygonBounds(in_cell, g.box)) g.box = tri.fallback(centre, hc);
+  const GeometryMask::Box cell_bounds = g.box;
   g.box.lo -= margin;
   g.box.hi += margin;
   for (unsigned k = 0; k < 8; ++k) {
     const glm::dvec3 oc = centre + glm::dvec3((k & 1) ? 0.25 : -0.25, (k & 2) ? 0.25 : -0.25, (k & 4) ? 0.25 : -0.25);
     GeometryMask::Box ob;
-    if (!octantPart(tri, in_cell, oc, ho, k, ob)) continue;
+    if (!octantPart(tri, in_cell, cell_bounds, oc, ho, k, ob)) continue;
     for (int a = 0; a < 3; ++a) {
       g.oct.lo[k][a] = floatDown(ob.lo[a] - margin);
       g.oct.hi[k][a] = floatUp(ob.hi[a] + margin);
@@ -395,7 +434,8 @@ void GeometryMask::setBoxes(const std::vector<std::vector<std::pair<std::uint64_
   const std::uint64_t side = std::uint64_t(1) << depth_;
   peak_bytes_ += total * (sizeof(std::uint64_t) + sizeof(Box) + sizeof(OctantBoxes)) +
                  (depth_ <= kDenseIndexMaxDepth ? side * side * side * sizeof(std::uint32_t) : 0) +
-                 (depth_ <= kRowIndexMaxDepth ? side * side * sizeof(std::uint32_t) : 0);
+                 (depth_ <= kRowIndexMaxDepth ? side * side * sizeof(std::uint32_t) : 0) +
+                 (depth_ <= kDenseMaxDepth ? side * side * side / 8 * 3 / 2 : 0);  // bits and ranks
   if (peak_bytes_ > byte_limit) throw OverLimit(peak_bytes_);
   cell_keys_.clear();
   cell_boxes_.clear();
@@ -436,6 +476,19 @@ void GeometryMask::setBoxes(const std::vector<std::vector<std::pair<std::uint64_
   }
   setRowIndex();
   setCells(cell_keys_);
+  setRanks();
+}
+
+void GeometryMask::setRanks() {
+  dense_rank_.clear();
+  if (depth_ > kDenseMaxDepth || row_start_.empty()) return;  // rowCells() reads both
+  const auto& bits = dense_[depth_];
+  dense_rank_.resize(bits.size());
+  std::uint32_t n = 0;
+  for (std::size_t w = 0; w < bits.size(); ++w) {
+    dense_rank_[w] = n;
+    n += std::uint32_t(bitCount(bits[w]));
+  }
 }
 
 void GeometryMask::setRowIndex() {

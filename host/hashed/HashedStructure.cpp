@@ -1,5 +1,7 @@
 #include "host/hashed/HashedStructure.hpp"
 
+#include <tbb/parallel_invoke.h>
+
 #include "host/hashed/DynamicLightUpdater.hpp"
 #include "host/hashed/LightOctreeBuilder.hpp"
 #include "host/hashed/OctantMask.hpp"
@@ -49,8 +51,9 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   BuildStats st;
   const auto t0 = SteadyClock::now();
   std::unique_ptr<GeometryMask> new_mask;  // built first: a refused mask leaves the last build in place
+  std::vector<std::uint32_t> order;         // the lights' Morton order, made beside the mask's serial steps
   if (cfg_.geometry_mask) {
-    new_mask = buildMask(bounds);
+    tbb::parallel_invoke([&] { new_mask = buildMask(bounds); }, [&] { order = mortonOrder(lights, bounds); });
     st.mask_ms = msSince(t0);
     st.mask_cells = new_mask->cellCount();
     st.mask_bytes = new_mask->peakBytes();
@@ -64,7 +67,8 @@ void HashedStructure::build(const std::vector<gpu::PointLight>& lights, const Oc
   auto check_lit = [&](std::size_t lit) {
     if (mask_) checkLitMemory(lights.size(), lit, cfg_.memory_limit, cfg_.node_size);
   };
-  SceneOctreeBuild sb = buildSceneOctree(lights, bounds_, mask(), mask() != nullptr, check_lit);
+  SceneOctreeBuild sb = buildSceneOctree(lights, bounds_, mask(), mask() != nullptr, check_lit,
+                                         order.empty() ? nullptr : &order);
   st.light_octrees_ms = msSince(t);
   st.merge_ms = sb.merge_ms;
   st.filled_cells = sb.filled_cells;

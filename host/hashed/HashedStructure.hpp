@@ -28,7 +28,8 @@ namespace ml::hashed {
 
 struct BuildStats {
   // light_octrees_ms: the light octrees and the merge, which overlap (wall
-  // time, SceneOctreeBuild.hpp); merge_ms: the merge's own share of it.
+  // time, SceneOctreeBuild.hpp); merge_ms: the merge's own share of it;
+  // mask_ms: the geometry mask, with the lights' Morton order made beside it.
   double bounds_ms = 0, mask_ms = 0, light_octrees_ms = 0, merge_ms = 0, normalize_ms = 0, hash_ms = 0,
          total_ms = 0;
   std::size_t filled_cells = 0;        // (light, cell) overlaps, summed

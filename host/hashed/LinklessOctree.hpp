@@ -137,6 +137,16 @@ class LinklessOctree {
   void computeBases();
   void hashTables(const std::vector<std::vector<DescHash::Entry>>& desc_entries,
                   const std::vector<std::vector<DataHash::Entry>>& data_entries);
+  // A filled leaf of the tree being built.
+  struct LeafRef {
+    unsigned t;
+    glm::uvec3 c;
+    const std::vector<std::uint32_t>* set;
+  };
+  // buildFrom()'s index list: every leaf's entries interned in tree order
+  // (offsets do not depend on threads); per leaf its range in the list.
+  std::vector<DataTraits::Payload> internLeaves(const std::vector<LeafRef>& leaves,
+                                                const std::vector<gpu::PointLight>& lights);
   bool ownsRange(unsigned t) const { return cfg_.octant_masks && t == b_.depth; }
   // A leaf's index list entries: its lights with their octant masks,
   // computed per (light, cell) rather than read from per-light tables (those

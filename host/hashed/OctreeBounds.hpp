@@ -47,6 +47,14 @@ struct HashedConfig {
   // dynamic update that forces a rehash rebuilds that table with
   // `rehash_slack` so that later inserts find empty slots more often.
   double table_slack = 1.0;
+  // Offset entries per key of a built table. The thesis's 1/6 [LH06] fails
+  // its first assignment for most tables above ~10k keys at these 1.01 n
+  // tables, and each failure doubles the offset table and starts again (1M
+  // lights, 0.5r: the deepest data table's doomed first try took 130-300 ms
+  // on the build's serial path). 1/3 succeeds first time for nearly all of
+  // them, for 0.4% more table bytes at 0.5r and 4% at 1r (docs/scaling.md,
+  // "Hashed build at 1M lights, second pass").
+  double table_sigma = 1.0 / 3.0;
   double rehash_slack = 2.0;
   // Offset entries per key of a rehashed table (the thesis's 1/6 for static
   // tables): smaller offset groups re-offset into free slots far more often,

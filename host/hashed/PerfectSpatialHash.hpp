@@ -4,7 +4,8 @@
 // per component, with mx*my*mz hash slots and rx*ry*rz offsets of 3 x 8 bits.
 // Contract:
 //  - build(): the table holds >= n slots (n <= 255) or 1.01 n, times `slack`,
-//    the offset table >= n / 6 entries (the thesis's sizes). One departure:
+//    the offset table >= sigma n entries (the thesis's sizes: sigma = 1/6,
+//    PshBuildParams' default). One departure:
 //    the thesis's tables are cubes (m^3, r^3); here each axis gets a share
 //    proportional to the keys' extent on it, so that a layer of nodes along
 //    one corridor (keys that vary on one axis only) does not need an offset

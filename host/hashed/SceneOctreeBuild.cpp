@@ -58,14 +58,17 @@ std::vector<std::uint32_t> mortonOrder(const std::vector<gpu::PointLight>& light
 
 SceneOctreeBuild buildSceneOctree(const std::vector<gpu::PointLight>& lights, const OctreeBounds& b,
                                   const GeometryMask* mask, bool keep_octrees,
-                                  const std::function<void(std::size_t)>& check_lit) {
+                                  const std::function<void(std::size_t)>& check_lit,
+                                  const std::vector<std::uint32_t>* given_order) {
   SceneOctreeBuild out;
   out.tree = std::make_unique<SceneOctree>(b, mask);
   if (keep_octrees) out.octrees.resize(lights.size());
   // Neighbouring lights test the same geometry cells and edit the same tree
   // nodes: in this order they find them in cache (in the lights' own random
   // order at 1M lights nearly every mask cell read was a cache miss).
-  const std::vector<std::uint32_t> order = mortonOrder(lights, b);
+  std::vector<std::uint32_t> own_order;
+  if (!given_order) own_order = mortonOrder(lights, b);
+  const std::vector<std::uint32_t>& order = given_order ? *given_order : own_order;
   tbb::enumerable_thread_specific<LightGridScratch> scratch;
   std::size_t next = 0;
   auto take = [&](tbb::flow_control& fc) {

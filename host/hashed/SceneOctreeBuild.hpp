@@ -30,9 +30,12 @@ struct SceneOctreeBuild {
   double merge_ms = 0;               // the merge's own time (it overlaps the octree builds)
 };
 
+// `order`: mortonOrder(lights, bounds) when the caller made it (beside the
+// geometry mask), else null.
 SceneOctreeBuild buildSceneOctree(const std::vector<gpu::PointLight>& lights, const OctreeBounds& bounds,
                                   const GeometryMask* mask, bool keep_octrees,
-                                  const std::function<void(std::size_t)>& check_lit);
+                                  const std::function<void(std::size_t)>& check_lit,
+                                  const std::vector<std::uint32_t>* order = nullptr);
 
 // The light indices in Morton order of their centre cells (coarsened to at
 // most 10 bits an axis; centres outside the bounds clamped), ties by index.

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <functional>
 #include <random>
+#include <set>
 
 #include <tbb/task_arena.h>
 
@@ -123,6 +124,71 @@ TEST(HashedMask, BuildStopsAtItsByteLimit) {
   for (const std::size_t limit : {peak - 1, peak / 2, std::size_t(1) << 16})
     EXPECT_TRUE(refused(limit, false)) << "limit " << limit << " below the peak " << peak;
   EXPECT_TRUE(refused(peak / 2, true)) << "threaded, limit " << peak / 2;
+}
+
+// rowCells() and octantBoxes() answer from a dense index (depth <= 7),
+// from counted bits (8 and 9) or by searching (10 and deeper): each is
+// checked against the cells that hold a triangle (here each triangle lies
+// well inside one cell). Rows hold many cells, some at the grid's ends.
+TEST(HashedMask, RowAndCellQueriesAtEveryIndexKind) {
+  const std::uint64_t seed = test::freshSeed();
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  for (const unsigned depth : {6u, 8u, 9u, 10u}) {
+    SCOPED_TRACE("depth " + std::to_string(depth));
+    const double extent = 10.0;
+    const OctreeBounds b = boundsForBox(glm::dvec3(0.0), glm::dvec3(extent), extent / (0.9 * double(1u << depth)), 0);
+    ASSERT_EQ(b.depth, depth);
+    const unsigned n = b.cellsPerAxis();
+    std::uniform_int_distribution<unsigned> any(0, n - 1), row(0, 5);
+    std::uniform_real_distribution<double> in(0.3, 0.7), d(-0.05, 0.05);
+    std::set<std::uint64_t> want;
+    Scene s;
+    for (int t = 0; t < 3000; ++t) {
+      const unsigned x = t % 50 == 0 ? (t % 100 == 0 ? 0u : n - 1) : any(rng);
+      const glm::uvec3 c(x, row(rng) * (n / 6), n - 1 - row(rng));  // 36 rows
+      const glm::dvec3 at = glm::dvec3(c) + glm::dvec3(in(rng), in(rng), in(rng));
+      glm::dvec3 v[3];
+      bool inside = true;
+      for (auto& p : v) {
+        p = glm::dvec3(b.origin_f) + (at + glm::dvec3(d(rng), d(rng), d(rng))) / double(b.cell_scale);
+        inside = inside && glm::uvec3(glm::floor(b.toCells(p))) == c;
+      }
+      ASSERT_TRUE(inside) << "triangle " << t << " leaves its cell";
+      for (const auto& p : v) {
+        s.vertices.push_back({glm::vec3(p), glm::vec3(0, 1, 0), glm::vec2(0)});
+        s.indices.push_back(std::uint32_t(s.vertices.size() - 1));
+      }
+      want.insert(packCoord(c));
+    }
+    const GeometryMask mask(s, b, 0.01);
+    ASSERT_EQ(mask.cellCount(), want.size());
+    std::uniform_int_distribution<unsigned> wide(0, n + 4);
+    for (unsigned z = n - 6; z < n; ++z)
+      for (unsigned y = 0; y <= 5 * (n / 6); y += n / 6)
+        for (int q = 0; q < 20; ++q) {
+          unsigned lo = wide(rng), hi = wide(rng);
+          if (q == 0) lo = 0, hi = n - 1;
+          if (lo > hi) std::swap(lo, hi);
+          std::vector<unsigned> expect, got;
+          for (auto it = want.lower_bound(packCoord({lo, y, z})); it != want.end() && *it <= packCoord({std::min(hi, n - 1), y, z}); ++it)
+            expect.push_back(unpackCoord(*it).x);
+          const auto [first, last] = mask.rowCells(y, z, lo, hi);
+          for (std::size_t i = first; i < last; ++i) {
+            got.push_back(mask.cellX(i));
+            const GeometryMask::Box* box = nullptr;
+            ASSERT_EQ(mask.octantBoxes({mask.cellX(i), y, z}, box), &mask.cellOctants(i));
+            ASSERT_EQ(box, &mask.cellBox(i));
+          }
+          ASSERT_EQ(got, expect) << "row y " << y << " z " << z << ", x " << lo << ".." << hi;
+        }
+    for (int q = 0; q < 2000; ++q) {
+      const glm::uvec3 c(any(rng), q % 2 ? row(rng) * (n / 6) : any(rng), q % 3 ? n - 1 - row(rng) : any(rng));
+      const GeometryMask::Box* box = nullptr;
+      ASSERT_EQ(mask.octantBoxes(c, box) != nullptr, want.count(packCoord(c)) == 1) << c.x << "," << c.y << "," << c.z;
+      ASSERT_EQ(mask.has(depth, c), want.count(packCoord(c)) == 1);
+    }
+  }
 }
 
 // 300 random triangles of up to ~3 cells in an 8-cell cube (cells of 1).
