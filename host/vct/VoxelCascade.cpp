@@ -52,16 +52,20 @@ std::vector<gpu::VoxelGridParams> placeCascade(const Aabb& scene_bounds, const V
     o.z = float(k.z) * o.w;
   }
   std::vector<gpu::VoxelGridParams> levels(cascades, outer);
-  for (unsigned c = 0; c + 1 < cascades; ++c) {
-    const float voxel = outer.origin_voxel_size.w / float(1u << (cascades - 1 - c));
-    gpu::VoxelGridParams& p = levels[c];
-    p.levels = cascadeLevelSettings(s, cascades, c).levels;
-    p.wrap = 1;
-    p.origin_voxel_size = {float(cornerIndex(eye.x, voxel, s.voxels)) * voxel,
-                           float(cornerIndex(eye.y, voxel, s.voxels)) * voxel,
-                           float(cornerIndex(eye.z, voxel, s.voxels)) * voxel, voxel};
-  }
+  for (unsigned c = 0; c + 1 < cascades; ++c) levels[c] = innerCascadeLevel(outer, s, cascades, c, eye);
   return levels;
+}
+
+gpu::VoxelGridParams innerCascadeLevel(const gpu::VoxelGridParams& outer, const VoxelGridSettings& s,
+                                       unsigned cascades, unsigned c, const glm::vec3& eye) {
+  const float voxel = outer.origin_voxel_size.w / float(1u << (cascades - 1 - c));
+  gpu::VoxelGridParams p = outer;
+  p.levels = cascadeLevelSettings(s, cascades, c).levels;
+  p.wrap = 1;
+  p.origin_voxel_size = {float(cornerIndex(eye.x, voxel, s.voxels)) * voxel,
+                         float(cornerIndex(eye.y, voxel, s.voxels)) * voxel,
+                         float(cornerIndex(eye.z, voxel, s.voxels)) * voxel, voxel};
+  return p;
 }
 
 // A move by d voxels along an axis brings in |d| new slices of the window:

@@ -67,6 +67,11 @@ std::size_t cascadeBytes(const VoxelGridSettings& s, unsigned cascades);
 std::vector<gpu::VoxelGridParams> placeCascade(const Aabb& scene_bounds, const VoxelGridSettings& s,
                                                unsigned cascades, const glm::vec3& eye, bool nested = false);
 
+// Level c < cascades - 1 of the cascade whose outermost level is `outer`:
+// the toroidal grid around `eye` that placeCascade() puts there.
+gpu::VoxelGridParams innerCascadeLevel(const gpu::VoxelGridParams& outer, const VoxelGridSettings& s,
+                                       unsigned cascades, unsigned c, const glm::vec3& eye);
+
 struct ScrollUpdate {
   bool full = true;
   VoxelRegion region;  // empty when nothing moved (and not full)

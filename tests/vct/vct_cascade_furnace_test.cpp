@@ -3,8 +3,8 @@
 // closed box, every voxel of every level outside its interior opaque with the
 // same radiance L, so traceDiffuse's irradiance / pi must equal L and its
 // ambient occlusion 0 wherever the cones start and whichever levels they
-// read. The levels are laid out as the pipeline lays them (placeCascade's
-// rule: inner level c has half the voxel of level c + 1, kInnerLevels mips,
+// read. The levels are laid out as the pipeline lays them (innerCascadeLevel,
+// placeCascade's rule: inner level c has half the voxel of level c + 1, kInnerLevels mips,
 // toroidal, its corner on a kInnerStep lattice around a random eye, so the
 // stored volume is scrolled), each filled directly (the box's faces lie on
 // every level's voxel faces) and mip-mapped by the mip filters' C++ twins.
@@ -44,13 +44,14 @@ const F4 kL{0.3f, 0.5f, 0.7f, 1.0f};
 
 // Level c of `cascades`, the inner ones around `eye` as placeCascade puts them.
 gpu::VoxelGridParams levelParams(unsigned cascades, unsigned c, const glm::vec3& eye) {
-  if (c + 1 == cascades) return {{-1.0f, -1.0f, -1.0f, kOuterVoxel}, kEdge, kOuterLevels, 0, 0};
-  const float voxel = kOuterVoxel / float(1u << (cascades - 1 - c));
-  auto corner = [&](float e) {
-    const double k = std::floor(double(e) / voxel) - kEdge / 2.0;
-    return float(std::llround(k / kInnerStep) * kInnerStep) * voxel;
-  };
-  return {{corner(eye.x), corner(eye.y), corner(eye.z), voxel}, kEdge, kInnerLevels, 1, 0};
+  const gpu::VoxelGridParams outer{{-1.0f, -1.0f, -1.0f, kOuterVoxel}, kEdge, kOuterLevels, 0, 0};
+  if (c + 1 == cascades) return outer;
+  VoxelGridSettings s;
+  s.voxels = kEdge;
+  s.levels = kOuterLevels;
+  const gpu::VoxelGridParams p = innerCascadeLevel(outer, s, cascades, c, eye);
+  EXPECT_EQ(p.levels, kInnerLevels);  // the window's corner is what the test varies, not its mips
+  return p;
 }
 
 // One level's textures: level 0 holds L outside the box (stored where the
