@@ -40,13 +40,17 @@ namespace ml::vct {
 // Seven textures a level (isotropic + 6 directions), and GL promises 32
 // compute texture units on the GPUs this targets: 4 levels and the G-buffer.
 inline constexpr unsigned kMaxCascades = 4;
-// 3 mip levels (corner on a 4-voxel lattice): the fine level's own mips
-// serve footprints two levels up before the coarser level's separate
-// voxelization takes over. Default scene flight, 2 x 64^3, 6 cameras, mean
-// noise-corrected error: 2 levels 0.185, 3 0.175, 4 0.176 (the window then
-// sits up to 4 voxels off the camera); 3 with the shader's margin scaled to
-// the mip level read, as shipped: 0.177.
-inline constexpr unsigned kInnerLevels = 3;
+// 2 mip levels (corner on a 2-voxel lattice): the fine level's own mips
+// serve footprints one level up, then the coarser level's separate
+// voxelization takes over. Flights, 2 x 64^3 against one 64^3 grid
+// (docs/vct.md, "The flight"): with 2 the cascade is lower at 12 of 12
+// cameras; with 3 it lost at Spaceship Indoor's camera 4 (0.267 against
+// 0.250; 0.218 with 2), a ribbed wall panel 3 m ahead that read 1.14x the
+// reference's energy: the inner level's second mip passes light that the
+// coarser level's own voxelization of the ribs stops. Default scene means
+// 0.161 with 2, 0.155 with 3, 0.173 reading only the inner level's finest
+// voxels (bench/RESULTS-vct.md, "Inner cascade levels with 2 mip levels").
+inline constexpr unsigned kInnerLevels = 2;
 inline constexpr unsigned kInnerStep = 1u << (kInnerLevels - 1);  // corner alignment, voxels
 
 void checkCascades(unsigned cascades);
