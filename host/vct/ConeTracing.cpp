@@ -16,11 +16,14 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 }  // namespace
 
-void checkConeSettings(unsigned count, float aperture_deg) {
+void checkConeSettings(unsigned count, float aperture_deg, float lod_bias) {
   if (count < 1 || count > kMaxCones)
     throw UserError("--cones: expected 1.." + std::to_string(kMaxCones) + ", got " + std::to_string(count));
   if (!(aperture_deg > 0.0f && aperture_deg < 180.0f))
     throw UserError("--cone-aperture: expected degrees in (0, 180), got " + std::to_string(aperture_deg));
+  if (!(lod_bias >= 0.0f && lod_bias <= kMaxConeLodBias))
+    throw UserError("--cone-lod-bias: expected levels in [0, " + std::to_string(int(kMaxConeLodBias)) + "], got " +
+                    std::to_string(lod_bias));
 }
 
 // Ring counts: the centre cone, then round(sqrt(count) / 2) rings sharing the
@@ -105,6 +108,7 @@ void bindConeTracing(const ShaderProgram& p, const ConeTraceSetup& s) {
   p.set4v("u_level_shift_lod", static_cast<int>(n), shift_lod.data());
   p.set("u_anisotropic", s.anisotropic ? 1 : 0);
   p.set("u_cone_tan", std::tan(s.aperture_deg * kPi / 360.0f));
+  p.set("u_lod_bias", s.lod_bias);
   std::vector<float> packed;
   for (const Cone& c : s.cones)
     packed.insert(packed.end(), {c.dir.x, c.dir.y, c.dir.z, s.broken == ConeBreak::Weights ? 1.0f : c.weight});

@@ -19,7 +19,8 @@
 // coneSetTurn(count): a quarter of the set's rotational period about the
 // normal (2 pi / the gcd of its rings' counts; 0 for the normal alone), the
 // step of vct_trace.comp's four interleaved turns.
-// checkConeSettings(): --cones in 1..32, --cone-aperture in (0, 180) degrees.
+// checkConeSettings(): --cones in 1..32, --cone-aperture in (0, 180) degrees,
+// --cone-lod-bias in [0, kMaxConeLodBias].
 #include <glm/glm.hpp>
 
 #include <vector>
@@ -32,12 +33,33 @@ namespace ml::vct {
 
 inline constexpr unsigned kMaxCones = 32;  // vct_cones.glsl's uniform array
 
+// --cone-lod-bias: a cone samples the mip level whose voxel is 2^-bias of its
+// diameter. A level's box filter and trilinear interpolation spread a point
+// over a standard deviation of half its voxel, a disk of diameter D has D / 4:
+// bias 1 matches the cone's cross-section, and more reads finer levels (less
+// blur, more steps). What blur costs at fine grids: marching the 9 cone axes
+// as rays through level 0 of the Cornell box's 128^3 volume (with the
+// interleaved turns) measures 0.0995 against the cones' 0.121 at 1.25, and 128
+// rays per pixel over the hemisphere 0.042 (energy 0.99): the voxels hold the
+// light, the wide cones blur it. Cornell box, its camera, 320x320, 9 cones of
+// 45 degrees, anisotropic, 4096-sample reference without its noise, 32^3 /
+// 64^3 / 128^3: bias 1 0.144 / 0.138 / 0.128; 1.25 0.139 / 0.132 / 0.121; 1.5
+// 0.134 / 0.130 / 0.118; 1.75 0.129 / 0.132 / 0.122; 2 0.124 / 0.134 / 0.125.
+// The flights (manylights-vct-bench --flight) at 1.5 against 1.25: the default
+// scene lower at 5 of 6 cameras with the cascade, 6 of 6 with one 128^3 grid;
+// Spaceship Indoor lower at 5 of 6 with one 128^3 grid but higher at 5 of 6
+// with 64^3 grids (3-9%; a 64^3 voxel there is coarse against the ship's
+// ribs and seams). The cost: 13-30% more trace time (more, shorter steps;
+// vct-trace, Cornell box 640x360 on llvmpipe). bench/RESULTS-vct.md.
+inline constexpr float kConeLodBias = 1.5f;
+inline constexpr float kMaxConeLodBias = 4.0f;
+
 struct Cone {
   glm::vec3 dir;  // tangent frame, z the normal
   float weight;
 };
 
-void checkConeSettings(unsigned count, float aperture_deg);
+void checkConeSettings(unsigned count, float aperture_deg, float lod_bias = kConeLodBias);
 std::vector<unsigned> coneRings(unsigned count);
 float coneSetTurn(unsigned count);
 std::vector<Cone> diffuseCones(unsigned count);
@@ -60,6 +82,7 @@ struct ConeTraceSetup {
   float aperture_deg = 45.0f;
   ConeBreak broken = ConeBreak::None;
   std::vector<ConeLevel> levels;  // a cascade, finest first (empty: {grid, textures} alone)
+  float lod_bias = kConeLodBias;  // --cone-lod-bias
 };
 
 // The define a program that includes vct_cones.glsl needs for `levels`

@@ -51,6 +51,10 @@ std::vector<ParamSpec> vctParams() {
                   "1.1-1.5x the error: an isotropic voxel shows one colour from every side)"),
       countParam("cones", "9", 1, kMaxCones, "diffuse cones per pixel (1..32)"),
       textParam("cone-aperture", "45", "diffuse cone aperture in degrees (0..180)", numberProblem),
+      textParam("cone-lod-bias", "1.5",
+                "mip levels finer than a cone's width that it samples (0..4): more is sharper and slower, 1.25 suits "
+                "grids coarse against the scene's detail",
+                numberProblem),
       textParam("gi-scale", "0.5", "trace resolution as a fraction of the frame's, (0, 1]", numberProblem),
       switchParam("specular", false, "add a specular cone (reflectance 0.04, aperture 10 degrees)"),
       choiceParam("vct-shadows", "none", {"none", "voxel"},
@@ -136,6 +140,7 @@ VctGiSettings vctSettingsOf(const ParamValues& p) {
   s.grid.anisotropic = p.on("anisotropic");
   s.cones = p.count("cones");
   s.aperture_deg = std::stof(p.text("cone-aperture"));
+  s.lod_bias = std::stof(p.text("cone-lod-bias"));
   s.gi_scale = std::stof(p.text("gi-scale"));
   s.specular = p.on("specular");
   s.shadows = p.text("vct-shadows");

@@ -38,7 +38,7 @@ GLuint groups(unsigned n) { return (n + kGroup - 1) / kGroup; }
 
 void checkVctGiSettings(const VctGiSettings& s) {
   checkVoxelGrid(s.grid);
-  checkConeSettings(s.cones, s.aperture_deg);
+  checkConeSettings(s.cones, s.aperture_deg, s.lod_bias);
   if (!(s.gi_scale > 0.0f && s.gi_scale <= 1.0f))
     throw UserError("--gi-scale: expected a fraction of the resolution in (0, 1], got " + std::to_string(s.gi_scale));
   if (s.shadows != "none" && s.shadows != "voxel")
@@ -111,7 +111,7 @@ void VctGiPass::update(const GiSceneInputs& in) {
 ConeTraceSetup VctGiPass::coneSetup() const {
   const bool aniso = pipeline_.volume().anisotropic() != nullptr;
   ConeTraceSetup setup{pipeline_.volume().params(), &pipeline_.textures(), aniso, cones_, s_.aperture_deg, s_.broken,
-                       {}};
+                       {}, s_.lod_bias};
   for (unsigned c = 0; c < pipeline_.cascades(); ++c)
     setup.levels.push_back({pipeline_.level(c).volume.params(), &pipeline_.level(c).textures});
   return setup;

@@ -54,6 +54,7 @@ struct VctGiSettings {
   VoxelGridSettings grid;   // --voxels, --levels, --anisotropic
   unsigned cones = 9;       // --cones
   float aperture_deg = 45;  // --cone-aperture
+  float lod_bias = kConeLodBias;  // --cone-lod-bias
   float gi_scale = 0.5f;    // --gi-scale: trace resolution / frame resolution, (0, 1]
   bool specular = false;    // --specular
   std::string shadows = "none";  // --vct-shadows: none | voxel (visibility through level-0 opacity)

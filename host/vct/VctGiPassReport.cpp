@@ -17,7 +17,7 @@ std::string printed(const char* format, auto... args) {
 
 nlohmann::ordered_json settingsJson(const VctGiSettings& v) {
   return {{"voxels", v.grid.voxels},  {"levels", v.grid.levels}, {"anisotropic", v.grid.anisotropic},
-          {"cones", v.cones},         {"cone_aperture", v.aperture_deg}, {"gi_scale", v.gi_scale},
+          {"cones", v.cones},         {"cone_aperture", v.aperture_deg}, {"cone_lod_bias", v.lod_bias}, {"gi_scale", v.gi_scale},
           {"specular", v.specular},   {"vct_shadows", v.shadows}, {"revoxelize", v.revoxelize},
           {"bounces", v.bounces}, {"cascades", v.cascades}};
 }

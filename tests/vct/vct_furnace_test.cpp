@@ -6,7 +6,8 @@
 // irradiance pi L, so traceDiffuse's irradiance / pi must equal L and its
 // ambient occlusion 0. Stated tolerance: 2% of L (cones stop at opacity
 // 0.99: up to 1% low; RGBA16F texels: 0.05%). Per cone count 1, 5, 9, 16, 32,
-// apertures 30/45/60 degrees, isotropic and anisotropic; random points at
+// apertures 30/45/60 degrees, lod biases 0..4 (9 cones of 45 degrees),
+// isotropic and anisotropic; random points at
 // least 3 voxels from the walls and random normals (fresh seed, printed).
 // The test can fail: with the weights broken (1 instead of pi / count) it must.
 #include <gtest/gtest.h>
@@ -124,6 +125,25 @@ TEST(VctFurnace, UniformRadianceGivesPiLForEveryConeSet) {
         s.broken = ConeBreak::Weights;
         EXPECT_GT(worst(f.trace(s, points, normals)).first, kTolerance) << "broken weights pass";
       }
+  }
+}
+
+// --cone-lod-bias changes which levels a cone reads, never what a uniform
+// field gives: pi L at every bias the flag takes.
+TEST(VctFurnace, UniformRadianceGivesPiLAtEveryLodBias) {
+  std::vector<F4> points, normals;
+  const std::uint64_t seed = furnaceInputs(kLo, kHi, points, normals);
+  SCOPED_TRACE("seed=" + std::to_string(seed));
+  for (bool aniso : {false, true}) {
+    Furnace f(aniso);
+    for (float bias : {0.0f, 0.75f, kConeLodBias, kMaxConeLodBias}) {
+      SCOPED_TRACE("anisotropic " + std::to_string(aniso) + " lod bias " + std::to_string(bias));
+      ConeTraceSetup s{f.grid, &f.textures, aniso, diffuseCones(9), 45.0f, ConeBreak::None, {}, bias};
+      std::printf("lod bias %.2f: ", double(bias));
+      const auto [err, ao] = traceWorst(f, s, points, normals, "");
+      EXPECT_LE(err, kTolerance);
+      EXPECT_LE(ao, kTolerance);
+    }
   }
 }
 

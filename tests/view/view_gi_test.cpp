@@ -79,13 +79,14 @@ TEST(ViewerGi, TheDescriptorDefaultsAreTheSettingsDefaults) {
   EXPECT_EQ(got.grid.anisotropic, want.grid.anisotropic);
   EXPECT_EQ(got.cones, want.cones);
   EXPECT_EQ(got.aperture_deg, want.aperture_deg);
+  EXPECT_EQ(got.lod_bias, want.lod_bias);
   EXPECT_EQ(got.gi_scale, want.gi_scale);
   EXPECT_EQ(got.specular, want.specular);
   EXPECT_EQ(got.shadows, want.shadows);
   EXPECT_EQ(got.revoxelize, want.revoxelize);
   EXPECT_EQ(got.cascades, want.cascades);
   EXPECT_EQ(got.fold, want.fold);
-  EXPECT_EQ(vct::giDescriptor().params.size(), 11u) << "a VCT setting was added: map it in vctSettingsOf";
+  EXPECT_EQ(vct::giDescriptor().params.size(), 12u) << "a VCT setting was added: map it in vctSettingsOf";
 }
 
 // gi_param revoxelize (the panel's checkbox) reaches the pipeline: with it

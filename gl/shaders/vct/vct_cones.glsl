@@ -4,7 +4,7 @@
 // A cone marches front to back from a surface point (each sample lifted off
 // the surface along its normal: kLevelOffset): at distance t its diameter is
 // max(voxel, 2 t tan(aperture / 2)) and it samples the level whose voxel is
-// half that wide (kLodBias; trilinear within and between levels); each step
+// 2^-u_lod_bias of that (trilinear within and between levels); each step
 // is half the sampled level's voxel (a quarter of a diameter until the lod
 // reaches the coarsest level). The sample's opacity becomes an optical
 // density (opticalDensity: trilinear interpolation of a solid voxel's
@@ -21,11 +21,12 @@
 // levels are sampled through their shift (GL_REPEAT textures).
 // Cornell box with its camera, 320x320, anisotropic, 9 cones of 45 degrees,
 // --levels auto, against a 4096-sample reference without its noise
-// (relative RMSE, energy): 32^3 0.139 (0.92), 64^3 0.132 (0.91), 128^3
-// 0.121 (0.93) with vct_trace.comp's interleaved turns (0.156, 0.147, 0.138
-// with one set); before the density, the bias, this offset, the faces'
-// colour mix, the ring cone set and the turns: 0.197, 0.227, 0.185 at 4
-// levels (docs/vct.md, "Accuracy").
+// (relative RMSE, energy): 32^3 0.134 (0.92), 64^3 0.130 (0.91), 128^3
+// 0.118 (0.93) at lod bias 1.5 with vct_trace.comp's interleaved turns
+// (0.139, 0.132, 0.121 at bias 1.25; 0.156, 0.147, 0.138 with one set);
+// before the density, the bias, this offset, the faces' colour mix, the
+// ring cone set and the turns: 0.197, 0.227, 0.185 at 4 levels
+// (docs/vct.md, "Accuracy").
 #include "vct_bindings.h"
 // Level c's textures: radiance at unit ML_UNIT_VCT_VOXELS + c, its 6
 // directions (+X -X +Y -Y +Z -Z, direction of travel) from
@@ -41,30 +42,18 @@ uniform int u_anisotropic;
 uniform float u_cone_tan;         // tan(aperture / 2) of the diffuse cones
 uniform int u_cone_count;
 uniform vec4 u_cones[32];         // tangent-frame direction (z the normal), weight (sum pi)
+uniform float u_lod_bias;         // levels finer than the cone's width (ConeTracing.hpp kConeLodBias)
 
 const float kConeStep = 0.5;        // step, in voxels of the sampled level
-// The level read is log2(diameter / level-0 voxel) - kLodBias. A mip level's
-// box filter followed by trilinear interpolation spreads a point over a
-// footprint whose standard deviation is half the level's voxel per axis; a
-// disk of diameter D has D / 4. So the level whose voxel is half the cone's
-// diameter (bias 1) matches the cone's cross-section, where bias 0 blurred
-// it twice as wide: the finer the grid, the worse. A quarter level finer
-// measures better still (the sample also spreads along the cone's axis,
-// where a step already averages): Cornell box as above with the ring cone
-// set (ConeTracing.hpp), 32^3 / 64^3 / 128^3, bias 0.75 0.164 / 0.158 /
-// 0.158; 1 0.161 / 0.151 / 0.143; 1.25 0.156 / 0.147 / 0.138; 1.5 0.154 /
-// 0.148 / 0.139; the default scene's flight lower at 4 of 6 cameras (2 x
-// 64^3) and 6 of 6 (128^3); 11% more trace time (more, shorter steps).
-// Bias 0, from the glTF's default view, with the former sunflower cones and
-// before the colour mix: 0.166 / 0.234 / 0.264 against 0.160 / 0.148 /
-// 0.141 at bias 1.
-const float kLodBias = 1.25;
+// The level read is log2(diameter / level-0 voxel) - u_lod_bias
+// (--cone-lod-bias, host/vct/ConeTracing.hpp kConeLodBias: why 1.5).
 // Each sample sits off the surface along the normal by the larger of one
 // level-0 voxel and kLevelOffset voxels of the level it reads, so a coarse
 // sample's trilinear footprint does not take in the surface's own voxel
 // (self-occlusion and self-lighting). Cornell box as above at 32^3 / 64^3 /
 // 128^3: 0 0.164 / 0.159 / 0.143; 0.25 0.164 / 0.159 / 0.142; 0.5 0.163 /
-// 0.171 / 0.155.
+// 0.171 / 0.155 (bias 1); at bias 1.5 with the turns 0.125 0.132 / 0.131 /
+// 0.119; 0.25 0.134 / 0.130 / 0.118; 0.375 0.134 / 0.132 / 0.122.
 const float kLevelOffset = 0.25;
 const float kConeOpaque = 0.99;
 // A sample reads a cascade level only this many voxels of the mip level it
@@ -218,7 +207,7 @@ vec4 traceCone(vec3 P, vec3 N, vec3 d, float tan_half) {
   float t = vs;
   for (int i = 0; i < 512 && a < kConeOpaque; ++i) {
     float diam = max(vs, 2.0 * t * tan_half);
-    float lod = clamp(log2(diam / vs0) - kLodBias, 0.0, max_lod);
+    float lod = clamp(log2(diam / vs0) - u_lod_bias, 0.0, max_lod);
     float want = vs0 * exp2(lod);  // the footprint's level voxel, for the lift
     vec3 x = P + N * max(vs, kLevelOffset * want) + t * d;
     if (insideVoxels(outer, x) < 0.0) break;
